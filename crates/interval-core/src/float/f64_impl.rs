@@ -1,0 +1,475 @@
+//! Directed rounding for `f64` by error-free transformations.
+//!
+//! Each operation computes the round-to-nearest result `r`, obtains the exact sign of the
+//! rounding error, and steps `r` by one ulp only when it lies on the wrong side. The fast
+//! path covers operands and results away from overflow and from the subnormal range, where
+//! the error term is exactly representable; the `*_slow` functions handle the rest by
+//! scaling with powers of two (exact) so the error term is again exact.
+
+use super::Float;
+use super::eft::{down_by_sign, two_prod, two_sum, up_by_sign};
+
+/// `2^k` for `-1022 <= k <= 1023`, built from its bit pattern.
+#[inline(always)]
+const fn pow2(k: i32) -> f64 {
+    f64::from_bits(((k + 1023) as u64) << 52)
+}
+
+/// Below this magnitude a product's FMA error term may fall under the subnormal quantum.
+const PROD_EXACT_MIN: f64 = pow2(-967);
+/// Below this magnitude a quotient's remainder may not be exact.
+const QUOT_MIN: f64 = pow2(-1021);
+/// Below this magnitude of the dividend the FMA remainder may not be exact.
+const DIVIDEND_MIN: f64 = pow2(-960);
+/// Below this magnitude `fma(-s, s, a)` may not be exact.
+const SQRT_ARG_MIN: f64 = pow2(-960);
+/// The range in which ErrFma's error terms are exact and free of overflow.
+const FMA_MIN: f64 = pow2(-900);
+const FMA_MAX: f64 = pow2(1000);
+/// The power-of-two scale used to lift tiny operands out of the subnormal range.
+const LIFT: i32 = 600;
+
+/// Bounds `(down, up)` of an exact value known only to exceed the finite range.
+#[inline]
+fn overflow_bounds(positive: bool) -> (f64, f64) {
+    if positive {
+        (f64::MAX, f64::INFINITY)
+    } else {
+        (f64::NEG_INFINITY, -f64::MAX)
+    }
+}
+
+/// Bounds of a nonzero exact value whose magnitude is below the smallest subnormal / 2.
+#[inline]
+fn underflow_bounds(positive: bool) -> (f64, f64) {
+    if positive {
+        (0.0, f64::MIN_POSITIVE_SUBNORMAL)
+    } else {
+        (-f64::MIN_POSITIVE_SUBNORMAL, -0.0)
+    }
+}
+
+/// Bounds `(down, up)` of the exact value `r + err`, where `r` is its round-to-nearest value
+/// and only the sign of `err` matters.
+#[inline]
+fn bracket(r: f64, err: f64) -> (f64, f64) {
+    if err < 0.0 {
+        (r.next_down(), r)
+    } else if err > 0.0 {
+        (r, r.next_up())
+    } else {
+        (r, r)
+    }
+}
+
+/// Exponent and significand of a finite nonzero `x`: `x = m · 2^e` with `1 <= |m| < 2`.
+fn frexp(x: f64) -> (f64, i32) {
+    let (x, bias) = if x.abs() < f64::MIN_POSITIVE {
+        (x * pow2(64), 64)
+    } else {
+        (x, 0)
+    };
+    let bits = x.to_bits();
+    let e = ((bits >> 52) & 0x7ff) as i32 - 1023;
+    let m = f64::from_bits((bits & !(0x7ff << 52)) | (1023 << 52));
+    (m, e - bias)
+}
+
+/// `x · 2^k` rounded to nearest with a single rounding, for finite `x`.
+///
+/// Steps toward large magnitudes are exact until they overflow (and an overflowed
+/// intermediate means the exact result overflows too). Toward small magnitudes the value is
+/// first normalized exactly, then rounded once: in the subnormal range by rounding the scaled
+/// significand to an integer (ties to even), which is what the hardware does.
+fn ldexp_rn(x: f64, k: i32) -> f64 {
+    if x == 0.0 || !x.is_finite() {
+        return x;
+    }
+    let mut k = k.clamp(-2400, 2400);
+    let mut x = x;
+    while k > 1023 {
+        x *= pow2(1023);
+        k -= 1023;
+    }
+    if k >= -1022 {
+        return x * pow2(k);
+    }
+    // k < -1022: normalize x to [1, 2) exactly, then round once.
+    let (m, e) = frexp(x);
+    let k1 = k + e;
+    if k1 >= -1022 {
+        m * pow2(k1)
+    } else if k1 < -1075 {
+        0.0 * m
+    } else {
+        // |m · 2^k1| < 2^-1022: the subnormal grid is 2^-1074, so round m · 2^(k1 + 1074)
+        // (exact, |.| < 2^52) to an integer and scale back (exact).
+        (m * pow2(k1 + 1074)).round_ties_even() * f64::MIN_POSITIVE_SUBNORMAL
+    }
+}
+
+/// Bounds of `(hi + lo) · 2^k`, where `hi` is normal and `|lo| <= ulp(hi)/2`.
+///
+/// `q = RN(hi · 2^k)` is within one grid step of the exact value; the sign of
+/// `exact − q` is that of `d + lo` with `d = hi − q·2^(−k)` computed exactly (Sterbenz), and
+/// `d`, when nonzero, is at least one ulp of `hi`, so it dominates `lo`.
+fn round_scaled(hi: f64, lo: f64, k: i32) -> (f64, f64) {
+    let q = ldexp_rn(hi, k);
+    if q.is_infinite() {
+        return overflow_bounds(hi > 0.0);
+    }
+    if q == 0.0 {
+        return underflow_bounds(hi > 0.0);
+    }
+    let back = ldexp_rn(q, -k);
+    let d = hi - back;
+    bracket(q, if d != 0.0 { d } else { lo })
+}
+
+/// Directed bounds of `a + b` when the round-to-nearest sum is not finite.
+#[inline]
+fn add_nonfinite(a: f64, b: f64, s: f64) -> (f64, f64) {
+    if s.is_infinite() && a.is_finite() && b.is_finite() {
+        overflow_bounds(s > 0.0)
+    } else {
+        (s, s)
+    }
+}
+
+/// Directed bounds of `a · b` outside the fast path: NaN, zeros, infinities, overflow and
+/// products near or below the subnormal range.
+#[cold]
+fn mul_slow(a: f64, b: f64) -> (f64, f64) {
+    if a.is_nan() || b.is_nan() {
+        return (f64::NAN, f64::NAN);
+    }
+    if a == 0.0 || b == 0.0 {
+        return (0.0, 0.0);
+    }
+    let p = a * b;
+    if p.is_infinite() {
+        if a.is_infinite() || b.is_infinite() {
+            return (p, p);
+        }
+        return overflow_bounds(p > 0.0);
+    }
+    // |a·b| < 2^-967, so the smaller factor is below 2^-483 and can be lifted exactly.
+    let (x, y) = if a.abs() <= b.abs() { (a, b) } else { (b, a) };
+    let (ps, es) = two_prod(x * pow2(LIFT), y);
+    if ps.abs() >= PROD_EXACT_MIN {
+        round_scaled(ps, es, -LIFT)
+    } else {
+        // |a·b| < 2^-1566: far below the smallest subnormal.
+        underflow_bounds((a > 0.0) == (b > 0.0))
+    }
+}
+
+/// Directed bounds of `a / b` outside the fast path.
+#[cold]
+fn div_slow(a: f64, b: f64) -> (f64, f64) {
+    if a.is_nan() || b.is_nan() {
+        return (f64::NAN, f64::NAN);
+    }
+    if b == 0.0 || a.is_infinite() {
+        let q = a / b;
+        return (q, q);
+    }
+    if a == 0.0 || b.is_infinite() {
+        return (0.0, 0.0);
+    }
+    let q = a / b;
+    if q.is_infinite() {
+        return overflow_bounds(q > 0.0);
+    }
+    // Normalize both operands to [1, 2): the remainder of the scaled quotient is exact.
+    let (ma, ea) = frexp(a);
+    let (mb, eb) = frexp(b);
+    let qs = ma / mb;
+    let r = (-qs).mul_add(mb, ma);
+    round_scaled(qs, r / mb, ea - eb)
+}
+
+/// Directed bounds of `√a` outside the fast path.
+#[cold]
+fn sqrt_slow(a: f64) -> (f64, f64) {
+    if a.is_nan() || a < 0.0 {
+        return (f64::NAN, f64::NAN);
+    }
+    if a == 0.0 || a.is_infinite() {
+        return (a, a);
+    }
+    // Tiny a: √(a · 2^600) = √a · 2^300, all scalings exact.
+    let scaled = a * pow2(LIFT);
+    let s = scaled.sqrt();
+    let r = (-s).mul_add(s, scaled);
+    let (lo, hi) = bracket(s, r);
+    (lo * pow2(-LIFT / 2), hi * pow2(-LIFT / 2))
+}
+
+/// Round-to-nearest `a·b + c` and a value with the sign of the rounding error, by
+/// Boldo–Muller's ErrFma, when all terms lie where its error terms are exact.
+#[inline]
+fn fma_err(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
+    let (u1, u2) = two_prod(a, b);
+    let in_range = |v: f64| (FMA_MIN..=FMA_MAX).contains(&v.abs());
+    if !(in_range(u1) && (c == 0.0 || in_range(c))) {
+        return None;
+    }
+    let r1 = a.mul_add(b, c);
+    let (alpha1, alpha2) = two_sum(c, u2);
+    let (beta1, beta2) = two_sum(u1, alpha1);
+    let gamma = (beta1 - r1) + beta2;
+    // γ + α2 is the exact error (Boldo & Muller 2011); its rounding keeps the sign.
+    Some((r1, gamma + alpha2))
+}
+
+/// Directed bounds of `a·b + c` outside ErrFma's domain.
+#[cold]
+fn fma_slow(a: f64, b: f64, c: f64) -> (f64, f64) {
+    if a.is_nan() || b.is_nan() || c.is_nan() {
+        return (f64::NAN, f64::NAN);
+    }
+    if a == 0.0 || b == 0.0 {
+        return (c, c);
+    }
+    if a.is_infinite() || b.is_infinite() || c.is_infinite() {
+        let v = a * b + c;
+        return (v, v);
+    }
+    if c == 0.0 {
+        return mul_slow_or_fast(a, b);
+    }
+    // Extreme magnitudes: valid, possibly one ulp wider than tight (see docs/numerics.md).
+    let (pd, pu) = mul_slow_or_fast(a, b);
+    (pd.add_down(c), pu.add_up(c))
+}
+
+#[inline]
+fn mul_slow_or_fast(a: f64, b: f64) -> (f64, f64) {
+    (a.mul_down(b), a.mul_up(b))
+}
+
+impl Float for f64 {
+    const NAME: &'static str = "f64";
+    const ZERO: Self = 0.0;
+    const ONE: Self = 1.0;
+    const TWO: Self = 2.0;
+    const HALF: Self = 0.5;
+    const INFINITY: Self = f64::INFINITY;
+    const NEG_INFINITY: Self = f64::NEG_INFINITY;
+    const MAX: Self = f64::MAX;
+    const MIN_POSITIVE_SUBNORMAL: Self = 4.9406564584124654e-324;
+    const NAN: Self = f64::NAN;
+    const MANTISSA_DIGITS: u32 = f64::MANTISSA_DIGITS;
+
+    #[inline(always)]
+    fn next_up(self) -> Self {
+        f64::next_up(self)
+    }
+    #[inline(always)]
+    fn next_down(self) -> Self {
+        f64::next_down(self)
+    }
+    #[inline(always)]
+    fn is_nan(self) -> bool {
+        f64::is_nan(self)
+    }
+    #[inline(always)]
+    fn is_finite(self) -> bool {
+        f64::is_finite(self)
+    }
+    #[inline(always)]
+    fn is_infinite(self) -> bool {
+        f64::is_infinite(self)
+    }
+    #[inline(always)]
+    fn is_sign_negative(self) -> bool {
+        f64::is_sign_negative(self)
+    }
+    #[inline(always)]
+    fn abs(self) -> Self {
+        f64::abs(self)
+    }
+    #[inline(always)]
+    fn min_nan(self, other: Self) -> Self {
+        if self.is_nan() || other.is_nan() {
+            f64::NAN
+        } else if self < other {
+            self
+        } else {
+            other
+        }
+    }
+    #[inline(always)]
+    fn max_nan(self, other: Self) -> Self {
+        if self.is_nan() || other.is_nan() {
+            f64::NAN
+        } else if self > other {
+            self
+        } else {
+            other
+        }
+    }
+    #[inline(always)]
+    fn sqrt_rn(self) -> Self {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn to_f64(self) -> f64 {
+        self
+    }
+    #[inline(always)]
+    fn from_f64_rn(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn from_f64_down(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn from_f64_up(x: f64) -> Self {
+        x
+    }
+
+    #[inline(always)]
+    fn add_down(self, b: Self) -> Self {
+        let (s, e) = two_sum(self, b);
+        if s.is_finite() {
+            down_by_sign(s, e)
+        } else {
+            add_nonfinite(self, b, s).0
+        }
+    }
+    #[inline(always)]
+    fn add_up(self, b: Self) -> Self {
+        let (s, e) = two_sum(self, b);
+        if s.is_finite() {
+            up_by_sign(s, e)
+        } else {
+            add_nonfinite(self, b, s).1
+        }
+    }
+    #[inline(always)]
+    fn mul_down(self, b: Self) -> Self {
+        let (p, e) = two_prod(self, b);
+        if p.abs() >= PROD_EXACT_MIN && p.abs() <= f64::MAX {
+            down_by_sign(p, e)
+        } else {
+            mul_slow(self, b).0
+        }
+    }
+    #[inline(always)]
+    fn mul_up(self, b: Self) -> Self {
+        let (p, e) = two_prod(self, b);
+        if p.abs() >= PROD_EXACT_MIN && p.abs() <= f64::MAX {
+            up_by_sign(p, e)
+        } else {
+            mul_slow(self, b).1
+        }
+    }
+    #[inline(always)]
+    fn div_down(self, b: Self) -> Self {
+        let q = self / b;
+        if q.abs() >= QUOT_MIN && q.abs() <= f64::MAX && self.abs() >= DIVIDEND_MIN {
+            let r = (-q).mul_add(b, self);
+            down_by_sign(q, if b < 0.0 { -r } else { r })
+        } else {
+            div_slow(self, b).0
+        }
+    }
+    #[inline(always)]
+    fn div_up(self, b: Self) -> Self {
+        let q = self / b;
+        if q.abs() >= QUOT_MIN && q.abs() <= f64::MAX && self.abs() >= DIVIDEND_MIN {
+            let r = (-q).mul_add(b, self);
+            up_by_sign(q, if b < 0.0 { -r } else { r })
+        } else {
+            div_slow(self, b).1
+        }
+    }
+    #[inline(always)]
+    fn sqrt_down(self) -> Self {
+        if self >= SQRT_ARG_MIN && self <= f64::MAX {
+            let s = self.sqrt();
+            down_by_sign(s, (-s).mul_add(s, self))
+        } else {
+            sqrt_slow(self).0
+        }
+    }
+    #[inline(always)]
+    fn sqrt_up(self) -> Self {
+        if self >= SQRT_ARG_MIN && self <= f64::MAX {
+            let s = self.sqrt();
+            up_by_sign(s, (-s).mul_add(s, self))
+        } else {
+            sqrt_slow(self).1
+        }
+    }
+    #[inline]
+    fn fma_down(self, b: Self, c: Self) -> Self {
+        match fma_err(self, b, c) {
+            Some((r, e)) => down_by_sign(r, e),
+            None => fma_slow(self, b, c).0,
+        }
+    }
+    #[inline]
+    fn fma_up(self, b: Self, c: Self) -> Self {
+        match fma_err(self, b, c) {
+            Some((r, e)) => up_by_sign(r, e),
+            None => fma_slow(self, b, c).1,
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn ldexp_rounds_once_into_subnormals() {
+        // 1.5 · 2^-1075 = 0.75 · 2^-1074 rounds up; 2^-1075 is a tie and goes to even (0).
+        assert_eq!(ldexp_rn(1.5, -1075), f64::MIN_POSITIVE_SUBNORMAL);
+        assert_eq!(ldexp_rn(1.0, -1075), 0.0);
+        assert_eq!(ldexp_rn(1.0, -1074), f64::MIN_POSITIVE_SUBNORMAL);
+        assert_eq!(ldexp_rn(1.0, 1024), f64::INFINITY);
+        assert_eq!(ldexp_rn(1.0, -2000), 0.0);
+        assert_eq!(ldexp_rn(f64::MIN_POSITIVE_SUBNORMAL, 1074), 1.0);
+    }
+
+    #[test]
+    fn frexp_handles_subnormals() {
+        assert_eq!(frexp(f64::MIN_POSITIVE_SUBNORMAL), (1.0, -1074));
+        assert_eq!(frexp(-3.0), (-1.5, 1));
+    }
+
+    #[test]
+    fn tiny_products_are_bracketed() {
+        let a = f64::MIN_POSITIVE_SUBNORMAL;
+        assert_eq!(a.mul_down(0.5), 0.0);
+        assert_eq!(a.mul_up(0.5), a);
+        assert_eq!(a.mul_down(1.5), a);
+        assert_eq!(a.mul_up(1.5), 2.0 * a);
+        assert_eq!(a.mul_down(-a), -a);
+        assert_eq!(a.mul_up(-a), 0.0);
+    }
+
+    #[test]
+    fn overflow_is_bracketed() {
+        assert_eq!(f64::MAX.add_down(f64::MAX), f64::MAX);
+        assert_eq!(f64::MAX.add_up(f64::MAX), f64::INFINITY);
+        assert_eq!(f64::MAX.mul_down(2.0), f64::MAX);
+        assert_eq!((-f64::MAX).mul_up(2.0), -f64::MAX);
+        assert_eq!(f64::MAX.div_down(0.5), f64::MAX);
+    }
+
+    #[test]
+    fn one_third() {
+        let lo = 1.0f64.div_down(3.0);
+        let hi = 1.0f64.div_up(3.0);
+        assert_eq!(hi, lo.next_up());
+        assert!(lo < 1.0 / 3.0 || hi > 1.0 / 3.0);
+        assert_eq!(2.0f64.sqrt_up(), 2.0f64.sqrt_down().next_up());
+        assert_eq!(4.0f64.sqrt_down(), 2.0);
+        assert_eq!(4.0f64.sqrt_up(), 2.0);
+    }
+}

@@ -1,0 +1,274 @@
+//! The set-based interval type [`Interval`] and its operations.
+//!
+//! Operations live in one file per family, after IEEE 1788-2015: arithmetic (`arith`),
+//! reverse operations (`rev`), elementary functions (`elementary`, `trig`), numeric functions
+//! (this file), boolean relations (`relations`), set operations (`set_ops`), slice operations
+//! (`batch`) and formatting (`fmt`).
+
+mod arith;
+pub mod batch;
+mod elementary;
+mod fmt;
+mod relations;
+mod rev;
+mod set_ops;
+mod trig;
+
+use crate::IntervalError;
+use crate::float::Float;
+
+/// A closed, connected set of real numbers `{x : inf ≤ x ≤ sup}`, possibly empty or
+/// unbounded: the *set-based* interval of IEEE 1788-2015, over `f64` or `f32` bounds.
+///
+/// Every operation returns an interval that contains the exact result of the real operation
+/// on every point of its arguments (the inclusion property). Arithmetic `+ - * /`, `fma`,
+/// `sqr`, `sqrt` and `recip` are *tight*: their bounds are the exact result rounded
+/// outward to the nearest representable numbers. Elementary functions state their accuracy in
+/// their documentation.
+///
+/// The empty set is a valid interval ([`Interval::EMPTY`]); so are `[−∞, b]`, `[a, +∞]` and
+/// [`Interval::ENTIRE`]. Bounds are never NaN except in the empty interval's representation.
+///
+/// ```
+/// use interval_core::Interval;
+/// let x = Interval::new(1.0, 2.0)?;
+/// let y = Interval::new(-1.0, 3.0)?;
+/// assert_eq!(x * y, Interval::new(-2.0, 6.0)?);
+/// let third: Interval<f64> = Interval::point(1.0)? / Interval::point(3.0)?;
+/// assert!(third.contains(1.0 / 3.0));
+/// assert_eq!(third.sup(), third.inf().next_up()); // tight: one ulp wide
+/// # Ok::<(), interval_core::IntervalError>(())
+/// ```
+#[derive(Clone, Copy, Debug)]
+pub struct Interval<T: Float = f64> {
+    /// Lower bound; NaN for the empty interval.
+    pub(crate) lo: T,
+    /// Upper bound; NaN for the empty interval.
+    pub(crate) hi: T,
+}
+
+impl<T: Float> Default for Interval<T> {
+    /// The empty interval, the neutral element of [`Interval::convex_hull`].
+    fn default() -> Self {
+        Self::EMPTY
+    }
+}
+
+impl<T: Float> Interval<T> {
+    /// The empty set.
+    pub const EMPTY: Self = Self {
+        lo: T::NAN,
+        hi: T::NAN,
+    };
+    /// The whole real line `[−∞, +∞]`.
+    pub const ENTIRE: Self = Self {
+        lo: T::NEG_INFINITY,
+        hi: T::INFINITY,
+    };
+    /// `[0, 0]`.
+    pub const ZERO: Self = Self {
+        lo: T::ZERO,
+        hi: T::ZERO,
+    };
+    /// `[1, 1]`.
+    pub const ONE: Self = Self {
+        lo: T::ONE,
+        hi: T::ONE,
+    };
+
+    /// The interval `[lo, hi]`.
+    ///
+    /// # Errors
+    /// [`IntervalError`] if a bound is NaN, `lo > hi`, `lo = +∞` or `hi = −∞`.
+    pub fn new(lo: T, hi: T) -> Result<Self, IntervalError> {
+        if lo.is_nan() {
+            return Err(IntervalError::NanBound { which: "lower" });
+        }
+        if hi.is_nan() {
+            return Err(IntervalError::NanBound { which: "upper" });
+        }
+        if lo > hi {
+            return Err(IntervalError::Reversed {
+                lo: lo.to_f64(),
+                hi: hi.to_f64(),
+            });
+        }
+        if lo == T::INFINITY || hi == T::NEG_INFINITY {
+            return Err(IntervalError::InfiniteEndpoint {
+                lo: lo.to_f64(),
+                hi: hi.to_f64(),
+            });
+        }
+        Ok(Self { lo, hi })
+    }
+
+    /// The singleton `[x, x]`.
+    ///
+    /// # Errors
+    /// [`IntervalError`] if `x` is NaN or infinite.
+    pub fn point(x: T) -> Result<Self, IntervalError> {
+        Self::new(x, x)
+    }
+
+    /// `[lo, hi]` without checks. The caller guarantees `lo ≤ hi`, no NaN, `lo ≠ +∞` and
+    /// `hi ≠ −∞`, or both bounds NaN (the empty interval); violating this is not unsafe
+    /// but makes later results meaningless.
+    #[inline(always)]
+    pub const fn new_unchecked(lo: T, hi: T) -> Self {
+        Self { lo, hi }
+    }
+
+    /// The tightest interval containing the real number `x` (given as `f64`), for `f32`
+    /// intervals a one-ulp interval when `x` is not an `f32`.
+    ///
+    /// # Errors
+    /// [`IntervalError`] if `x` is NaN or infinite.
+    pub fn from_f64(x: f64) -> Result<Self, IntervalError> {
+        if !x.is_finite() {
+            return Err(if x.is_nan() {
+                IntervalError::NanBound { which: "lower" }
+            } else {
+                IntervalError::InfiniteEndpoint { lo: x, hi: x }
+            });
+        }
+        Ok(Self {
+            lo: T::from_f64_down(x),
+            hi: T::from_f64_up(x),
+        })
+    }
+
+    /// Lower bound; `+∞` for the empty interval (IEEE 1788 `inf`).
+    #[inline]
+    pub fn inf(self) -> T {
+        if self.is_empty() { T::INFINITY } else { self.lo }
+    }
+
+    /// Upper bound; `−∞` for the empty interval (IEEE 1788 `sup`).
+    #[inline]
+    pub fn sup(self) -> T {
+        if self.is_empty() { T::NEG_INFINITY } else { self.hi }
+    }
+
+    /// Midpoint, rounded to nearest; NaN for the empty interval, 0 for `ENTIRE`, and
+    /// `∓MAX` for half-unbounded intervals (IEEE 1788 `mid`).
+    pub fn mid(self) -> T {
+        let (a, b) = (self.lo, self.hi);
+        if self.is_empty() {
+            T::NAN
+        } else if a == T::NEG_INFINITY {
+            if b == T::INFINITY { T::ZERO } else { -T::MAX }
+        } else if b == T::INFINITY {
+            T::MAX
+        } else {
+            let m = a * T::HALF + b * T::HALF;
+            // Halving may underflow for subnormal bounds; keep the result inside.
+            if m < a {
+                a
+            } else if m > b {
+                b
+            } else {
+                m
+            }
+        }
+    }
+
+    /// Radius: the smallest `r` (rounded up) with `[mid − r, mid + r] ⊇ self`; NaN for empty.
+    pub fn rad(self) -> T {
+        if self.is_empty() {
+            return T::NAN;
+        }
+        let m = self.mid();
+        (m.sub_up(self.lo)).max_nan(self.hi.sub_up(m))
+    }
+
+    /// Width `sup − inf`, rounded up; NaN for empty (IEEE 1788 `wid`).
+    pub fn wid(self) -> T {
+        if self.is_empty() {
+            T::NAN
+        } else {
+            self.hi.sub_up(self.lo)
+        }
+    }
+
+    /// Magnitude `max |x|` over the interval; NaN for empty.
+    pub fn mag(self) -> T {
+        if self.is_empty() {
+            T::NAN
+        } else {
+            self.lo.abs().max_nan(self.hi.abs())
+        }
+    }
+
+    /// Mignitude `min |x|` over the interval; NaN for empty.
+    pub fn mig(self) -> T {
+        if self.is_empty() {
+            T::NAN
+        } else if self.lo > T::ZERO {
+            self.lo
+        } else if self.hi < T::ZERO {
+            -self.hi
+        } else {
+            T::ZERO
+        }
+    }
+
+    /// True for the empty set.
+    #[inline(always)]
+    pub fn is_empty(self) -> bool {
+        self.lo.is_nan()
+    }
+
+    /// True for `[−∞, +∞]`.
+    #[inline]
+    pub fn is_entire(self) -> bool {
+        self.lo == T::NEG_INFINITY && self.hi == T::INFINITY
+    }
+
+    /// True when both bounds are finite (the empty set counts as bounded, as in IEEE 1788
+    /// `isCommonInterval` minus emptiness: this returns false for empty).
+    #[inline]
+    pub fn is_common_interval(self) -> bool {
+        !self.is_empty() && self.lo.is_finite() && self.hi.is_finite()
+    }
+
+    /// True for a one-point interval `[x, x]`.
+    #[inline]
+    pub fn is_singleton(self) -> bool {
+        self.lo == self.hi
+    }
+
+    /// True if the real number `x` belongs to the interval (IEEE 1788 `isMember`).
+    #[inline]
+    pub fn contains(self, x: T) -> bool {
+        self.lo <= x && x <= self.hi && x.is_finite()
+    }
+
+    /// The bounds `(inf, sup)` as stored; `None` for the empty interval.
+    #[inline]
+    pub fn bounds(self) -> Option<(T, T)> {
+        if self.is_empty() {
+            None
+        } else {
+            Some((self.lo, self.hi))
+        }
+    }
+
+    /// Converts an `f32` interval to `f64` or back, rounding outward (exact toward `f64`).
+    pub fn cast<U: Float>(self) -> Interval<U> {
+        if self.is_empty() {
+            Interval::EMPTY
+        } else {
+            Interval {
+                lo: U::from_f64_down(self.lo.to_f64()),
+                hi: U::from_f64_up(self.hi.to_f64()),
+            }
+        }
+    }
+}
+
+impl<T: Float> TryFrom<(T, T)> for Interval<T> {
+    type Error = IntervalError;
+    fn try_from((lo, hi): (T, T)) -> Result<Self, IntervalError> {
+        Self::new(lo, hi)
+    }
+}

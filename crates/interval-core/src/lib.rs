@@ -1,0 +1,37 @@
+//! # interval-core
+//!
+//! Intervals with tight directed rounding over `f64` and `f32`, and modal intervals with
+//! Kaucher arithmetic: the numerical foundation of reliable implicit-surface rendering.
+//!
+//! * [`Interval`]: the set-based interval of IEEE 1788-2015. Operation names are the
+//!   standard's in snake_case (`sqr`, `pown`, `mul_rev_to_pair`, `precedes`, `interior`,
+//!   `convex_hull`, ...). `+ - * /`, `fma`, `sqr`, `sqrt` and `recip` are tight, computed
+//!   without changing the FPU rounding mode (see [`float`]); elementary functions are
+//!   enclosures within one ulp of tight, built on correctly rounded CORE-MATH functions.
+//! * [`Modal`]: modal intervals `[a, b]` with `a > b` allowed (improper), with `dual`,
+//!   `prop`, `meet`/`join` and Kaucher arithmetic rounded outward (for `Out(fR(X))`,
+//!   the *-semantics) or inward (for `Inn(fR(X))`, the **-semantics).
+//!
+//! ```
+//! use interval_core::Interval;
+//!
+//! let x = Interval::new(-1.0, 2.0)?;
+//! let y = x.sqr() - x;              // dependency: wider than the true range [-0.25, 2]
+//! assert!(y.contains(-0.25) && y.contains(2.0));
+//! let e = Interval::point(1.0)?.exp();
+//! assert!(e.contains(std::f64::consts::E));
+//! # Ok::<(), interval_core::IntervalError>(())
+//! ```
+//!
+//! The rounding model and the accuracy of every function are documented in
+//! `docs/numerics.md` of the repository.
+
+pub mod float;
+pub mod interval;
+pub mod modal;
+
+mod error;
+
+pub use error::IntervalError;
+pub use float::Float;
+pub use interval::Interval;

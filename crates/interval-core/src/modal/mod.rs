@@ -1,0 +1,1 @@
+//! Modal intervals (filled in below).

@@ -1,0 +1,2 @@
+//! Placeholder until the modal module lands.
+fn main() {}

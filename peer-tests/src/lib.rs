@@ -1,0 +1,1 @@
+//! Differential tests against peer interval libraries live in `tests/`.
