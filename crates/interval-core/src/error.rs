@@ -2,7 +2,7 @@
 
 use thiserror::Error;
 
-/// Why an interval could not be constructed.
+/// Errors of this crate: an interval that cannot be constructed, or mismatched batch inputs.
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
 pub enum IntervalError {
     /// A bound was NaN.
@@ -27,5 +27,17 @@ pub enum IntervalError {
         lo: f64,
         /// The upper bound, as `f64`.
         hi: f64,
+    },
+    /// Slices passed to a batch operation have different lengths.
+    #[error("{operation}: argument {argument} has length {found}, expected {expected}")]
+    LengthMismatch {
+        /// The batch operation, e.g. `"batch::add"`.
+        operation: &'static str,
+        /// Which argument has the wrong length (`"rhs"`, `"out"`, ...).
+        argument: &'static str,
+        /// The length of the first argument.
+        expected: usize,
+        /// The length found.
+        found: usize,
     },
 }
