@@ -35,3 +35,4 @@ mod error;
 pub use error::IntervalError;
 pub use float::Float;
 pub use interval::Interval;
+pub use modal::{Inner, Modal, Outer, Rounding};

@@ -5,18 +5,22 @@
 
 use super::Float;
 
-/// TwoSum (Knuth, Møller): `(s, e)` with `s = RN(a + b)` and `s + e = a + b` exactly.
+/// Error-free sum: `(s, e)` with `s = RN(a + b)` and `s + e = a + b` exactly.
 ///
-/// Valid for all finite `a`, `b` whose sum does not overflow, in any binary format and
-/// regardless of the ordering of `|a|` and `|b|`; the intermediate operations cannot
-/// overflow when `a + b` does not (Boldo, Graillat, Muller 2017). Subnormal results are
-/// fine: the error of an addition is always representable.
+/// Computed as Fast2Sum (Dekker) after ordering the operands by magnitude, which is exact
+/// for all finite `a`, `b` whose sum does not overflow, in any binary format; subnormal
+/// results are fine (the error of an addition is always representable). Ordering first
+/// matters near overflow: Knuth's branch-free TwoSum computes `s − a`, which overflows for
+/// e.g. `a = −4.77e307, b = MAX` although `a + b` is finite; Fast2Sum's `s − x` with
+/// `|x| ≥ |y|` stays below `|y|·(1 + 2^−52)` in magnitude.
 #[inline(always)]
 pub fn two_sum<T: Float>(a: T, b: T) -> (T, T) {
-    let s = a + b;
-    let bb = s - a;
-    let e = (a - (s - bb)) + (b - bb);
-    (s, e)
+    let swap = a.abs() < b.abs();
+    let x = if swap { b } else { a };
+    let y = if swap { a } else { b };
+    let s = x + y;
+    let z = s - x;
+    (s, y - z)
 }
 
 /// TwoProd with FMA: `(p, e)` with `p = RN(a · b)` and `p + e = a · b` exactly.

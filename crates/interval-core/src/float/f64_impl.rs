@@ -463,6 +463,18 @@ mod tests {
     }
 
     #[test]
+    fn sums_near_max_are_bracketed() {
+        // s − a overflows in branch-free TwoSum here although the sum is finite.
+        let (a, b) = (-4.770813245647214e307, f64::MAX);
+        let (lo, hi) = (a.add_down(b), a.add_up(b));
+        assert!(lo < hi && hi == lo.next_up());
+        assert_eq!(b.add_down(a), lo);
+        let (a, b) = (-1.6203908e38f32, f32::MAX);
+        let (lo, hi) = (a.add_down(b), a.add_up(b));
+        assert!(lo < hi && hi == lo.next_up());
+    }
+
+    #[test]
     fn one_third() {
         let lo = 1.0f64.div_down(3.0);
         let hi = 1.0f64.div_up(3.0);
