@@ -138,24 +138,24 @@ impl<T: Float> Interval<T> {
             }
         } else if bl == z && bh == z {
             Self::EMPTY
-        } else if al <= z && z <= ah {
+        } else if al == z && ah == z {
+            Self::ZERO
+        } else if (al < z && z < ah) || (bl < z && z < bh) {
             Self::ENTIRE
         } else if bl == z {
-            // y = [0, bh], bh > 0
-            if al > z {
+            // y = [0, bh] with bh > 0; x lies on one side of 0 (possibly touching it).
+            if al >= z {
                 Self::new_unchecked(al.div_down(bh), T::INFINITY)
             } else {
                 Self::new_unchecked(T::NEG_INFINITY, ah.div_up(bh))
             }
-        } else if bh == z {
-            // y = [bl, 0], bl < 0
-            if al > z {
+        } else {
+            // y = [bl, 0] with bl < 0.
+            if al >= z {
                 Self::new_unchecked(T::NEG_INFINITY, al.div_up(bl))
             } else {
                 Self::new_unchecked(ah.div_down(bl), T::INFINITY)
             }
-        } else {
-            Self::ENTIRE
         }
     }
 
@@ -298,6 +298,10 @@ mod tests {
         assert_eq!(iv(1.0, 2.0) / iv(-4.0, 0.0), iv(f64::NEG_INFINITY, -0.25));
         assert_eq!(iv(-1.0, 2.0) / iv(-4.0, 0.0), Interval::ENTIRE);
         assert_eq!(iv(1.0, 2.0) / iv(-1.0, 1.0), Interval::ENTIRE);
+        assert_eq!(iv(0.0, 0.0) / iv(-3.0, 3.0), iv(0.0, 0.0));
+        assert_eq!(iv(-30.0, 0.0) / iv(0.0, 3.0), iv(f64::NEG_INFINITY, 0.0));
+        assert_eq!(iv(-30.0, 0.0) / iv(-3.0, 0.0), iv(0.0, f64::INFINITY));
+        assert_eq!(iv(0.0, 5.0) / iv(-3.0, 0.0), iv(f64::NEG_INFINITY, 0.0));
     }
 
     #[test]

@@ -160,15 +160,15 @@ impl<T: Float> Interval<T> {
         } else if b == T::INFINITY {
             T::MAX
         } else {
-            let m = a * T::HALF + b * T::HALF;
-            // Halving may underflow for subnormal bounds; keep the result inside.
-            if m < a {
-                a
-            } else if m > b {
-                b
+            // One rounding, ties to even: a sum of subnormals is exact, and halving a normal
+            // sum is exact; only an overflowing sum is halved operand-wise (exact there).
+            let s = a + b;
+            let m = if s.is_finite() {
+                s * T::HALF
             } else {
-                m
-            }
+                a * T::HALF + b * T::HALF
+            };
+            m.max_nan(a).min_nan(b)
         }
     }
 
@@ -270,5 +270,24 @@ impl<T: Float> TryFrom<(T, T)> for Interval<T> {
     type Error = IntervalError;
     fn try_from((lo, hi): (T, T)) -> Result<Self, IntervalError> {
         Self::new(lo, hi)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn mid_rounds_once_to_nearest() {
+        let u = f64::MIN_POSITIVE_SUBNORMAL;
+        let iv = |a: f64, b: f64| Interval::new(a, b).unwrap();
+        assert_eq!(iv(u, 5.0 * u).mid(), 3.0 * u);
+        assert_eq!(iv(3.0 * u, 7.0 * u).mid(), 5.0 * u);
+        assert_eq!(iv(-2.0 * u, u).mid(), 0.0);
+        assert_eq!(iv(f64::MAX, f64::MAX).mid(), f64::MAX);
+        assert_eq!(iv(-f64::MAX, f64::MAX).mid(), 0.0);
+        assert_eq!(iv(1.0, 2.0).mid(), 1.5);
+        assert_eq!(Interval::<f64>::ENTIRE.mid(), 0.0);
+        assert_eq!(iv(f64::NEG_INFINITY, 1.0).mid(), -f64::MAX);
     }
 }
