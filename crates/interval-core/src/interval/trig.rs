@@ -13,18 +13,18 @@
 //! to underflowing for an `f64` argument `x` (except `sin 0 = 0`), so those signs are the
 //! signs of the exact values. With `w` the width rounded up:
 //!
-//! * `w < π`: the interval holds at most one zero of the derivative, and holds one exactly
+//! * `w ≤ π↓` (so the exact width is below π): the interval holds at most one zero of the derivative, and holds one exactly
 //!   when the derivative changes sign between the endpoints;
-//! * `π ≤ w < 2π`: it holds one or two zeros, or none; a sign change means exactly one, equal
+//! * `π↓ < w ≤ 2π↓`: it holds one or two zeros, or none; a sign change means exactly one, equal
 //!   signs mean zero or two, and both extrema are then included;
-//! * `w ≥ 2π`: the whole range `[−1, 1]`.
+//! * `w > 2π↓`: the whole range `[−1, 1]`.
 //!
 //! (`π` and `2π` stand for `π↓` and `2π↓` in the tests, so they are decided soundly.) The
 //! result is `[−1, 1]` without both extrema inside only when the exact width is within
 //! `2·10⁻¹⁵` of `π` or `2π`; then both endpoints lie within `2·10⁻¹⁵` of extrema of opposite
 //! sign, their values within `10⁻²⁹` of `±1`, and `[−1, 1]` is still the tight result. So
 //! `sin` and `cos` are within one ulp of tight everywhere. For `tan` the same window (width
-//! in `[π↓, π)` without a pole) returns `[−∞, +∞]` instead of two huge finite bounds.
+//! in `(π↓, π)` without a pole) returns `[−∞, +∞]` instead of two huge finite bounds.
 //!
 //! The enclosures of π used are `π↓ = 3.141592653589793 < π < π↑ = next_up(π↓)`, and
 //! `π/2↓ = π↓/2 < π/2 < π/2↑ = next_up(π/2↓)`.
@@ -63,12 +63,12 @@ fn sign(v: f64) -> i8 {
 #[inline(always)]
 fn periodic_extrema(a: f64, b: f64, lo: f64, hi: f64, da: i8, db: i8) -> (f64, f64) {
     let w = b.sub_up(a);
-    if w >= TWO_PI_DOWN || da == 0 || db == 0 {
+    if w > TWO_PI_DOWN || da == 0 || db == 0 {
         return (-1.0, 1.0);
     }
     if da != db {
         if da > 0 { (lo, 1.0) } else { (-1.0, hi) }
-    } else if w >= PI_DOWN {
+    } else if w > PI_DOWN {
         (-1.0, 1.0)
     } else {
         (lo, hi)
@@ -196,7 +196,7 @@ impl<T: Float> Interval<T> {
     ///
     /// **Accuracy:** each bound within 1 ulp of the tight bound; tight at `x = 0`; `ENTIRE`
     /// when the interval contains a pole. The one exception to the ulp bound: a width in the
-    /// window `[π↓, π)` without a pole (both endpoints then within `10⁻¹⁵` of poles) gives
+    /// window `(π↓, π)` without a pole (both endpoints then within `10⁻¹⁵` of poles) gives
     /// `[−∞, +∞]` rather than two finite bounds of magnitude above `10¹⁵` (valid, not tight).
     /// **Why:** endpoint values from the correctly rounded CORE-MATH `tan`, widened by one
     /// step; `tan` is increasing between poles, and with the width below π the interval
@@ -208,7 +208,7 @@ impl<T: Float> Interval<T> {
     /// | unbounded       | `[−∞, +∞]`    |
     /// | `[0, 0]`        | `[0, 0]`      |
     /// | `[1.5, 1.6]`    | `[−∞, +∞]`    |
-    /// | width ≥ π↓      | `[−∞, +∞]`    |
+    /// | width > π↓      | `[−∞, +∞]`    |
     ///
     /// ```
     /// use interval_core::Interval;
@@ -221,7 +221,7 @@ impl<T: Float> Interval<T> {
             return self;
         }
         let (a, b) = (self.lo.to_f64(), self.hi.to_f64());
-        if !(a.is_finite() && b.is_finite()) || b.sub_up(a) >= PI_DOWN {
+        if !(a.is_finite() && b.is_finite()) || b.sub_up(a) > PI_DOWN {
             return Self::ENTIRE;
         }
         if a != b && sign(core_math::cos(a)) != sign(core_math::cos(b)) {
