@@ -206,24 +206,55 @@ fn sqrt_slow(a: f64) -> (f64, f64) {
     (lo * pow2(-LIFT / 2), hi * pow2(-LIFT / 2))
 }
 
-/// Round-to-nearest `a·b + c` and a value with the sign of the rounding error, by
-/// Boldo–Muller's ErrFma, when all terms lie where its error terms are exact.
-#[inline]
-fn fma_err(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
+/// Round-to-nearest `a·b + c` and a value with the sign of its rounding error, by
+/// Boldo–Muller's ErrFma; valid when `|a·b|` (as `RN(a·b)`) and `|c|` are zero or lie in
+/// `[2^-900, 2^1000]`, where every error term is exact and nothing overflows.
+#[inline(always)]
+fn err_fma(a: f64, b: f64, c: f64) -> (f64, f64) {
     let (u1, u2) = two_prod(a, b);
-    let in_range = |v: f64| (FMA_MIN..=FMA_MAX).contains(&v.abs());
-    if !(in_range(u1) && (c == 0.0 || in_range(c))) {
-        return None;
-    }
     let r1 = a.mul_add(b, c);
     let (alpha1, alpha2) = two_sum(c, u2);
     let (beta1, beta2) = two_sum(u1, alpha1);
     let gamma = (beta1 - r1) + beta2;
     // γ + α2 is the exact error (Boldo & Muller 2011); its rounding keeps the sign.
-    Some((r1, gamma + alpha2))
+    (r1, gamma + alpha2)
 }
 
-/// Directed bounds of `a·b + c` outside ErrFma's domain.
+/// Whether ErrFma applies to `a·b + c` (see [`err_fma`]).
+#[inline(always)]
+fn fma_in_range(p: f64, c: f64) -> bool {
+    let in_range = |v: f64| (FMA_MIN..=FMA_MAX).contains(&v.abs());
+    in_range(p) && (c == 0.0 || in_range(c))
+}
+
+/// [`err_fma`] on the fast path, `None` outside its range.
+#[inline]
+fn fma_err(a: f64, b: f64, c: f64) -> Option<(f64, f64)> {
+    if fma_in_range(a * b, c) {
+        Some(err_fma(a, b, c))
+    } else {
+        None
+    }
+}
+
+/// Bounds of `c + δ` for a nonzero `δ` of the given sign smaller than the gap between `c`
+/// and its neighbours.
+#[inline]
+fn nudge(c: f64, delta_positive: bool) -> (f64, f64) {
+    if delta_positive {
+        (c, c.next_up())
+    } else {
+        (c.next_down(), c)
+    }
+}
+
+/// Directed bounds of `a·b + c` outside ErrFma's range.
+///
+/// Either one term is negligible against the other — then the result is the other term
+/// nudged by the sign of the negligible one (or of the product's exact error) — or the two
+/// are within a factor `2^110` of each other, and scaling the larger factor of the product
+/// and the addend by the same power of two (exact) brings both into ErrFma's range; the
+/// result is scaled back with a single rounding.
 #[cold]
 fn fma_slow(a: f64, b: f64, c: f64) -> (f64, f64) {
     if a.is_nan() || b.is_nan() || c.is_nan() {
@@ -232,14 +263,73 @@ fn fma_slow(a: f64, b: f64, c: f64) -> (f64, f64) {
     if a == 0.0 || b == 0.0 {
         return (c, c);
     }
-    if a.is_infinite() || b.is_infinite() || c.is_infinite() {
-        let v = a * b + c;
-        return (v, v);
+    let product_positive = (a > 0.0) == (b > 0.0);
+    if a.is_infinite() || b.is_infinite() {
+        let p = if product_positive {
+            f64::INFINITY
+        } else {
+            f64::NEG_INFINITY
+        };
+        // ∞ − ∞ is undefined, as in IEEE 754.
+        return if c.is_infinite() && (c > 0.0) != (p > 0.0) {
+            (f64::NAN, f64::NAN)
+        } else {
+            (p, p)
+        };
+    }
+    if c.is_infinite() {
+        return (c, c);
     }
     if c == 0.0 {
         return mul_slow_or_fast(a, b);
     }
-    // Extreme magnitudes: valid, possibly one ulp wider than tight (see docs/numerics.md).
+    let p = a * b;
+    // The product is negligible: |a·b| < |c|·2^-55 is below half the gap around c.
+    if p.abs() < c.abs() * pow2(-56) {
+        return nudge(c, product_positive);
+    }
+    // The addend is negligible: below the quantum of the product's exact error.
+    if p.is_infinite() {
+        if c.abs() <= FMA_MAX {
+            return overflow_bounds(product_positive);
+        }
+    } else if p.abs() >= PROD_EXACT_MIN && c.abs() < p.abs() * pow2(-108) {
+        let e = a.mul_add(b, -p);
+        return bracket(p, if e != 0.0 { e } else { c });
+    }
+    // Comparable magnitudes: scale into ErrFma's range.
+    let (x, y) = if a.abs() <= b.abs() { (a, b) } else { (b, a) };
+    if p.abs().max(c.abs()) > FMA_MAX {
+        let k = 128;
+        let (ys, cs) = (y * pow2(-k), c * pow2(-k));
+        if fma_in_range(x * ys, cs) {
+            let (r, e) = err_fma(x, ys, cs);
+            if (r * pow2(k)).is_infinite() {
+                return overflow_bounds(r > 0.0);
+            }
+            let (lo, hi) = bracket(r, e);
+            return (lo * pow2(k), hi * pow2(k));
+        }
+    } else {
+        // Lifting keeps the ratio of the terms but takes the tests out of the subnormal range.
+        let (xs, cs) = (x * pow2(LIFT), c * pow2(LIFT));
+        let ps = xs * y;
+        if ps.abs() < cs.abs() * pow2(-56) {
+            return nudge(c, product_positive);
+        }
+        if ps.abs() >= PROD_EXACT_MIN && cs.abs() < ps.abs() * pow2(-108) {
+            let es = xs.mul_add(y, -ps);
+            return round_scaled(ps, if es != 0.0 { es } else { cs }, -LIFT);
+        }
+        if fma_in_range(ps, cs) {
+            let (r, e) = err_fma(xs, y, cs);
+            if r == 0.0 {
+                return (0.0, 0.0);
+            }
+            return round_scaled(r, e, -LIFT);
+        }
+    }
+    // Not reached for finite inputs (the cases above cover them); kept as a sound fallback.
     let (pd, pu) = mul_slow_or_fast(a, b);
     (pd.add_down(c), pu.add_up(c))
 }
@@ -258,7 +348,7 @@ impl Float for f64 {
     const INFINITY: Self = f64::INFINITY;
     const NEG_INFINITY: Self = f64::NEG_INFINITY;
     const MAX: Self = f64::MAX;
-    const MIN_POSITIVE_SUBNORMAL: Self = 4.9406564584124654e-324;
+    const MIN_POSITIVE_SUBNORMAL: Self = 5e-324;
     const NAN: Self = f64::NAN;
     const MANTISSA_DIGITS: u32 = f64::MANTISSA_DIGITS;
 
@@ -389,7 +479,7 @@ impl Float for f64 {
     }
     #[inline(always)]
     fn sqrt_down(self) -> Self {
-        if self >= SQRT_ARG_MIN && self <= f64::MAX {
+        if (SQRT_ARG_MIN..=f64::MAX).contains(&self) {
             let s = self.sqrt();
             down_by_sign(s, (-s).mul_add(s, self))
         } else {
@@ -398,7 +488,7 @@ impl Float for f64 {
     }
     #[inline(always)]
     fn sqrt_up(self) -> Self {
-        if self >= SQRT_ARG_MIN && self <= f64::MAX {
+        if (SQRT_ARG_MIN..=f64::MAX).contains(&self) {
             let s = self.sqrt();
             up_by_sign(s, (-s).mul_add(s, self))
         } else {
@@ -472,6 +562,28 @@ mod tests {
         let (a, b) = (-1.6203908e38f32, f32::MAX);
         let (lo, hi) = (a.add_down(b), a.add_up(b));
         assert!(lo < hi && hi == lo.next_up());
+    }
+
+    #[test]
+    fn fma_far_outside_the_normal_range_is_tight() {
+        // Cancellation of a huge product by a huge addend: exact result 2^906.
+        let (a, b, c) = (
+            pow2(1010) * (1.0 + pow2(-52)),
+            1.0 + pow2(-52),
+            -pow2(1010) * (1.0 + pow2(-51)),
+        );
+        assert_eq!(a.fma_down(b, c), pow2(906));
+        assert_eq!(a.fma_up(b, c), pow2(906));
+        // A product far below the subnormal range next to a subnormal addend.
+        let u = f64::MIN_POSITIVE_SUBNORMAL;
+        let t = pow2(-600);
+        assert_eq!(t.fma_down(t, u), u);
+        assert_eq!(t.fma_up(t, u), 2.0 * u);
+        assert_eq!((-t).fma_down(t, u), 0.0);
+        assert_eq!((-t).fma_up(t, u), u);
+        // Overflowing product, infinite addend.
+        assert_eq!(2.0.fma_down(f64::MAX, f64::NEG_INFINITY), f64::NEG_INFINITY);
+        assert!(f64::INFINITY.fma_down(1.0, f64::NEG_INFINITY).is_nan());
     }
 
     #[test]

@@ -17,8 +17,7 @@
 //!
 //! The result is bit-for-bit what round-toward-minus/plus-infinity hardware returns (up to the
 //! sign of a zero result, which carries no meaning for set-based intervals). See
-//! `docs/numerics.md` for the proofs and the one documented exception (`fma` far outside
-//! the normal range, where it is valid but may be one ulp wide of tight).
+//! `docs/numerics.md` for the proofs.
 
 mod eft;
 mod f32_impl;

@@ -31,14 +31,14 @@ impl<T: Float> Interval<T> {
         if self.is_empty() || at.is_nan() {
             return (self, Self::EMPTY);
         }
-        let left = if at < self.lo {
+        let left = if at < self.lo || at == T::NEG_INFINITY {
             Self::EMPTY
         } else if at == T::INFINITY {
             self
         } else {
             Self::new_unchecked(self.lo, at.min_nan(self.hi))
         };
-        let right = if at > self.hi {
+        let right = if at > self.hi || at == T::INFINITY {
             Self::EMPTY
         } else if at == T::NEG_INFINITY {
             self
@@ -69,6 +69,9 @@ mod tests {
         assert_eq!(a.intersection(b), Interval::point(2.0).unwrap());
         let (l, r) = x.split(5.0);
         assert_eq!((l, r), (x, Interval::EMPTY));
+        let half = Interval::new(0.0, f64::INFINITY).unwrap();
+        assert_eq!(half.split(f64::INFINITY), (half, Interval::EMPTY));
+        assert_eq!(half.split(f64::NEG_INFINITY), (Interval::EMPTY, half));
         let (l, r) = Interval::<f64>::ENTIRE.bisect();
         assert_eq!(l, Interval::new(f64::NEG_INFINITY, 0.0).unwrap());
         assert_eq!(r, Interval::new(0.0, f64::INFINITY).unwrap());
