@@ -100,58 +100,8 @@ impl Float for f32 {
     const NAN: Self = f32::NAN;
     const MANTISSA_DIGITS: u32 = f32::MANTISSA_DIGITS;
 
-    #[inline(always)]
-    fn next_up(self) -> Self {
-        f32::next_up(self)
-    }
-    #[inline(always)]
-    fn next_down(self) -> Self {
-        f32::next_down(self)
-    }
-    #[inline(always)]
-    fn is_nan(self) -> bool {
-        f32::is_nan(self)
-    }
-    #[inline(always)]
-    fn is_finite(self) -> bool {
-        f32::is_finite(self)
-    }
-    #[inline(always)]
-    fn is_infinite(self) -> bool {
-        f32::is_infinite(self)
-    }
-    #[inline(always)]
-    fn is_sign_negative(self) -> bool {
-        f32::is_sign_negative(self)
-    }
-    #[inline(always)]
-    fn abs(self) -> Self {
-        f32::abs(self)
-    }
-    #[inline(always)]
-    fn min_nan(self, other: Self) -> Self {
-        if self.is_nan() || other.is_nan() {
-            f32::NAN
-        } else if self < other {
-            self
-        } else {
-            other
-        }
-    }
-    #[inline(always)]
-    fn max_nan(self, other: Self) -> Self {
-        if self.is_nan() || other.is_nan() {
-            f32::NAN
-        } else if self > other {
-            self
-        } else {
-            other
-        }
-    }
-    #[inline(always)]
-    fn sqrt_rn(self) -> Self {
-        f32::sqrt(self)
-    }
+    forward_inherent!(f32);
+
     #[inline(always)]
     fn to_f64(self) -> f64 {
         f64::from(self)

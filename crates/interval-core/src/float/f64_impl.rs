@@ -352,58 +352,8 @@ impl Float for f64 {
     const NAN: Self = f64::NAN;
     const MANTISSA_DIGITS: u32 = f64::MANTISSA_DIGITS;
 
-    #[inline(always)]
-    fn next_up(self) -> Self {
-        f64::next_up(self)
-    }
-    #[inline(always)]
-    fn next_down(self) -> Self {
-        f64::next_down(self)
-    }
-    #[inline(always)]
-    fn is_nan(self) -> bool {
-        f64::is_nan(self)
-    }
-    #[inline(always)]
-    fn is_finite(self) -> bool {
-        f64::is_finite(self)
-    }
-    #[inline(always)]
-    fn is_infinite(self) -> bool {
-        f64::is_infinite(self)
-    }
-    #[inline(always)]
-    fn is_sign_negative(self) -> bool {
-        f64::is_sign_negative(self)
-    }
-    #[inline(always)]
-    fn abs(self) -> Self {
-        f64::abs(self)
-    }
-    #[inline(always)]
-    fn min_nan(self, other: Self) -> Self {
-        if self.is_nan() || other.is_nan() {
-            f64::NAN
-        } else if self < other {
-            self
-        } else {
-            other
-        }
-    }
-    #[inline(always)]
-    fn max_nan(self, other: Self) -> Self {
-        if self.is_nan() || other.is_nan() {
-            f64::NAN
-        } else if self > other {
-            self
-        } else {
-            other
-        }
-    }
-    #[inline(always)]
-    fn sqrt_rn(self) -> Self {
-        f64::sqrt(self)
-    }
+    forward_inherent!(f64);
+
     #[inline(always)]
     fn to_f64(self) -> f64 {
         self

@@ -19,6 +19,44 @@
 //! sign of a zero result, which carries no meaning for set-based intervals). See
 //! `docs/numerics.md` for the proofs.
 
+/// Implements the [`Float`] methods that forward to the inherent methods of the same name.
+macro_rules! forward_inherent {
+    ($t:ty) => {
+        #[inline(always)]
+        fn next_up(self) -> Self {
+            <$t>::next_up(self)
+        }
+        #[inline(always)]
+        fn next_down(self) -> Self {
+            <$t>::next_down(self)
+        }
+        #[inline(always)]
+        fn is_nan(self) -> bool {
+            <$t>::is_nan(self)
+        }
+        #[inline(always)]
+        fn is_finite(self) -> bool {
+            <$t>::is_finite(self)
+        }
+        #[inline(always)]
+        fn is_infinite(self) -> bool {
+            <$t>::is_infinite(self)
+        }
+        #[inline(always)]
+        fn is_sign_negative(self) -> bool {
+            <$t>::is_sign_negative(self)
+        }
+        #[inline(always)]
+        fn abs(self) -> Self {
+            <$t>::abs(self)
+        }
+        #[inline(always)]
+        fn sqrt_rn(self) -> Self {
+            <$t>::sqrt(self)
+        }
+    };
+}
+
 mod eft;
 mod f32_impl;
 mod f64_impl;
@@ -92,9 +130,27 @@ pub trait Float:
     /// Absolute value.
     fn abs(self) -> Self;
     /// Minimum of two numbers; NaN if either is NaN.
-    fn min_nan(self, other: Self) -> Self;
+    #[inline(always)]
+    fn min_nan(self, other: Self) -> Self {
+        if self.is_nan() || other.is_nan() {
+            Self::NAN
+        } else if self < other {
+            self
+        } else {
+            other
+        }
+    }
     /// Maximum of two numbers; NaN if either is NaN.
-    fn max_nan(self, other: Self) -> Self;
+    #[inline(always)]
+    fn max_nan(self, other: Self) -> Self {
+        if self.is_nan() || other.is_nan() {
+            Self::NAN
+        } else if self > other {
+            self
+        } else {
+            other
+        }
+    }
     /// Square root, rounded to nearest.
     fn sqrt_rn(self) -> Self;
     /// Exact conversion to `f64`.
