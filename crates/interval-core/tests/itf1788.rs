@@ -346,10 +346,10 @@ fn parse_interval(words: &[String]) -> Result<Bare, String> {
         [a, b] => Bare::Bounds(parse_number(a)?, parse_number(b)?),
         _ => return Err(format!("bad interval literal [{}]", words.join(", "))),
     };
-    if let Bare::Bounds(a, b) = bare {
-        if a.is_nan() || b.is_nan() || a > b || a == INF || b == -INF {
-            return Err(format!("invalid interval [{a:?}, {b:?}]"));
-        }
+    if let Bare::Bounds(a, b) = bare
+        && (a.is_nan() || b.is_nan() || a > b || a == INF || b == -INF)
+    {
+        return Err(format!("invalid interval [{a:?}, {b:?}]"));
     }
     Ok(bare)
 }
@@ -380,12 +380,12 @@ fn parse_literals(
                         other => return Err(format!("line {line}: unexpected {other:?} in [...]")),
                     }
                 }
-                if let Some((Tok::Word(w), _)) = toks.get(*pos) {
-                    if w.starts_with('_') {
-                        return Err(format!(
-                            "line {line}: decorated interval ...]{w} is not supported"
-                        ));
-                    }
+                if let Some((Tok::Word(w), _)) = toks.get(*pos)
+                    && w.starts_with('_')
+                {
+                    return Err(format!(
+                        "line {line}: decorated interval ...]{w} is not supported"
+                    ));
                 }
                 out.push(Literal::Interval(
                     parse_interval(&words).map_err(|e| format!("line {line}: {e}"))?,

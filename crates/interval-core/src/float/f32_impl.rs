@@ -100,7 +100,7 @@ impl Float for f32 {
     const NAN: Self = f32::NAN;
     const MANTISSA_DIGITS: u32 = f32::MANTISSA_DIGITS;
 
-    forward_inherent!(f32);
+    forward_inherent!(f32, u32);
 
     #[inline(always)]
     fn to_f64(self) -> f64 {

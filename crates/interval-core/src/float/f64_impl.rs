@@ -289,26 +289,37 @@ fn fma_slow(a: f64, b: f64, c: f64) -> (f64, f64) {
         return nudge(c, product_positive);
     }
     // The addend is negligible: below the quantum of the product's exact error.
-    if p.is_infinite() {
-        if c.abs() <= FMA_MAX {
-            return overflow_bounds(product_positive);
-        }
-    } else if p.abs() >= PROD_EXACT_MIN && c.abs() < p.abs() * pow2(-108) {
+    if p.is_finite() && p.abs() >= PROD_EXACT_MIN && c.abs() < p.abs() * pow2(-108) {
         let e = a.mul_add(b, -p);
         return bracket(p, if e != 0.0 { e } else { c });
     }
     // Comparable magnitudes: scale into ErrFma's range.
     let (x, y) = if a.abs() <= b.abs() { (a, b) } else { (b, a) };
     if p.abs().max(c.abs()) > FMA_MAX {
-        let k = 128;
-        let (ys, cs) = (y * pow2(-k), c * pow2(-k));
-        if fma_in_range(x * ys, cs) {
-            let (r, e) = err_fma(x, ys, cs);
-            if (r * pow2(k)).is_infinite() {
-                return overflow_bounds(r > 0.0);
+        // Huge terms (the product may even overflow): scale the larger factor and the addend
+        // down by 2^-128 at a time (exact) until they fit, or until the addend is negligible.
+        let (mut ys, mut cs) = (y, c);
+        for k in [128, 256, 384] {
+            ys *= pow2(-128);
+            cs *= pow2(-128);
+            let ps = x * ys;
+            if !ps.is_finite() || cs.abs() < ps.abs() * pow2(-108) {
+                // |c| < |a·b|·2^-107: if a·b overflows, so does a·b + c.
+                if p.is_infinite() {
+                    return overflow_bounds(product_positive);
+                }
+                let e = a.mul_add(b, -p);
+                return bracket(p, if e != 0.0 { e } else { c });
             }
-            let (lo, hi) = bracket(r, e);
-            return (lo * pow2(k), hi * pow2(k));
+            if fma_in_range(ps, cs) {
+                let (r, e) = err_fma(x, ys, cs);
+                let scale = |v: f64| (0..k / 128).fold(v, |v, _| v * pow2(128));
+                if scale(r).is_infinite() {
+                    return overflow_bounds(r > 0.0);
+                }
+                let (lo, hi) = bracket(r, e);
+                return (scale(lo), scale(hi));
+            }
         }
     } else {
         // Lifting keeps the ratio of the terms but takes the tests out of the subnormal range.
@@ -352,7 +363,7 @@ impl Float for f64 {
     const NAN: Self = f64::NAN;
     const MANTISSA_DIGITS: u32 = f64::MANTISSA_DIGITS;
 
-    forward_inherent!(f64);
+    forward_inherent!(f64, u64);
 
     #[inline(always)]
     fn to_f64(self) -> f64 {

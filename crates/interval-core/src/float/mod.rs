@@ -21,7 +21,23 @@
 
 /// Implements the [`Float`] methods that forward to the inherent methods of the same name.
 macro_rules! forward_inherent {
-    ($t:ty) => {
+    ($t:ty, $bits:ty) => {
+        #[inline(always)]
+        fn next_down_if(self, cond: bool) -> Self {
+            // Toward −∞ the bit pattern decreases for positive and increases for negative
+            // values: add 1 − 2·(sign = 0) as a wrapping integer.
+            let bits = self.to_bits();
+            let sign = bits >> (<$bits>::BITS - 1);
+            let stepped = <$t>::from_bits(bits.wrapping_add((sign << 1).wrapping_sub(1)));
+            core::hint::select_unpredictable(cond, stepped, self)
+        }
+        #[inline(always)]
+        fn next_up_if(self, cond: bool) -> Self {
+            let bits = self.to_bits();
+            let sign = bits >> (<$bits>::BITS - 1);
+            let stepped = <$t>::from_bits(bits.wrapping_add((1 as $bits).wrapping_sub(sign << 1)));
+            core::hint::select_unpredictable(cond, stepped, self)
+        }
         #[inline(always)]
         fn next_up(self) -> Self {
             <$t>::next_up(self)
@@ -119,6 +135,13 @@ pub trait Float:
     fn next_up(self) -> Self;
     /// The next representable value toward −∞ (`f64::next_down`).
     fn next_down(self) -> Self;
+    /// `next_down(self)` if `cond`, else `self`, as a branch-free select (the rounding
+    /// direction of random data is unpredictable, and a mispredicted branch costs more than
+    /// the step). Precondition: when `cond` holds, `self` is finite and nonzero.
+    fn next_down_if(self, cond: bool) -> Self;
+    /// `next_up(self)` if `cond`, else `self`, branch-free; same precondition as
+    /// [`Float::next_down_if`].
+    fn next_up_if(self, cond: bool) -> Self;
     /// True for NaN.
     fn is_nan(self) -> bool;
     /// True for finite values (not ±∞, not NaN).

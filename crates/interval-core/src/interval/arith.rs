@@ -288,7 +288,10 @@ mod tests {
         assert_eq!(iv(-1.0, 2.0) * iv(-3.0, 4.0), iv(-6.0, 8.0));
         assert_eq!(iv(-2.0, -1.0) * iv(-3.0, 4.0), iv(-8.0, 6.0));
         assert_eq!(iv(0.0, 0.0) * Interval::ENTIRE, iv(0.0, 0.0));
-        assert_eq!(iv(1.0, f64::INFINITY) * iv(0.0, 1.0), iv(0.0, f64::INFINITY));
+        assert_eq!(
+            iv(1.0, f64::INFINITY) * iv(0.0, 1.0),
+            iv(0.0, f64::INFINITY)
+        );
     }
 
     #[test]

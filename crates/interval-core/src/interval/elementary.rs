@@ -230,7 +230,7 @@ impl<T: Float> Interval<T> {
         let k = n.unsigned_abs();
         let (a, b) = (self.lo, self.hi);
         let z = T::ZERO;
-        let even = k % 2 == 0;
+        let even = k.is_multiple_of(2);
         if n > 0 {
             if even {
                 let (lo, _) = mag_pow(self.mig(), k);

@@ -140,13 +140,21 @@ impl<T: Float> Interval<T> {
     /// Lower bound; `+∞` for the empty interval (IEEE 1788 `inf`).
     #[inline]
     pub fn inf(self) -> T {
-        if self.is_empty() { T::INFINITY } else { self.lo }
+        if self.is_empty() {
+            T::INFINITY
+        } else {
+            self.lo
+        }
     }
 
     /// Upper bound; `−∞` for the empty interval (IEEE 1788 `sup`).
     #[inline]
     pub fn sup(self) -> T {
-        if self.is_empty() { T::NEG_INFINITY } else { self.hi }
+        if self.is_empty() {
+            T::NEG_INFINITY
+        } else {
+            self.hi
+        }
     }
 
     /// Midpoint, rounded to nearest; NaN for the empty interval, 0 for `ENTIRE`, and

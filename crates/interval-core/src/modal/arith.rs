@@ -207,10 +207,14 @@ impl<T: Float, R: Rounding> Modal<T, R> {
         let zero_divisor = rhs.a == T::ZERO && rhs.b == T::ZERO;
         let (x, y) = (self.prop(), rhs.prop());
         // `prop` is empty for the points at ±∞, which denote no real number.
-        if self.is_proper() && rhs.is_proper() && !zero_divisor && !x.is_empty() && !y.is_empty() {
-            if let Some((lo, hi)) = x.div(y).bounds() {
-                return Self::new_unchecked(rnd::fix1::<T, R>(lo), rnd::fix2::<T, R>(hi));
-            }
+        if self.is_proper()
+            && rhs.is_proper()
+            && !zero_divisor
+            && !x.is_empty()
+            && !y.is_empty()
+            && let Some((lo, hi)) = x.div(y).bounds()
+        {
+            return Self::new_unchecked(rnd::fix1::<T, R>(lo), rnd::fix2::<T, R>(hi));
         }
         Self::ENTIRE
     }
