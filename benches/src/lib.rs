@@ -3,8 +3,8 @@
 //!
 //! A workload is a vector of `f64` intervals drawn from a seeded [`StdRng`] in the natural
 //! domain of the operation it feeds (see [`Domain`]). With the `inari` feature the same
-//! values can be converted to `inari::Interval` ([`to_inari`]) and results compared
-//! ([`compare`]).
+//! values can be converted to `inari::Interval` (`to_inari`) and results compared
+//! (`compare`).
 
 use interval_core::Interval;
 use rand::rngs::StdRng;
