@@ -58,7 +58,7 @@
 //! oracle of `f*` and `f**` in the test suite).
 
 use super::Modal;
-use super::rounding::{self as rnd, Rounding};
+use super::rounding::{self as rnd, Rounding, fmax, fmin};
 use crate::float::Float;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
@@ -87,16 +87,6 @@ fn class<T: Float>(a1: T, a2: T) -> Class {
     } else {
         Class::DualZero
     }
-}
-
-#[inline(always)]
-fn fmin<T: Float>(x: T, y: T) -> T {
-    if y < x { y } else { x }
-}
-
-#[inline(always)]
-fn fmax<T: Float>(x: T, y: T) -> T {
-    if y > x { y } else { x }
 }
 
 impl<T: Float, R: Rounding> Modal<T, R> {

@@ -19,18 +19,8 @@
 //! for `min_all`/`max_all` they would be the points at `±∞`, which denote no real number.
 
 use super::Modal;
-use super::rounding::Rounding;
+use super::rounding::{Rounding, fmax, fmin};
 use crate::float::Float;
-
-#[inline(always)]
-fn fmin<T: Float>(x: T, y: T) -> T {
-    if y < x { y } else { x }
-}
-
-#[inline(always)]
-fn fmax<T: Float>(x: T, y: T) -> T {
-    if y > x { y } else { x }
-}
 
 impl<T: Float, R: Rounding> Modal<T, R> {
     /// Modal inclusion `self ⊆ rhs`: every predicate accepted by `self` is accepted by

@@ -100,6 +100,18 @@ pub(crate) fn fix2<T: Float, R: Rounding>(x: T) -> T {
     if x.is_nan() { unbounded2::<T, R>() } else { x }
 }
 
+/// The smaller of two bounds (modal bounds are never NaN).
+#[inline(always)]
+pub(crate) fn fmin<T: Float>(x: T, y: T) -> T {
+    if y < x { y } else { x }
+}
+
+/// The larger of two bounds (modal bounds are never NaN).
+#[inline(always)]
+pub(crate) fn fmax<T: Float>(x: T, y: T) -> T {
+    if y > x { y } else { x }
+}
+
 /// `x + y` rounded toward +∞ (`up`) or −∞.
 #[inline(always)]
 fn add_dir<T: Float>(x: T, y: T, up: bool) -> T {
