@@ -232,8 +232,7 @@ impl<T: Float> Interval<T> {
         self.lo == T::NEG_INFINITY && self.hi == T::INFINITY
     }
 
-    /// True when both bounds are finite (the empty set counts as bounded, as in IEEE 1788
-    /// `isCommonInterval` minus emptiness: this returns false for empty).
+    /// True for a non-empty interval with finite bounds (IEEE 1788 `isCommonInterval`).
     #[inline]
     pub fn is_common_interval(self) -> bool {
         !self.is_empty() && self.lo.is_finite() && self.hi.is_finite()
