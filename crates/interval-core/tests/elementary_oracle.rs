@@ -11,6 +11,8 @@
 //!   from MPFR at the endpoints, critical points or corners) are compared with the computed
 //!   bounds, which must equal them or lie at most one ulp outside.
 
+mod common;
+
 use interval_core::{Float, Interval};
 use proptest::prelude::*;
 use rug::Float as Big;
@@ -300,11 +302,7 @@ fn pick<T: Num>(a: f64, b: f64, (k, t, v): Sel) -> Option<T> {
 }
 
 fn config() -> ProptestConfig {
-    ProptestConfig {
-        cases: CASES,
-        failure_persistence: None,
-        ..ProptestConfig::default()
-    }
+    common::config(CASES)
 }
 
 // ---------------------------------------------------------------------------------------

@@ -92,9 +92,17 @@ impl TestFloat for f32 {
 }
 
 /// A proptest configuration with `cases` cases and no regression files written to disk.
+///
+/// The environment variable `INTERVAL_CORE_TEST_SCALE` (a positive integer, default 1)
+/// multiplies the number of cases, for longer soak runs.
 pub fn config(cases: u32) -> Config {
+    let scale = std::env::var("INTERVAL_CORE_TEST_SCALE")
+        .ok()
+        .and_then(|v| v.parse::<u32>().ok())
+        .filter(|&v| v > 0)
+        .unwrap_or(1);
     Config {
-        cases,
+        cases: cases.saturating_mul(scale),
         failure_persistence: None,
         ..Config::default()
     }
