@@ -2,8 +2,10 @@
 //! `min`, `max`.
 //!
 //! Every bound is one directed-rounded operation on the exact real values of the operand
-//! bounds (see [`crate::float`]), chosen by the signs of the operands as in IEEE 1788's
-//! case tables, so the results are tight. `0 · ∞` is taken as 0 (the limit over the set).
+//! bounds (see [`crate::float`]), the extreme one among the candidates (IEEE 1788's case
+//! tables for `fma` and the zero-divisor cases; the minimum/maximum of the four corners for
+//! `*`; selects by sign for `/`), so the results are tight. `0 · ∞` is taken as 0 (the limit
+//! over the set).
 
 use super::Interval;
 use crate::float::Float;
@@ -93,10 +95,27 @@ impl<T: Float> Interval<T> {
     }
 
     /// `x · y`, tight.
+    ///
+    /// The bounds are the minimum of the four corner products rounded down and the maximum
+    /// rounded up: directed rounding is monotone, so this equals the sign-case selection of
+    /// IEEE 1788 bit for bit, without its data-dependent branches (`0 · ∞ = 0` holds corner by
+    /// corner).
     #[inline]
     #[allow(clippy::should_implement_trait)]
     pub fn mul(self, rhs: Self) -> Self {
-        product_hull(self, rhs, T::mul_down, T::mul_up)
+        if self.is_empty() || rhs.is_empty() {
+            return Self::EMPTY;
+        }
+        let (a, b, c, d) = (self.lo, self.hi, rhs.lo, rhs.hi);
+        let min = |x: T, y: T| if y < x { y } else { x };
+        let max = |x: T, y: T| if y > x { y } else { x };
+        Self::new_unchecked(
+            min(
+                min(a.mul_down(c), a.mul_down(d)),
+                min(b.mul_down(c), b.mul_down(d)),
+            ),
+            max(max(a.mul_up(c), a.mul_up(d)), max(b.mul_up(c), b.mul_up(d))),
+        )
     }
 
     /// `x · y + z` with one rounding per bound (IEEE 1788 `fma`), tight.
@@ -124,18 +143,17 @@ impl<T: Float> Interval<T> {
         }
         let (al, ah, bl, bh) = (self.lo, self.hi, rhs.lo, rhs.hi);
         let z = T::ZERO;
-        if bl > z {
-            match sign(self) {
-                Sign::Pos => Self::new_unchecked(al.div_down(bh), ah.div_up(bl)),
-                Sign::Mixed => Self::new_unchecked(al.div_down(bl), ah.div_up(bl)),
-                Sign::Neg => Self::new_unchecked(al.div_down(bl), ah.div_up(bh)),
-            }
-        } else if bh < z {
-            match sign(self) {
-                Sign::Pos => Self::new_unchecked(ah.div_down(bh), al.div_up(bl)),
-                Sign::Mixed => Self::new_unchecked(ah.div_down(bh), al.div_up(bh)),
-                Sign::Neg => Self::new_unchecked(ah.div_down(bl), al.div_up(bh)),
-            }
+        if bl > z || bh < z {
+            // 0 ∉ y: the extreme quotients, chosen by selects rather than branches. The lower
+            // bound divides x̲ (y > 0) or x̅ (y < 0) by y̅ if that numerator is ≥ 0, else by y̲;
+            // the upper bound divides the other endpoint by y̲ if it is ≥ 0, else by y̅.
+            use core::hint::select_unpredictable as select;
+            let positive = bl > z;
+            let n_lo = select(positive, al, ah);
+            let n_hi = select(positive, ah, al);
+            let d_lo = select(n_lo >= z, bh, bl);
+            let d_hi = select(n_hi >= z, bl, bh);
+            Self::new_unchecked(n_lo.div_down(d_lo), n_hi.div_up(d_hi))
         } else if bl == z && bh == z {
             Self::EMPTY
         } else if al == z && ah == z {
