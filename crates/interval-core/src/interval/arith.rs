@@ -183,18 +183,19 @@ impl<T: Float> Interval<T> {
         Self::ONE.div(self)
     }
 
-    /// `x²`, tight (and tighter than `x · x` when `x` contains 0).
+    /// `x²`, tight (and tighter than `x · x` when `x` contains 0): `[mig(x)²↓, mag(x)²↑]`,
+    /// with the mignitude chosen by selects rather than branches.
     #[inline]
     pub fn sqr(self) -> Self {
         if self.is_empty() {
             return self;
         }
+        use core::hint::select_unpredictable as select;
         let (a, b) = (self.lo, self.hi);
-        match sign(self) {
-            Sign::Pos => Self::new_unchecked(a.mul_down(a), b.mul_up(b)),
-            Sign::Neg => Self::new_unchecked(b.mul_down(b), a.mul_up(a)),
-            Sign::Mixed => Self::new_unchecked(T::ZERO, a.mul_up(a).max_nan(b.mul_up(b))),
-        }
+        let mig = select(a > T::ZERO, a, select(b < T::ZERO, -b, T::ZERO));
+        let (ma, mb) = (a.abs(), b.abs());
+        let mag = select(ma > mb, ma, mb);
+        Self::new_unchecked(mig.mul_down(mig), mag.mul_up(mag))
     }
 
     /// `√x` over `x ∩ [0, +∞]`, tight; empty when `x < 0`.
