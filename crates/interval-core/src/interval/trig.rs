@@ -75,40 +75,6 @@ fn periodic_extrema(a: f64, b: f64, lo: f64, hi: f64, da: i8, db: i8) -> (f64, f
     }
 }
 
-/// `sin` (or, with `cosine`, `cos`) over `x`: endpoint values from one CORE-MATH `sincos`
-/// per endpoint, interior extrema from the signs of the derivative at the endpoints.
-///
-/// The derivative (`cos` for `sin`, `−sin` for `cos`) vanishes at an `f64` argument only
-/// for `cos` at 0, which is then itself an extremum: just inside the interval the function
-/// moves away from it, so the slope there has the sign of `−f(a)` at the left end and of
-/// `f(b)` at the right end.
-#[inline]
-fn sin_or_cos<T: Float>(x: Interval<T>, cosine: bool) -> Interval<T> {
-    if x.is_empty() {
-        return x;
-    }
-    let (a, b) = (x.lo.to_f64(), x.hi.to_f64());
-    if !(a.is_finite() && b.is_finite()) {
-        return outward(-1.0, 1.0);
-    }
-    let eval = |t: f64| {
-        let (s, c) = core_math::sincos(t);
-        if cosine { (c, -sign(s)) } else { (s, sign(c)) }
-    };
-    let (fa, da) = eval(a);
-    let (fb, db) = if a == b { (fa, da) } else { eval(b) };
-    let lo = below(fa, a == 0.0).min(below(fb, b == 0.0));
-    let hi = above(fa, a == 0.0).max(above(fb, b == 0.0));
-    let (lo, hi) = if a == b {
-        (lo, hi)
-    } else {
-        let da = if da == 0 { -sign(fa) } else { da };
-        let db = if db == 0 { sign(fb) } else { db };
-        periodic_extrema(a, b, lo, hi, da, db)
-    };
-    outward(lo.max(-1.0), hi.min(1.0))
-}
-
 /// Bounds of `atan2(y, x)` at one corner (`+0` for zero coordinates, not the origin):
 /// exact 0 on the positive x-axis (and at `x = +∞`), the tight enclosures of `π` and `±π/2`
 /// on the negative x-axis and the y-axis (and their limits at infinity), otherwise the
@@ -156,7 +122,26 @@ impl<T: Float> Interval<T> {
     /// # Ok::<(), interval_core::IntervalError>(())
     /// ```
     pub fn sin(self) -> Self {
-        sin_or_cos(self, false)
+        if self.is_empty() {
+            return self;
+        }
+        let (a, b) = (self.lo.to_f64(), self.hi.to_f64());
+        if !(a.is_finite() && b.is_finite()) {
+            return outward(-1.0, 1.0);
+        }
+        let (sa, ca) = core_math::sincos(a);
+        let (sb, cb) = if a == b {
+            (sa, ca)
+        } else {
+            core_math::sincos(b)
+        };
+        let mut lo = below(sa, a == 0.0).min(below(sb, b == 0.0));
+        let mut hi = above(sa, a == 0.0).max(above(sb, b == 0.0));
+        if a != b {
+            // sin' = cos, never zero at an f64 argument.
+            (lo, hi) = periodic_extrema(a, b, lo, hi, sign(ca), sign(cb));
+        }
+        outward(lo.max(-1.0), hi.min(1.0))
     }
 
     /// Cosine.
@@ -183,7 +168,28 @@ impl<T: Float> Interval<T> {
     /// # Ok::<(), interval_core::IntervalError>(())
     /// ```
     pub fn cos(self) -> Self {
-        sin_or_cos(self, true)
+        if self.is_empty() {
+            return self;
+        }
+        let (a, b) = (self.lo.to_f64(), self.hi.to_f64());
+        if !(a.is_finite() && b.is_finite()) {
+            return outward(-1.0, 1.0);
+        }
+        let (sa, ca) = core_math::sincos(a);
+        let (sb, cb) = if a == b {
+            (sa, ca)
+        } else {
+            core_math::sincos(b)
+        };
+        let mut lo = below(ca, a == 0.0).min(below(cb, b == 0.0));
+        let mut hi = above(ca, a == 0.0).max(above(cb, b == 0.0));
+        if a != b {
+            // cos' = −sin; just right of 0 sin > 0, just left of it sin < 0.
+            let da = if a == 0.0 { -1 } else { -sign(sa) };
+            let db = if b == 0.0 { 1 } else { -sign(sb) };
+            (lo, hi) = periodic_extrema(a, b, lo, hi, da, db);
+        }
+        outward(lo.max(-1.0), hi.min(1.0))
     }
 
     /// Tangent, over the set minus the poles `π/2 + kπ` (which no `f64` hits).
