@@ -6,6 +6,8 @@
 //!   (up to the sign of zero) for all inputs, and the relations identical answers; `fma` is
 //!   also exercised with products and addends near overflow and in and below the subnormal
 //!   range.
+//! * The numeric functions `inf sup mid rad wid mag mig` and the predicates must give
+//!   identical results.
 //! * Elementary functions (`pown`, `pow`, `exp`, `exp2`, `exp10`, `ln`, `log2`, `log10`,
 //!   `sinh`, `cosh`, `tanh`, `sin`, `cos`, `tan`, `asin`, `acos`, `atan`, `atan2`) are
 //!   documented within one ulp of tight: ours must contain inari's result, each bound at most
@@ -346,6 +348,39 @@ fn unary(x: Iv) -> Result<(), TestCaseError> {
     Ok(())
 }
 
+/// The IEEE 1788 numeric functions and predicates: identical numbers (NaN for empty on both
+/// sides where the standard says so), identical answers.
+fn numeric(x: Iv) -> Result<(), TestCaseError> {
+    let ix = to_inari(x);
+    let same_num = |a: f64, b: f64| (a.is_nan() && b.is_nan()) || a == b;
+    for (name, ours, theirs) in [
+        ("inf", x.inf(), ix.inf()),
+        ("sup", x.sup(), ix.sup()),
+        ("mid", x.mid(), ix.mid()),
+        ("rad", x.rad(), ix.rad()),
+        ("wid", x.wid(), ix.wid()),
+        ("mag", x.mag(), ix.mag()),
+        ("mig", x.mig(), ix.mig()),
+    ] {
+        prop_assert!(
+            same_num(ours, theirs),
+            "{name}({x:?}): interval-core {ours:?}, inari {theirs:?}"
+        );
+    }
+    prop_assert_eq!(x.is_empty(), ix.is_empty());
+    prop_assert_eq!(x.is_entire(), ix.is_entire());
+    prop_assert_eq!(x.is_singleton(), ix.is_singleton());
+    prop_assert_eq!(x.is_common_interval(), ix.is_common_interval());
+    if let Some((a, b)) = x.bounds() {
+        for v in [a, b, x.mid(), a.next_down(), b.next_up()] {
+            if v.is_finite() {
+                prop_assert_eq!(x.contains(v), ix.contains(v), "contains({:?}, {:?})", x, v);
+            }
+        }
+    }
+    Ok(())
+}
+
 fn fma(x: Iv, y: Iv, z: Iv) -> Result<(), TestCaseError> {
     let ours = x.fma(y, z);
     let theirs = to_inari(x).mul_add(to_inari(y), to_inari(z));
@@ -377,6 +412,11 @@ proptest! {
     #[test]
     fn unary_operations_match_inari(x in interval()) {
         unary(x)?;
+    }
+
+    #[test]
+    fn numeric_functions_match_inari(x in interval()) {
+        numeric(x)?;
     }
 
     #[test]
