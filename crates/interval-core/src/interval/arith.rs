@@ -34,7 +34,8 @@ fn sign<T: Float>(x: Interval<T>) -> Sign {
 }
 
 /// The hull of `{x·y : x ∈ a, y ∈ b}` with the extreme corner products rounded by `down`
-/// and `up` (plain directed products for `*`, products plus an addend for `fma`).
+/// and `up` (for `fma`: directed products plus the addend, one rounding each), selected by
+/// the sign classes of IEEE 1788's case table.
 #[inline(always)]
 fn product_hull<T: Float>(
     a: Interval<T>,
