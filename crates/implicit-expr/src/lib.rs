@@ -1,6 +1,20 @@
 //! # implicit-expr
 //!
-//! Formulas for implicit surfaces f(x, y, z) = 0 turned into inclusion functions: expression graph, symbolic derivatives, compiled register tape, evaluators for points, intervals, modal intervals and gradients, and WGSL code generation.
-//!
-//! This crate is a placeholder in the workspace layout: it holds no functionality yet.
-//! See its README for what it will provide.
+//! Formulas for implicit surfaces f(x, y, z) = 0 turned into fast, sound inclusion
+//! functions: an expression graph ([`Context`]), symbolic derivatives, a compiled register
+//! [`Tape`], evaluators for points, intervals, modal intervals and gradients, tape pruning,
+//! restriction to rays and beams, modal semantic extensions, and WGSL code generation.
+
+pub mod constant;
+pub mod context;
+pub mod error;
+pub mod eval;
+pub mod op;
+pub mod tape;
+
+pub use constant::Constant;
+pub use context::{Context, Node, NodeId, Var};
+pub use error::Error;
+pub use eval::{Choice, Evaluator, Grad, Number, SliceEvaluator};
+pub use op::{BinaryOp, UnaryOp};
+pub use tape::Tape;

@@ -1,0 +1,87 @@
+//! Evaluation: one [`Number`] trait for every value type, one walk over the tape.
+//!
+//! | type | what an evaluation gives |
+//! |---|---|
+//! | `f64`, `f32` | the point value, each operation rounded to nearest (elementary functions correctly rounded, by CORE-MATH) |
+//! | [`Interval<f64>`], [`Interval<f32>`] | a sound enclosure of the range over a box (inclusion function) |
+//! | [`Modal<T, Outer>`](interval_core::Modal) | `Out(fR(X))`, the outer-rounded modal rational extension |
+//! | [`Modal<T, Inner>`](interval_core::Modal) | `Inn(fR(X))`, the inner-rounded modal rational extension |
+//! | [`Grad<N>`] | the value and the gradient with respect to `x`, `y`, `z` (forward mode) |
+//!
+//! Point results always lie inside interval results for any box holding the point: the
+//! point operations round to nearest (or correctly round) the same real functions that the
+//! interval operations enclose outward.
+
+mod grad;
+mod interval;
+mod modal;
+mod point;
+mod tape_eval;
+
+pub use grad::Grad;
+pub use tape_eval::{Evaluator, SliceEvaluator};
+
+use crate::constant::Constant;
+use crate::op::{BinaryOp, UnaryOp};
+
+/// Which argument a `min` or `max` took over an interval evaluation: the basis of tape
+/// pruning.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Choice {
+    /// The first argument is the result everywhere in the region.
+    Left,
+    /// The second argument is the result everywhere in the region.
+    Right,
+    /// Either may be the result.
+    Both,
+}
+
+/// A value type the tape can be evaluated on.
+///
+/// Implementations exist for `f64`, `f32`, `Interval<f64>`, `Interval<f32>`,
+/// `Modal<f64, Outer>`, `Modal<f64, Inner>`, `Modal<f32, Outer>`, `Modal<f32, Inner>` and
+/// [`Grad<N>`] over the four first. Each operation must be an inclusion (for set types:
+/// the result encloses every real result of the operation on members of the arguments).
+pub trait Number: Copy + Send + Sync + std::fmt::Debug + 'static {
+    /// The value standing for constant `c` (for set types: an enclosure of the real constant).
+    fn constant(c: &Constant) -> Self;
+
+    /// `op(a)`.
+    fn unary(op: UnaryOp, a: Self) -> Self;
+
+    /// `op(a, b)`.
+    fn binary(op: BinaryOp, a: Self, b: Self) -> Self;
+
+    /// `a^n`.
+    fn pown(a: Self, n: i32) -> Self;
+
+    /// `min(a, b)` and which argument it took; point types answer [`Choice::Both`].
+    #[inline(always)]
+    fn min_choice(a: Self, b: Self) -> (Self, Choice) {
+        (Self::binary(BinaryOp::Min, a, b), Choice::Both)
+    }
+
+    /// `max(a, b)` and which argument it took; point types answer [`Choice::Both`].
+    #[inline(always)]
+    fn max_choice(a: Self, b: Self) -> (Self, Choice) {
+        (Self::binary(BinaryOp::Max, a, b), Choice::Both)
+    }
+
+    /// Evaluates `op` on whole slices (`out[i] = op(a[i])`); types with vectorised kernels
+    /// override it.
+    #[inline(always)]
+    fn unary_slice(op: UnaryOp, a: &[Self], out: &mut [Self]) {
+        for (o, &x) in out.iter_mut().zip(a) {
+            *o = Self::unary(op, x);
+        }
+    }
+
+    /// Evaluates `op` on whole slices (`out[i] = op(a[i], b[i])`); types with vectorised
+    /// kernels override it.
+    #[inline(always)]
+    fn binary_slice(op: BinaryOp, a: &[Self], b: &[Self], out: &mut [Self]) {
+        for ((o, &x), &y) in out.iter_mut().zip(a).zip(b) {
+            *o = Self::binary(op, x, y);
+        }
+    }
+}

@@ -1,0 +1,230 @@
+//! The walk over a register tape, for one point (or box) at a time and for slices.
+
+use super::{Choice, Number};
+use crate::error::Error;
+use crate::op::BinaryOp;
+use crate::tape::{Instr, Opcode, Tape};
+
+/// Evaluates a [`Tape`] on one input at a time. Owns its registers: make one per thread
+/// (they are cheap) and reuse it across calls and tapes.
+#[derive(Clone, Debug)]
+pub struct Evaluator<N> {
+    tape: Tape,
+    regs: Vec<N>,
+}
+
+impl<N: Number> Evaluator<N> {
+    /// An evaluator for `tape`.
+    pub fn new(tape: &Tape) -> Self {
+        let mut e = Self {
+            tape: tape.clone(),
+            regs: Vec::new(),
+        };
+        e.load_consts();
+        e
+    }
+
+    fn load_consts(&mut self) {
+        self.regs.clear();
+        self.regs.extend(self.tape.consts().iter().map(N::constant));
+        // Working registers start as a copy of any value; every one is written before it
+        // is read.
+        let filler = N::constant(&crate::constant::Constant::exact(0.0).expect("finite"));
+        self.regs.resize(self.tape.reg_count(), filler);
+    }
+
+    /// Switches to another tape, reusing the register storage.
+    pub fn set_tape(&mut self, tape: &Tape) {
+        if !self.tape.ptr_eq(tape) {
+            self.tape = tape.clone();
+            self.load_consts();
+        }
+    }
+
+    /// The tape being evaluated.
+    pub fn tape(&self) -> &Tape {
+        &self.tape
+    }
+
+    fn check(&self, vars: &[N]) -> Result<(), Error> {
+        if vars.len() < self.tape.var_count() {
+            return Err(Error::MissingVar {
+                slot: vars.len() as u32,
+                given: vars.len(),
+            });
+        }
+        Ok(())
+    }
+
+    /// The first output at `vars` (one value per variable slot: `x`, `y`, `z`, then the
+    /// other variables in declaration order).
+    ///
+    /// Returns an error when fewer values than the tape's variable slots are given.
+    pub fn eval(&mut self, vars: &[N]) -> Result<N, Error> {
+        self.check(vars)?;
+        run::<N, false>(self.tape.instrs(), &mut self.regs, vars, &mut Vec::new());
+        Ok(self.regs[self.tape.outputs()[0] as usize])
+    }
+
+    /// Every output at `vars`, written to `out` (which must hold one value per output).
+    ///
+    /// Returns an error when `vars` or `out` is too short.
+    pub fn eval_outputs(&mut self, vars: &[N], out: &mut [N]) -> Result<(), Error> {
+        self.check(vars)?;
+        if out.len() < self.tape.outputs().len() {
+            return Err(Error::Unsupported(format!(
+                "output buffer holds {} values, the tape has {} outputs",
+                out.len(),
+                self.tape.outputs().len()
+            )));
+        }
+        run::<N, false>(self.tape.instrs(), &mut self.regs, vars, &mut Vec::new());
+        for (o, &r) in out.iter_mut().zip(self.tape.outputs()) {
+            *o = self.regs[r as usize];
+        }
+        Ok(())
+    }
+
+    /// Like [`eval`](Self::eval), also recording in `trace` (cleared first) which argument
+    /// each `min`/`max` took, in tape order: the input of [`Tape::simplify`].
+    pub fn eval_traced(&mut self, vars: &[N], trace: &mut Vec<Choice>) -> Result<N, Error> {
+        self.check(vars)?;
+        trace.clear();
+        run::<N, true>(self.tape.instrs(), &mut self.regs, vars, trace);
+        Ok(self.regs[self.tape.outputs()[0] as usize])
+    }
+}
+
+/// The interpreter loop. `TRACE` selects choice recording at compile time.
+#[inline(always)]
+fn run<N: Number, const TRACE: bool>(
+    instrs: &[Instr],
+    regs: &mut [N],
+    vars: &[N],
+    trace: &mut Vec<Choice>,
+) {
+    for ins in instrs {
+        let (a, b) = (ins.a as usize, ins.b as usize);
+        let v = match ins.op {
+            Opcode::Var => vars[a],
+            Opcode::Const | Opcode::Copy => regs[a],
+            Opcode::Unary(op) => N::unary(op, regs[a]),
+            Opcode::Binary(BinaryOp::Min) if TRACE => {
+                let (v, c) = N::min_choice(regs[a], regs[b]);
+                trace.push(c);
+                v
+            }
+            Opcode::Binary(BinaryOp::Max) if TRACE => {
+                let (v, c) = N::max_choice(regs[a], regs[b]);
+                trace.push(c);
+                v
+            }
+            Opcode::Binary(op) => N::binary(op, regs[a], regs[b]),
+            Opcode::Pown => N::pown(regs[a], ins.b as i32),
+        };
+        regs[ins.out as usize] = v;
+    }
+}
+
+/// Number of inputs a [`SliceEvaluator`] processes per pass over the tape.
+pub const SLICE_CHUNK: usize = 64;
+
+/// Evaluates a [`Tape`] on many inputs: each instruction runs over a chunk of
+/// [`SLICE_CHUNK`] inputs before the next, which amortises the interpretation and lets the
+/// compiler vectorise the arithmetic.
+#[derive(Clone, Debug)]
+pub struct SliceEvaluator<N> {
+    tape: Tape,
+    regs: Vec<N>,
+}
+
+impl<N: Number> SliceEvaluator<N> {
+    /// An evaluator for `tape`.
+    pub fn new(tape: &Tape) -> Self {
+        let mut e = Self {
+            tape: tape.clone(),
+            regs: Vec::new(),
+        };
+        e.load_consts();
+        e
+    }
+
+    fn load_consts(&mut self) {
+        let filler = N::constant(&crate::constant::Constant::exact(0.0).expect("finite"));
+        self.regs.clear();
+        self.regs.resize(self.tape.reg_count() * SLICE_CHUNK, filler);
+        for (i, c) in self.tape.consts().iter().enumerate() {
+            let v = N::constant(c);
+            self.regs[i * SLICE_CHUNK..(i + 1) * SLICE_CHUNK].fill(v);
+        }
+    }
+
+    /// Switches to another tape, reusing the register storage.
+    pub fn set_tape(&mut self, tape: &Tape) {
+        if !self.tape.ptr_eq(tape) {
+            self.tape = tape.clone();
+            self.load_consts();
+        }
+    }
+
+    /// The first output at every input: `vars[s][i]` is the value of slot `s` at input `i`;
+    /// `out[i]` receives the result.
+    ///
+    /// Returns an error when fewer slots than the tape's are given or the lengths differ.
+    pub fn eval(&mut self, vars: &[&[N]], out: &mut [N]) -> Result<(), Error> {
+        if vars.len() < self.tape.var_count() {
+            return Err(Error::MissingVar {
+                slot: vars.len() as u32,
+                given: vars.len(),
+            });
+        }
+        if let Some(bad) = vars.iter().position(|v| v.len() != out.len()) {
+            return Err(Error::Unsupported(format!(
+                "variable slot {bad} has {} values, the output {}",
+                vars[bad].len(),
+                out.len()
+            )));
+        }
+        let output = self.tape.outputs()[0] as usize;
+        let mut start = 0;
+        while start < out.len() {
+            let n = SLICE_CHUNK.min(out.len() - start);
+            for ins in self.tape.instrs() {
+                step(ins, &mut self.regs, vars, start, n);
+            }
+            out[start..start + n].copy_from_slice(&self.regs[output * SLICE_CHUNK..][..n]);
+            start += n;
+        }
+        Ok(())
+    }
+}
+
+/// One instruction over `n` inputs starting at `start`.
+#[inline(always)]
+fn step<N: Number>(ins: &Instr, regs: &mut [N], vars: &[&[N]], start: usize, n: usize) {
+    let c = SLICE_CHUNK;
+    let o = ins.out as usize;
+    // `out` differs from the inputs (register allocation guarantees it): split around it.
+    let (below, rest) = regs.split_at_mut(o * c);
+    let (out, above) = rest.split_at_mut(c);
+    let out = &mut out[..n];
+    let reg = |r: usize| -> &[N] {
+        if r < o {
+            &below[r * c..r * c + n]
+        } else {
+            &above[(r - o - 1) * c..(r - o - 1) * c + n]
+        }
+    };
+    match ins.op {
+        Opcode::Var => out.copy_from_slice(&vars[ins.a as usize][start..start + n]),
+        Opcode::Const | Opcode::Copy => out.copy_from_slice(reg(ins.a as usize)),
+        Opcode::Unary(op) => N::unary_slice(op, reg(ins.a as usize), out),
+        Opcode::Binary(op) => N::binary_slice(op, reg(ins.a as usize), reg(ins.b as usize), out),
+        Opcode::Pown => {
+            let k = ins.b as i32;
+            for (o, &x) in out.iter_mut().zip(reg(ins.a as usize)) {
+                *o = N::pown(x, k);
+            }
+        }
+    }
+}

@@ -1,0 +1,196 @@
+//! The operations of the expression language: one enum for every node kind of the graph and
+//! every instruction of the tape.
+
+use std::fmt;
+
+/// A one-argument operation.
+///
+/// `Floor`, `Ceil`, `Round` and `Not` come from the `.vm` format; their derivatives are the
+/// "slope" operations, which are zero where the step function is constant and unbounded
+/// (the interval `[-inf, +inf]`) over any interval that contains a jump, so that interval
+/// Newton and monotonicity tests stay sound across discontinuities.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum UnaryOp {
+    /// `-a`
+    Neg,
+    /// `|a|`
+    Abs,
+    /// `a²`
+    Sqr,
+    /// `√a`
+    Sqrt,
+    /// `1 / a`
+    Recip,
+    /// `eᵃ`
+    Exp,
+    /// natural logarithm
+    Ln,
+    /// base-10 logarithm (`log` in formulas)
+    Log10,
+    /// sine
+    Sin,
+    /// cosine
+    Cos,
+    /// tangent
+    Tan,
+    /// arcsine
+    Asin,
+    /// arccosine
+    Acos,
+    /// arctangent
+    Atan,
+    /// largest integer `<= a`
+    Floor,
+    /// smallest integer `>= a`
+    Ceil,
+    /// nearest integer, halves away from zero
+    Round,
+    /// logical not: `1` where `a == 0`, else `0`
+    Not,
+    /// derivative of `Floor` and `Ceil`: zero between the integers, unbounded across one
+    SlopeFloor,
+    /// derivative of `Round`: zero between the half-integers, unbounded across one
+    SlopeRound,
+    /// derivative of `Not`: zero away from `0`, unbounded on an interval that holds it
+    SlopeNot,
+}
+
+/// A two-argument operation.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum BinaryOp {
+    /// `a + b`
+    Add,
+    /// `a - b`
+    Sub,
+    /// `a * b`
+    Mul,
+    /// `a / b`
+    Div,
+    /// `min(a, b)`
+    Min,
+    /// `max(a, b)`
+    Max,
+    /// `a ^ b` for a real exponent (IEEE 1788 `pow`: defined for `a > 0`, and `a = 0, b > 0`)
+    Pow,
+}
+
+impl UnaryOp {
+    /// Every unary operation, in declaration order.
+    pub const ALL: [UnaryOp; 21] = [
+        UnaryOp::Neg,
+        UnaryOp::Abs,
+        UnaryOp::Sqr,
+        UnaryOp::Sqrt,
+        UnaryOp::Recip,
+        UnaryOp::Exp,
+        UnaryOp::Ln,
+        UnaryOp::Log10,
+        UnaryOp::Sin,
+        UnaryOp::Cos,
+        UnaryOp::Tan,
+        UnaryOp::Asin,
+        UnaryOp::Acos,
+        UnaryOp::Atan,
+        UnaryOp::Floor,
+        UnaryOp::Ceil,
+        UnaryOp::Round,
+        UnaryOp::Not,
+        UnaryOp::SlopeFloor,
+        UnaryOp::SlopeRound,
+        UnaryOp::SlopeNot,
+    ];
+
+    /// The name used in formulas and in printed graphs (`neg` prints as a prefix `-`).
+    pub fn name(self) -> &'static str {
+        match self {
+            UnaryOp::Neg => "neg",
+            UnaryOp::Abs => "abs",
+            UnaryOp::Sqr => "sqr",
+            UnaryOp::Sqrt => "sqrt",
+            UnaryOp::Recip => "recip",
+            UnaryOp::Exp => "exp",
+            UnaryOp::Ln => "ln",
+            UnaryOp::Log10 => "log",
+            UnaryOp::Sin => "sin",
+            UnaryOp::Cos => "cos",
+            UnaryOp::Tan => "tan",
+            UnaryOp::Asin => "asin",
+            UnaryOp::Acos => "acos",
+            UnaryOp::Atan => "atan",
+            UnaryOp::Floor => "floor",
+            UnaryOp::Ceil => "ceil",
+            UnaryOp::Round => "round",
+            UnaryOp::Not => "not",
+            UnaryOp::SlopeFloor => "slope_floor",
+            UnaryOp::SlopeRound => "slope_round",
+            UnaryOp::SlopeNot => "slope_not",
+        }
+    }
+
+    /// Whether the operation is non-decreasing on its whole domain.
+    pub fn is_increasing(self) -> bool {
+        matches!(
+            self,
+            UnaryOp::Sqrt
+                | UnaryOp::Exp
+                | UnaryOp::Ln
+                | UnaryOp::Log10
+                | UnaryOp::Asin
+                | UnaryOp::Atan
+                | UnaryOp::Floor
+                | UnaryOp::Ceil
+                | UnaryOp::Round
+        )
+    }
+
+    /// Whether the operation is non-increasing on its whole domain.
+    pub fn is_decreasing(self) -> bool {
+        matches!(self, UnaryOp::Neg | UnaryOp::Acos)
+    }
+}
+
+impl BinaryOp {
+    /// Every binary operation, in declaration order.
+    pub const ALL: [BinaryOp; 7] = [
+        BinaryOp::Add,
+        BinaryOp::Sub,
+        BinaryOp::Mul,
+        BinaryOp::Div,
+        BinaryOp::Min,
+        BinaryOp::Max,
+        BinaryOp::Pow,
+    ];
+
+    /// The name used in printed graphs and in the `.vm` format.
+    pub fn name(self) -> &'static str {
+        match self {
+            BinaryOp::Add => "add",
+            BinaryOp::Sub => "sub",
+            BinaryOp::Mul => "mul",
+            BinaryOp::Div => "div",
+            BinaryOp::Min => "min",
+            BinaryOp::Max => "max",
+            BinaryOp::Pow => "pow",
+        }
+    }
+
+    /// Whether `op(a, b) == op(b, a)` for all values (used to share `a + b` and `b + a`).
+    pub fn is_commutative(self) -> bool {
+        matches!(
+            self,
+            BinaryOp::Add | BinaryOp::Mul | BinaryOp::Min | BinaryOp::Max
+        )
+    }
+}
+
+impl fmt::Display for UnaryOp {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl fmt::Display for BinaryOp {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}

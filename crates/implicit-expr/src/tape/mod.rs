@@ -1,0 +1,204 @@
+//! The compiled form of an expression: an SSA list of operations and, from it, a flat
+//! register tape that every evaluator walks.
+//!
+//! [`Tape::new`] takes the nodes that the outputs depend on, in topological order (the SSA
+//! form), and allocates registers by a linear scan: constants sit in fixed registers that
+//! evaluators fill once per tape, every other value gets a register that is reused after its
+//! last use. An instruction's output register never equals one of its inputs, so slice
+//! evaluators can borrow them as disjoint slices.
+//!
+//! Tapes are cheap to clone (an `Arc`) and immutable; [`Tape::simplify`] makes the shorter
+//! tape valid inside a region from the `min`/`max` choices of an interval evaluation there.
+
+mod prune;
+mod regalloc;
+
+use std::sync::Arc;
+
+use crate::constant::Constant;
+use crate::context::{Context, Node, NodeId};
+use crate::error::Error;
+use crate::op::{BinaryOp, UnaryOp};
+
+/// What an instruction does.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Opcode {
+    /// Load variable slot `a`.
+    Var,
+    /// Load constant `a` (SSA form only: in the register tape constants live in registers).
+    Const,
+    /// Copy register `a` (the register tape never needs it; kept for completeness of SSA
+    /// rewrites).
+    Copy,
+    /// A one-argument operation on `a`.
+    Unary(UnaryOp),
+    /// A two-argument operation on `a` and `b`.
+    Binary(BinaryOp),
+    /// `a^n`, with `n` stored in `b` as the bits of an `i32`.
+    Pown,
+}
+
+/// One SSA operation: its result is the value numbered by its position; `a` and `b` are
+/// earlier positions (or a slot / constant index / exponent, by [`Opcode`]).
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub struct SsaOp {
+    /// The operation.
+    pub op: Opcode,
+    /// First argument.
+    pub a: u32,
+    /// Second argument.
+    pub b: u32,
+}
+
+/// One register-tape instruction: `out = op(a, b)` on registers.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub struct Instr {
+    /// The operation.
+    pub op: Opcode,
+    /// Output register.
+    pub out: u32,
+    /// First argument register (the slot for [`Opcode::Var`]).
+    pub a: u32,
+    /// Second argument register (the exponent bits for [`Opcode::Pown`]).
+    pub b: u32,
+}
+
+#[derive(Debug)]
+struct TapeData {
+    ssa: Vec<SsaOp>,
+    ssa_outputs: Vec<u32>,
+    consts: Vec<Constant>,
+    instrs: Vec<Instr>,
+    outputs: Vec<u32>,
+    reg_count: u32,
+    var_count: u32,
+    choice_count: u32,
+}
+
+/// A compiled expression with one or more outputs. See the [module documentation](self).
+#[derive(Clone, Debug)]
+pub struct Tape(Arc<TapeData>);
+
+impl Tape {
+    /// Compiles the nodes `roots` of `ctx` (each one an output, in order).
+    ///
+    /// Returns an error when `roots` is empty.
+    pub fn new(ctx: &Context, roots: &[NodeId]) -> Result<Self, Error> {
+        if roots.is_empty() {
+            return Err(Error::Unsupported("a tape needs at least one output".into()));
+        }
+        let order = ctx.reachable(roots);
+        let mut pos = vec![u32::MAX; ctx.len()];
+        let mut ssa = Vec::with_capacity(order.len());
+        let mut consts = Vec::new();
+        for id in order {
+            let op = match *ctx.get(id) {
+                Node::Var(v) => SsaOp {
+                    op: Opcode::Var,
+                    a: v.0,
+                    b: 0,
+                },
+                Node::Const(c) => {
+                    consts.push(c);
+                    SsaOp {
+                        op: Opcode::Const,
+                        a: (consts.len() - 1) as u32,
+                        b: 0,
+                    }
+                }
+                Node::Unary(op, a) => SsaOp {
+                    op: Opcode::Unary(op),
+                    a: pos[a.index()],
+                    b: 0,
+                },
+                Node::Binary(op, a, b) => SsaOp {
+                    op: Opcode::Binary(op),
+                    a: pos[a.index()],
+                    b: pos[b.index()],
+                },
+                Node::Pown(a, n) => SsaOp {
+                    op: Opcode::Pown,
+                    a: pos[a.index()],
+                    b: n as u32,
+                },
+            };
+            pos[id.index()] = ssa.len() as u32;
+            ssa.push(op);
+        }
+        let outputs = roots.iter().map(|r| pos[r.index()]).collect();
+        Ok(Self::from_ssa(ssa, consts, outputs, ctx.var_count() as u32))
+    }
+
+    fn from_ssa(ssa: Vec<SsaOp>, consts: Vec<Constant>, ssa_outputs: Vec<u32>, var_count: u32) -> Self {
+        let (instrs, outputs, reg_count) = regalloc::allocate(&ssa, consts.len() as u32, &ssa_outputs);
+        let choice_count = ssa
+            .iter()
+            .filter(|o| matches!(o.op, Opcode::Binary(BinaryOp::Min | BinaryOp::Max)))
+            .count() as u32;
+        Tape(Arc::new(TapeData {
+            ssa,
+            ssa_outputs,
+            consts,
+            instrs,
+            outputs,
+            reg_count,
+            var_count,
+            choice_count,
+        }))
+    }
+
+    /// The register instructions, in evaluation order.
+    pub fn instrs(&self) -> &[Instr] {
+        &self.0.instrs
+    }
+
+    /// The SSA operations (constants included), in evaluation order.
+    pub fn ssa(&self) -> &[SsaOp] {
+        &self.0.ssa
+    }
+
+    /// The SSA positions of the outputs.
+    pub fn ssa_outputs(&self) -> &[u32] {
+        &self.0.ssa_outputs
+    }
+
+    /// The constants; constant `i` lives in register `i`.
+    pub fn consts(&self) -> &[Constant] {
+        &self.0.consts
+    }
+
+    /// The registers holding the outputs, in order.
+    pub fn outputs(&self) -> &[u32] {
+        &self.0.outputs
+    }
+
+    /// Number of registers an evaluator needs.
+    pub fn reg_count(&self) -> usize {
+        self.0.reg_count as usize
+    }
+
+    /// Number of variable slots an evaluator must be given.
+    pub fn var_count(&self) -> usize {
+        self.0.var_count as usize
+    }
+
+    /// Number of `min`/`max` operations: the length of a choice trace.
+    pub fn choice_count(&self) -> usize {
+        self.0.choice_count as usize
+    }
+
+    /// Number of instructions of the register tape (the work of one evaluation).
+    pub fn len(&self) -> usize {
+        self.0.instrs.len()
+    }
+
+    /// Whether the tape has no instruction (its outputs are constants).
+    pub fn is_empty(&self) -> bool {
+        self.0.instrs.is_empty()
+    }
+
+    /// Whether two handles share one tape.
+    pub fn ptr_eq(&self, other: &Tape) -> bool {
+        Arc::ptr_eq(&self.0, &other.0)
+    }
+}

@@ -1,0 +1,93 @@
+//! Compilation, register allocation and pruning on hand-built graphs.
+
+use implicit_expr::{Choice, Context, Evaluator, Grad, SliceEvaluator, Tape};
+use interval_core::{Inner, Interval, Modal, Outer};
+
+fn iv(a: f64, b: f64) -> Interval<f64> {
+    Interval::new(a, b).unwrap()
+}
+
+/// x² + y² + z² - 1 and its tape.
+fn sphere() -> (Context, Tape) {
+    let mut c = Context::new();
+    let (x, y, z) = (c.x(), c.y(), c.z());
+    let (x2, y2, z2) = (c.sqr(x), c.sqr(y), c.sqr(z));
+    let s = c.add(x2, y2);
+    let s = c.add(s, z2);
+    let one = c.constant(1.0).unwrap();
+    let f = c.sub(s, one);
+    let t = Tape::new(&c, &[f]).unwrap();
+    (c, t)
+}
+
+#[test]
+fn point_interval_and_slice_agree() {
+    let (_, t) = sphere();
+    let mut e = Evaluator::<f64>::new(&t);
+    assert_eq!(e.eval(&[1.0, 2.0, 3.0]).unwrap(), 13.0);
+    let mut ei = Evaluator::<Interval<f64>>::new(&t);
+    let r = ei.eval(&[iv(-1.0, 1.0), iv(0.0, 1.0), iv(2.0, 2.0)]).unwrap();
+    assert_eq!(r, iv(3.0, 5.0));
+    let xs: Vec<f64> = (0..200).map(|i| i as f64 * 0.01).collect();
+    let ys = vec![0.5; 200];
+    let zs = vec![-0.25; 200];
+    let mut out = vec![0.0; 200];
+    let mut se = SliceEvaluator::<f64>::new(&t);
+    se.eval(&[&xs, &ys, &zs], &mut out).unwrap();
+    for i in 0..200 {
+        assert_eq!(out[i], e.eval(&[xs[i], ys[i], zs[i]]).unwrap());
+    }
+}
+
+#[test]
+fn hash_consing_shares_and_simplifies() {
+    let mut c = Context::new();
+    let x = c.x();
+    let y = c.y();
+    let a = c.add(x, y);
+    let b = c.add(y, x);
+    assert_eq!(a, b);
+    let d = c.sub(a, b);
+    assert_eq!(c.as_const(d).map(|k| k.value()), Some(0.0));
+    let m = c.mul(x, x);
+    assert_eq!(m, c.sqr(x));
+}
+
+#[test]
+fn pruning_min_max() {
+    // min(x, x + 10): over x in [0, 1] the left branch is always taken.
+    let mut c = Context::new();
+    let x = c.x();
+    let ten = c.constant(10.0).unwrap();
+    let y = c.y();
+    let far = c.add(x, ten);
+    let far = c.mul(far, y);
+    let f = c.min(x, far);
+    let t = Tape::new(&c, &[f]).unwrap();
+    let mut e = Evaluator::<Interval<f64>>::new(&t);
+    let mut trace = Vec::new();
+    e.eval_traced(&[iv(0.0, 1.0), iv(2.0, 3.0), iv(0.0, 0.0)], &mut trace)
+        .unwrap();
+    assert_eq!(trace, vec![Choice::Left]);
+    let p = t.simplify(&trace).unwrap();
+    assert!(p.len() < t.len());
+    let mut ep = Evaluator::<f64>::new(&p);
+    assert_eq!(ep.eval(&[0.5, 2.5, 0.0]).unwrap(), 0.5);
+}
+
+#[test]
+fn gradient_and_modal() {
+    let (_, t) = sphere();
+    let mut e = Evaluator::<Grad<f64>>::new(&t);
+    let g = e.eval(&Grad::point(1.0, 2.0, 3.0)).unwrap();
+    assert_eq!(g.v, 13.0);
+    assert_eq!(g.d, [2.0, 4.0, 6.0]);
+    let m = |a: f64, b: f64| Modal::<f64, Outer>::new(a, b).unwrap();
+    let mut eo = Evaluator::<Modal<f64, Outer>>::new(&t);
+    let r = eo.eval(&[m(1.0, 2.0), m(0.0, 0.0), m(0.0, 0.0)]).unwrap();
+    assert_eq!((r.first(), r.second()), (0.0, 3.0));
+    let mi = |a: f64, b: f64| Modal::<f64, Inner>::new(a, b).unwrap();
+    let mut ei = Evaluator::<Modal<f64, Inner>>::new(&t);
+    let r = ei.eval(&[mi(2.0, 1.0), mi(0.0, 0.0), mi(0.0, 0.0)]).unwrap();
+    assert_eq!((r.first(), r.second()), (3.0, 0.0));
+}
