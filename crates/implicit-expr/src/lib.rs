@@ -7,9 +7,11 @@
 
 pub mod constant;
 pub mod context;
+mod deriv;
 pub mod error;
 pub mod eval;
 pub mod op;
+pub mod ray;
 pub mod tape;
 
 pub use constant::Constant;
@@ -17,4 +19,5 @@ pub use context::{Context, Node, NodeId, Var};
 pub use error::Error;
 pub use eval::{Choice, Evaluator, Grad, Number, SliceEvaluator};
 pub use op::{BinaryOp, UnaryOp};
+pub use ray::{RayEvaluator, RayFunction};
 pub use tape::Tape;

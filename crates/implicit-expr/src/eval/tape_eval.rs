@@ -30,7 +30,8 @@ impl<N: Number> Evaluator<N> {
         // Working registers start as a copy of any value; every one is written before it
         // is read.
         let filler = N::constant(&crate::constant::Constant::exact(0.0).expect("finite"));
-        self.regs.resize(self.tape.reg_count(), filler);
+        // A power-of-two length lets the loop index with a mask instead of a bounds check.
+        self.regs.resize(self.tape.reg_count().next_power_of_two(), filler);
     }
 
     /// Switches to another tape, reusing the register storage.
@@ -103,10 +104,14 @@ fn run<N: Number, const TRACE: bool>(
     vars: &[N],
     trace: &mut Vec<Choice>,
 ) {
+    // `regs.len()` is a power of two above every register index of the tape, so masking
+    // changes no index and proves to the compiler that none is out of bounds.
+    debug_assert!(regs.len().is_power_of_two());
+    let mask = regs.len() - 1;
     for ins in instrs {
-        let (a, b) = (ins.a as usize, ins.b as usize);
+        let (a, b) = (ins.a as usize & mask, ins.b as usize & mask);
         let v = match ins.op {
-            Opcode::Var => vars[a],
+            Opcode::Var => vars[ins.a as usize],
             Opcode::Const | Opcode::Copy => regs[a],
             Opcode::Unary(op) => N::unary(op, regs[a]),
             Opcode::Binary(BinaryOp::Min) if TRACE => {
@@ -122,7 +127,7 @@ fn run<N: Number, const TRACE: bool>(
             Opcode::Binary(op) => N::binary(op, regs[a], regs[b]),
             Opcode::Pown => N::pown(regs[a], ins.b as i32),
         };
-        regs[ins.out as usize] = v;
+        regs[ins.out as usize & mask] = v;
     }
 }
 

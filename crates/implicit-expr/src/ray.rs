@@ -1,0 +1,161 @@
+//! Restriction of a surface to a ray or a beam (thesis 4.3.2 and 5.4.1).
+//!
+//! For an origin `c` and a direction `D` (a point for a ray, a box of directions for a
+//! beam), the root finders work on one-variable functions of the ray parameter `t`:
+//!
+//! * `g(t) = f(c + t·D)`,
+//! * `g'(t) = ∇f(c + t·D) · D` (the derivative along the ray).
+//!
+//! [`RayFunction::new`] builds both once per surface, as graphs in the variables
+//! `cx cy cz t dx dy dz` (then the surface's parameters), with `g'` obtained by symbolic
+//! differentiation of `g` by `t` (the chain rule gives exactly `∇f · D`) and sharing its
+//! nodes with `g`. A [`RayEvaluator`] then evaluates them for any number type: set the ray
+//! once with [`RayEvaluator::set_ray`], call [`RayEvaluator::g`] or
+//! [`RayEvaluator::g_dg`] per parameter interval. Over intervals, `c + T·D` encloses every
+//! point of every ray of the beam for `t ∈ T`, so `0 ∉ g(T)` proves that no ray of the beam
+//! meets the surface for `t ∈ T` (the rejection test).
+
+use std::collections::HashMap;
+
+use crate::context::{Context, Node, NodeId, Var};
+use crate::error::Error;
+use crate::eval::{Evaluator, Number};
+use crate::tape::Tape;
+
+/// Names of the variable slots of a ray function, in slot order (then the surface's
+/// parameters, in the surface context's order).
+pub const RAY_VARS: [&str; 7] = ["cx", "cy", "cz", "t", "dx", "dy", "dz"];
+
+/// Slot of the ray parameter `t`.
+const T: Var = Var(3);
+
+/// `g` and `g'` of a surface, compiled. See the [module documentation](self).
+#[derive(Clone, Debug)]
+pub struct RayFunction {
+    g: Tape,
+    g_dg: Tape,
+    context: Context,
+    roots: [NodeId; 2],
+    params: Vec<String>,
+}
+
+impl RayFunction {
+    /// Builds `g` and `g'` for the surface `f` of `ctx` (whose slots 3.. are parameters).
+    ///
+    /// Returns an error if a tape cannot be built.
+    pub fn new(ctx: &Context, f: NodeId) -> Result<Self, Error> {
+        let mut rc = Context::new();
+        // Slots 0..3 are x, y, z in every context; here they stand for cx, cy, cz.
+        let c = [rc.x(), rc.y(), rc.z()];
+        let t = rc.named_var("t");
+        let d = [rc.named_var("dx"), rc.named_var("dy"), rc.named_var("dz")];
+        let params: Vec<String> = ctx.var_names()[3..].to_vec();
+        let mut param_nodes = Vec::with_capacity(params.len());
+        for p in &params {
+            // Parameter names cannot clash with the ray's own: prefix them in the ray context.
+            param_nodes.push(rc.named_var(&format!("param:{p}")));
+        }
+        let mut map: HashMap<NodeId, NodeId> = HashMap::new();
+        for id in ctx.reachable(&[f]) {
+            let n = match *ctx.get(id) {
+                Node::Var(v) if v.index() < 3 => {
+                    let i = v.index();
+                    let td = rc.mul(t, d[i]);
+                    rc.add(c[i], td)
+                }
+                Node::Var(v) => param_nodes[v.index() - 3],
+                Node::Const(k) => rc.constant_enclosed(k),
+                Node::Unary(op, a) => rc.unary(op, map[&a]),
+                Node::Binary(op, a, b) => rc.binary(op, map[&a], map[&b]),
+                Node::Pown(a, n) => rc.pown(map[&a], n),
+            };
+            map.insert(id, n);
+        }
+        let g = map[&f];
+        let dg = rc.deriv(g, T);
+        Ok(Self {
+            g: Tape::new(&rc, &[g])?,
+            g_dg: Tape::new(&rc, &[g, dg])?,
+            context: rc,
+            roots: [g, dg],
+            params,
+        })
+    }
+
+    /// The tape of `g` alone (variables as in [`RAY_VARS`], then the parameters).
+    pub fn g_tape(&self) -> &Tape {
+        &self.g
+    }
+
+    /// The tape with outputs `g` and `g'`.
+    pub fn g_dg_tape(&self) -> &Tape {
+        &self.g_dg
+    }
+
+    /// The graph of `g` and `g'` (for code generation), and their roots `[g, g']`.
+    pub fn graph(&self) -> (&Context, [NodeId; 2]) {
+        (&self.context, self.roots)
+    }
+
+    /// The surface's parameter names, in slot order.
+    pub fn params(&self) -> &[String] {
+        &self.params
+    }
+}
+
+/// Evaluates `g` and `g'` of one [`RayFunction`] on rays or beams of number type `N`. Owns
+/// its scratch space: make one per thread.
+#[derive(Clone, Debug)]
+pub struct RayEvaluator<N> {
+    g: Evaluator<N>,
+    g_dg: Evaluator<N>,
+    vars: Vec<N>,
+    out: [N; 2],
+}
+
+impl<N: Number> RayEvaluator<N> {
+    /// An evaluator for `f` with the surface parameters' values `params` (in the order of
+    /// [`RayFunction::params`]).
+    ///
+    /// Returns an error when the number of parameter values differs from the surface's.
+    pub fn new(f: &RayFunction, params: &[N]) -> Result<Self, Error> {
+        if params.len() != f.params.len() {
+            return Err(Error::Unsupported(format!(
+                "the surface has {} parameters ({}), {} values given",
+                f.params.len(),
+                f.params.join(", "),
+                params.len()
+            )));
+        }
+        let zero = N::constant(&crate::Constant::exact(0.0).expect("finite"));
+        let mut vars = vec![zero; RAY_VARS.len()];
+        vars.extend_from_slice(params);
+        Ok(Self {
+            g: Evaluator::new(&f.g),
+            g_dg: Evaluator::new(&f.g_dg),
+            vars,
+            out: [zero; 2],
+        })
+    }
+
+    /// Sets the origin `c` and direction `d` of the ray (points) or beam (boxes).
+    pub fn set_ray(&mut self, origin: [N; 3], dir: [N; 3]) {
+        self.vars[0..3].copy_from_slice(&origin);
+        self.vars[4..7].copy_from_slice(&dir);
+    }
+
+    /// `g(t)`.
+    pub fn g(&mut self, t: N) -> N {
+        self.vars[T.index()] = t;
+        self.g.eval(&self.vars).expect("slot count checked at construction")
+    }
+
+    /// `(g(t), g'(t))`.
+    pub fn g_dg(&mut self, t: N) -> (N, N) {
+        self.vars[T.index()] = t;
+        self.g_dg
+            .eval_outputs(&self.vars, &mut self.out)
+            .expect("slot count checked at construction");
+        (self.out[0], self.out[1])
+    }
+}
