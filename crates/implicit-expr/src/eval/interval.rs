@@ -140,9 +140,7 @@ impl<T: Float> Number for Interval<T> {
             _ => false,
         };
         if !done {
-            for (o, &x) in out.iter_mut().zip(a) {
-                *o = Self::unary(op, x);
-            }
+            super::unary_slice_by_element(op, a, out);
         }
     }
 
@@ -155,9 +153,7 @@ impl<T: Float> Number for Interval<T> {
             _ => false,
         };
         if !done {
-            for ((o, &x), &y) in out.iter_mut().zip(a).zip(b) {
-                *o = Self::binary(op, x, y);
-            }
+            super::binary_slice_by_element(op, a, b, out);
         }
     }
 }

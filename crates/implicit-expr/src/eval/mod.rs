@@ -69,19 +69,53 @@ pub trait Number: Copy + Send + Sync + std::fmt::Debug + 'static {
 
     /// Evaluates `op` on whole slices (`out[i] = op(a[i])`); types with vectorised kernels
     /// override it.
-    #[inline(always)]
+    #[inline]
     fn unary_slice(op: UnaryOp, a: &[Self], out: &mut [Self]) {
-        for (o, &x) in out.iter_mut().zip(a) {
-            *o = Self::unary(op, x);
-        }
+        unary_slice_by_element(op, a, out)
     }
 
     /// Evaluates `op` on whole slices (`out[i] = op(a[i], b[i])`); types with vectorised
     /// kernels override it.
-    #[inline(always)]
+    #[inline]
     fn binary_slice(op: BinaryOp, a: &[Self], b: &[Self], out: &mut [Self]) {
-        for ((o, &x), &y) in out.iter_mut().zip(a).zip(b) {
-            *o = Self::binary(op, x, y);
-        }
+        binary_slice_by_element(op, a, b, out)
     }
+}
+
+/// `out[i] = op(a[i])` with the operation chosen once, outside the loop, so each loop body is
+/// one inlined operation that the compiler can vectorise.
+#[inline]
+pub fn unary_slice_by_element<N: Number>(op: UnaryOp, a: &[N], out: &mut [N]) {
+    macro_rules! each {
+        ($($v:ident),*) => {
+            match op {
+                $(UnaryOp::$v => {
+                    for (o, &x) in out.iter_mut().zip(a) {
+                        *o = N::unary(UnaryOp::$v, x);
+                    }
+                })*
+            }
+        };
+    }
+    each!(
+        Neg, Abs, Sqr, Sqrt, Recip, Exp, Ln, Log10, Sin, Cos, Tan, Asin, Acos, Atan, Floor, Ceil,
+        Round, Not, SlopeFloor, SlopeRound, SlopeNot
+    );
+}
+
+/// `out[i] = op(a[i], b[i])` with the operation chosen once, outside the loop.
+#[inline]
+pub fn binary_slice_by_element<N: Number>(op: BinaryOp, a: &[N], b: &[N], out: &mut [N]) {
+    macro_rules! each {
+        ($($v:ident),*) => {
+            match op {
+                $(BinaryOp::$v => {
+                    for ((o, &x), &y) in out.iter_mut().zip(a).zip(b) {
+                        *o = N::binary(BinaryOp::$v, x, y);
+                    }
+                })*
+            }
+        };
+    }
+    each!(Add, Sub, Mul, Div, Min, Max, Pow);
 }
