@@ -111,7 +111,8 @@ pub(super) fn plus_zero(x: f64) -> f64 {
 
 /// Lower and upper bounds of `m^k` for `m ≥ 0` (possibly `+∞`) and `k ≥ 2`: binary powering
 /// with multiplications rounded down (up) on nonnegative values, intersected with the
-/// one-ulp bracket of the correctly rounded CORE-MATH `pow`.
+/// one-ulp bracket of the correctly rounded CORE-MATH `pow` unless the two chains already
+/// end at equal or adjacent floats.
 fn mag_pow<T: Float>(m: T, k: u32) -> (T, T) {
     let (mut base_lo, mut base_hi) = (m, m);
     let (mut acc_lo, mut acc_hi) = (T::ONE, T::ONE);
@@ -127,6 +128,11 @@ fn mag_pow<T: Float>(m: T, k: u32) -> (T, T) {
         }
         base_lo = base_lo.mul_down(base_lo);
         base_hi = base_hi.mul_up(base_hi);
+    }
+    // Equal or adjacent chains already hold the tight bounds within one ulp (the tight
+    // lower and upper bounds both lie in [acc_lo, acc_hi]): skip the costly `pow`.
+    if acc_hi <= acc_lo.next_up() {
+        return (acc_lo, acc_hi);
     }
     let r = core_math::pow(plus_zero(m.to_f64()), f64::from(k));
     (
