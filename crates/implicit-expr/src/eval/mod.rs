@@ -3,7 +3,7 @@
 //! | type | what an evaluation gives |
 //! |---|---|
 //! | `f64`, `f32` | the point value, each operation rounded to nearest (elementary functions correctly rounded, by CORE-MATH) |
-//! | [`Interval<f64>`], [`Interval<f32>`] | a sound enclosure of the range over a box (inclusion function) |
+//! | [`Interval<f64>`](interval_core::Interval), [`Interval<f32>`](interval_core::Interval) | a sound enclosure of the range over a box (inclusion function) |
 //! | [`Modal<T, Outer>`](interval_core::Modal) | `Out(fR(X))`, the outer-rounded modal rational extension |
 //! | [`Modal<T, Inner>`](interval_core::Modal) | `Inn(fR(X))`, the inner-rounded modal rational extension |
 //! | [`Grad<N>`] | the value and the gradient with respect to `x`, `y`, `z` (forward mode) |
@@ -19,7 +19,7 @@ mod point;
 mod tape_eval;
 
 pub use grad::Grad;
-pub use tape_eval::{Evaluator, SliceEvaluator};
+pub use tape_eval::{Evaluator, SLICE_CHUNK, SliceEvaluator};
 
 use crate::constant::Constant;
 use crate::op::{BinaryOp, UnaryOp};
