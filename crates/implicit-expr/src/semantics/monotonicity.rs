@@ -16,6 +16,11 @@
 //!   the original graph (shared variables, so without the loss of splitting), evaluated with
 //!   intervals; it is intersected with `Σ_k ∂g/∂x_k`, another enclosure of the same
 //!   derivative.
+//! * **Refinement.** A sign left undecided on the whole box is retried by bisection
+//!   ([`refine_sign`]): dependency makes enclosures of derivatives such as
+//!   `∂(xy/(x+y))/∂y = (x - xy/(x+y))/(x+y)` straddle zero on the thesis' box, while on
+//!   small pieces their sign shows. The work is bounded, and an undecided sign only makes
+//!   the analysis choose a weaker theorem.
 //!
 //! Every enclosure is sound for the Clarke generalised gradient as well (`abs`, `min`, `max`
 //! differentiate to the hull of both sides where undecided), so a sign decided over the box
@@ -36,11 +41,11 @@ use crate::tape::Tape;
 /// The sign of a partial derivative over `Prop(X)`.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub enum Monotony {
-    /// The derivative is `>= 0` everywhere (non-decreasing), and not identically zero.
+    /// The derivative is `>= 0` everywhere (non-decreasing); its enclosure is not `[0, 0]`.
     Increasing,
-    /// The derivative is `<= 0` everywhere (non-increasing), and not identically zero.
+    /// The derivative is `<= 0` everywhere (non-increasing); its enclosure is not `[0, 0]`.
     Decreasing,
-    /// The derivative is zero everywhere: both senses at once. As the global sense of a
+    /// The derivative is zero everywhere (enclosure `[0, 0]`): both senses at once. As the global sense of a
     /// variable it counts as increasing.
     Constant,
     /// The sign could not be decided over the box.
