@@ -20,6 +20,7 @@ impl Constant {
     ///
     /// Returns `None` for NaN or an infinity (the graph holds only finite constants).
     pub fn exact(value: f64) -> Option<Self> {
+        let value = plus_zero(value);
         value.is_finite().then_some(Self {
             value,
             lo: value,
@@ -31,6 +32,7 @@ impl Constant {
     ///
     /// Returns `None` unless `lo <= value <= hi` are all finite.
     pub fn enclosed(value: f64, lo: f64, hi: f64) -> Option<Self> {
+        let (value, lo, hi) = (plus_zero(value), plus_zero(lo), plus_zero(hi));
         let ok = value.is_finite() && lo.is_finite() && hi.is_finite() && lo <= value && value <= hi;
         ok.then_some(Self { value, lo, hi })
     }
@@ -112,6 +114,11 @@ impl Constant {
     }
 }
 
+/// Zeros are stored as `+0` so that `0` and `-0` are one constant of the graph.
+fn plus_zero(x: f64) -> f64 {
+    if x == 0.0 { 0.0 } else { x }
+}
+
 impl PartialEq for Constant {
     fn eq(&self, other: &Self) -> bool {
         self.value.to_bits() == other.value.to_bits()
@@ -136,6 +143,8 @@ impl Hash for Constant {
 /// exact integer and power-of-two arithmetic. Answers `false` when the digits do not fit the
 /// check (a safe answer: the constant then gets a one-ulp enclosure).
 fn decimal_is_exact(text: &str, value: f64) -> bool {
+    let text = text.strip_prefix(['+', '-']).unwrap_or(text);
+    let value = value.abs();
     let (mantissa, exp_part) = match text.find(['e', 'E']) {
         Some(i) => (&text[..i], &text[i + 1..]),
         None => (text, ""),
@@ -212,7 +221,7 @@ mod tests {
 
     #[test]
     fn exact_literals() {
-        for s in ["0", "0.0", "1", "1.5", "0.25", "2.", ".5", "1e3", "1.25e-1", "3e10", "0.0625"] {
+        for s in ["0", "-0.5", "+2", "-0", "0.0", "1", "1.5", "0.25", "2.", ".5", "1e3", "1.25e-1", "3e10", "0.0625"] {
             let c = Constant::from_decimal(s).unwrap();
             assert!(c.is_exact(), "{s}");
         }

@@ -372,6 +372,12 @@ pub fn export_vm(ctx: &Context, root: NodeId) -> Result<String, Error> {
                 let base = w.name(a);
                 let mut acc = base.clone();
                 let m = n.unsigned_abs();
+                if m == 0 {
+                    // Not made by `Context::pown` (which gives the constant 1), but valid.
+                    let one = w.emit("const 1".into());
+                    w.names.insert(id, one);
+                    continue;
+                }
                 // Square and multiply, from the highest bit down.
                 for bit in (0..31 - m.leading_zeros()).rev() {
                     acc = w.emit(format!("square {acc}"));

@@ -172,16 +172,18 @@ const POINTS: [[f64; 5]; 4] = [
     [0.9, -0.2, 0.45, 0.6, 0.75],
 ];
 
-/// Point values agree: equal, or both NaN, or within a relative 1e-9 (a folded constant
-/// read back from its printed value can change an integer power into a real one, or the
-/// reverse, which changes the last bits).
-fn assert_same_values(ctx: &Context, f: NodeId, g: NodeId, what: &str) {
+/// Point values agree: the same, or within a relative 1e-9 when both are finite.
+///
+/// A folded constant read back from its printed value may enable or disable a
+/// simplification (an exact `0` makes `0*a` the constant 0 even where `a` is NaN) or turn a
+/// real power into an integer one, which changes non-finite results and the last bits.
+fn assert_same_values(ctx: &Context, f: NodeId, g: NodeId, exact: bool, what: &str) {
     for p in POINTS {
         let vf = ctx.eval::<f64>(f, &p).unwrap();
         let vg = ctx.eval::<f64>(g, &p).unwrap();
-        let same = vf == vg
-            || (vf.is_nan() && vg.is_nan())
-            || (vf - vg).abs() <= 1e-9 * vf.abs().max(vg.abs());
+        let same = vf.to_bits() == vg.to_bits()
+            || (!exact && (!vf.is_finite() || !vg.is_finite()))
+            || (!exact && (vf - vg).abs() <= 1e-9 * vf.abs().max(vg.abs()));
         assert!(same, "{what} at {p:?}: {vf} vs {vg}");
     }
 }
@@ -195,10 +197,11 @@ proptest! {
         let f = parse(&mut ctx, &text, &PARAMS).unwrap_or_else(|e| panic!("{text:?}: {e}"));
         let printed = to_formula(&ctx, f);
         let g = reparse(&mut ctx, &printed);
-        if constants_print_exactly(&mut ctx, f) {
+        let exact = constants_print_exactly(&mut ctx, f);
+        if exact {
             prop_assert_eq!(g, f, "{} printed as {}", text, printed);
         }
-        assert_same_values(&ctx, f, g, &format!("{text} printed as {printed}"));
+        assert_same_values(&ctx, f, g, exact, &format!("{text} printed as {printed}"));
         // Printing is a fixed point from the second time on.
         let printed2 = to_formula(&ctx, g);
         let h = reparse(&mut ctx, &printed2);
@@ -211,10 +214,33 @@ proptest! {
         let f = parse(&mut ctx, &text, &[]).unwrap_or_else(|e| panic!("{text:?}: {e}"));
         let vm = export_vm(&ctx, f).unwrap_or_else(|e| panic!("{text:?}: {e}"));
         let g = import_vm(&mut ctx, &vm).unwrap_or_else(|e| panic!("{vm}: {e}"));
-        if constants_export_exactly(&mut ctx, f) {
+        let exact = constants_export_exactly(&mut ctx, f);
+        if exact {
             prop_assert_eq!(g, f, "{} exported as\n{}", text, vm);
         }
-        assert_same_values(&ctx, f, g, &format!("{text} exported as\n{vm}"));
+        assert_same_values(&ctx, f, g, exact, &format!("{text} exported as\n{vm}"));
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 2048, ..ProptestConfig::default() })]
+
+    /// Every exact constant (any finite double, subnormals included) prints, and exports,
+    /// as text that reads back into the same constant.
+    #[test]
+    fn exact_constants_round_trip(bits in any::<u64>(), scale in -60i32..60) {
+        let v = f64::from_bits(bits);
+        prop_assume!(v.is_finite());
+        let mut ctx = Context::new();
+        let x = ctx.x();
+        for v in [v, v * 2f64.powi(scale)] {
+            let Ok(c) = ctx.constant(v) else { continue };
+            let f = ctx.mul(c, x);
+            let printed = to_formula(&ctx, f);
+            prop_assert_eq!(parse(&mut ctx, &printed, &[]).unwrap(), f, "{}", printed);
+            let vm = export_vm(&ctx, f).unwrap();
+            prop_assert_eq!(import_vm(&mut ctx, &vm).unwrap(), f, "{}", vm);
+        }
     }
 }
 
@@ -259,4 +285,21 @@ fn inexact_literals_keep_their_enclosure() {
             "{lit} exported as {vm}"
         );
     }
+}
+
+#[test]
+fn underflowing_literal_prints_as_its_value() {
+    // Found by the `formula_parser` fuzz target: `1e-400` is the constant enclosed by
+    // [-2^-1074, 2^-1074] with value 0. It prints as `0`, which reads back as the exact 0,
+    // and `0*a` then simplifies to 0: a different node, the same value wherever `a` is
+    // defined.
+    let mut ctx = Context::new();
+    let f = parse(&mut ctx, "1e-400*sqrt(x)", &[]).unwrap();
+    let printed = to_formula(&ctx, f);
+    assert_eq!(printed, "0*sqrt(x)");
+    let g = parse(&mut ctx, &printed, &[]).unwrap();
+    assert_ne!(g, f);
+    assert_eq!(ctx.eval::<f64>(f, &[4.0, 0.0, 0.0]).unwrap(), 0.0);
+    assert_eq!(ctx.eval::<f64>(g, &[4.0, 0.0, 0.0]).unwrap(), 0.0);
+    assert!(ctx.eval::<f64>(f, &[-1.0, 0.0, 0.0]).unwrap().is_nan());
 }

@@ -81,7 +81,7 @@ enum Leaf {
     E,
 }
 
-/// An operation of a recipe; arguments index earlier nodes (modulo their count).
+/// An operation of a recipe; arguments select earlier nodes (see [`arg`]).
 #[derive(Clone, Debug)]
 enum Step {
     Un(UnaryOp, usize),
@@ -118,12 +118,28 @@ fn step() -> impl Strategy<Value = Step> {
 fn recipe() -> impl Strategy<Value = Recipe> {
     (
         prop::collection::vec(leaf(), 1..5),
-        prop::collection::vec(step(), 1..10),
+        prop::collection::vec(step(), 1..14),
     )
         .prop_map(|(leaves, steps)| Recipe { leaves, steps })
 }
 
+/// The node an argument code `a` selects among `k` earlier nodes: mostly one of the last
+/// three (deep expressions), sometimes any (shared subexpressions).
+fn arg(a: usize, k: usize) -> usize {
+    if a % 10 < 7 {
+        k - 1 - (a / 10) % k.min(3)
+    } else {
+        (a / 10) % k
+    }
+}
+
 impl Recipe {
+    /// The built expression as text.
+    fn describe(&self) -> String {
+        let (ctx, root) = self.build();
+        describe(&ctx, root)
+    }
+
     /// Builds the graph in a fresh context (with `p` declared as slot 3); returns the root.
     fn build(&self) -> (Context, NodeId) {
         let mut ctx = Context::new();
@@ -142,9 +158,9 @@ impl Recipe {
         for s in &self.steps {
             let k = nodes.len();
             let n = match *s {
-                Step::Un(op, a) => ctx.unary(op, nodes[a % k]),
-                Step::Bin(op, a, b) => ctx.binary(op, nodes[a % k], nodes[b % k]),
-                Step::Pown(a, n) => ctx.pown(nodes[a % k], n),
+                Step::Un(op, a) => ctx.unary(op, nodes[arg(a, k)]),
+                Step::Bin(op, a, b) => ctx.binary(op, nodes[arg(a, k)], nodes[arg(b, k)]),
+                Step::Pown(a, n) => ctx.pown(nodes[arg(a, k)], n),
             };
             nodes.push(n);
         }
@@ -430,17 +446,35 @@ impl Recipe {
         for s in &self.steps {
             let k = vals.len();
             let r = match *s {
-                Step::Un(op, a) => vals[a % k].as_ref().and_then(|a| real_unary(op, a)),
-                Step::Bin(op, a, b) => match (&vals[a % k], &vals[b % k]) {
+                Step::Un(op, a) => vals[arg(a, k)].as_ref().and_then(|a| real_unary(op, a)),
+                Step::Bin(op, a, b) => match (&vals[arg(a, k)], &vals[arg(b, k)]) {
                     (Some(a), Some(b)) => real_binary(op, a, b),
                     _ => None,
                 },
-                Step::Pown(a, n) => vals[a % k].as_ref().and_then(|a| real_pown(a, n)),
+                Step::Pown(a, n) => vals[arg(a, k)].as_ref().and_then(|a| real_pown(a, n)),
             };
             vals.push(r);
         }
         vals.pop().unwrap()
     }
+}
+
+/// The expression of `root` as text, for failure messages.
+fn describe(ctx: &Context, root: NodeId) -> String {
+    let mut text: Vec<String> = vec![String::new(); ctx.len()];
+    for id in ctx.reachable(&[root]) {
+        text[id.index()] = match *ctx.get(id) {
+            Node::Var(v) => ctx.var_names()[v.index()].clone(),
+            Node::Const(c) if c.is_exact() => format!("{}", c.value()),
+            Node::Const(c) => format!("[{:e}, {:e}]", c.lo(), c.hi()),
+            Node::Unary(op, a) => format!("{}({})", op.name(), text[a.index()]),
+            Node::Binary(op, a, b) => {
+                format!("{}({}, {})", op.name(), text[a.index()], text[b.index()])
+            }
+            Node::Pown(a, n) => format!("pown({}, {n})", text[a.index()]),
+        };
+    }
+    text[root.index()].clone()
 }
 
 // -------------------------------------------------------------------------------------------
@@ -982,7 +1016,10 @@ proptest! {
         b in boxes(),
         us in fractions(4),
     ) {
-        check_interval_f64_contains_real_and_point_values(&r, &b, &us)?;
+        let t0 = std::time::Instant::now();
+        let res = check_interval_f64_contains_real_and_point_values(&r, &b, &us);
+        if t0.elapsed().as_secs_f64() > 0.5 { eprintln!("SLOW {:?}: {:?} {:?}", t0.elapsed(), r, b); }
+        res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
     }
 
     #[test]
@@ -991,7 +1028,10 @@ proptest! {
         b in boxes(),
         us in fractions(4),
     ) {
-        check_interval_f32_contains_real_and_point_values(&r, &b, &us)?;
+        let t0 = std::time::Instant::now();
+        let res = check_interval_f32_contains_real_and_point_values(&r, &b, &us);
+        if t0.elapsed().as_secs_f64() > 0.5 { eprintln!("SLOW {:?}: {:?} {:?}", t0.elapsed(), r, b); }
+        res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
     }
 
     #[test]
@@ -1001,7 +1041,10 @@ proptest! {
         us in fractions(70),
         ws in fractions(70),
     ) {
-        check_slice_evaluator_is_bit_identical(&r, &b, &us, &ws)?;
+        let t0 = std::time::Instant::now();
+        let res = check_slice_evaluator_is_bit_identical(&r, &b, &us, &ws);
+        if t0.elapsed().as_secs_f64() > 0.5 { eprintln!("SLOW {:?}: {:?} {:?}", t0.elapsed(), r, b); }
+        res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
     }
 
     #[test]
@@ -1011,7 +1054,10 @@ proptest! {
         us in fractions(6),
         ws in fractions(6),
     ) {
-        check_pruned_tape_agrees_inside_its_box(&r, &b, &us, &ws)?;
+        let t0 = std::time::Instant::now();
+        let res = check_pruned_tape_agrees_inside_its_box(&r, &b, &us, &ws);
+        if t0.elapsed().as_secs_f64() > 0.5 { eprintln!("SLOW {:?}: {:?} {:?}", t0.elapsed(), r, b); }
+        res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
     }
 
     #[test]
@@ -1021,7 +1067,10 @@ proptest! {
         us in fractions(3),
         flips in [any::<bool>(); SLOTS],
     ) {
-        check_modal_outer_contains_points_and_inner_is_included(&r, &b, &us, flips)?;
+        let t0 = std::time::Instant::now();
+        let res = check_modal_outer_contains_points_and_inner_is_included(&r, &b, &us, flips);
+        if t0.elapsed().as_secs_f64() > 0.5 { eprintln!("SLOW {:?}: {:?} {:?}", t0.elapsed(), r, b); }
+        res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
     }
 
     #[test]
@@ -1030,7 +1079,10 @@ proptest! {
         b in boxes(),
         us in fractions(4),
     ) {
-        check_gradient_enclosures_contain_point_gradients(&r, &b, &us)?;
+        let t0 = std::time::Instant::now();
+        let res = check_gradient_enclosures_contain_point_gradients(&r, &b, &us);
+        if t0.elapsed().as_secs_f64() > 0.5 { eprintln!("SLOW {:?}: {:?} {:?}", t0.elapsed(), r, b); }
+        res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
     }
 
     #[test]
@@ -1043,7 +1095,10 @@ proptest! {
         us in fractions(4),
         vs in fractions(4),
     ) {
-        check_beam_g_and_dg_contain_ray_values(&r, c, dir, tb, pb, &us, &vs)?;
+        let t0 = std::time::Instant::now();
+        let res = check_beam_g_and_dg_contain_ray_values(&r, c, dir, tb, pb, &us, &vs);
+        if t0.elapsed().as_secs_f64() > 0.5 { eprintln!("SLOW {:?}: {:?} {:?}", t0.elapsed(), r, c); }
+        res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
     }
 }
 
