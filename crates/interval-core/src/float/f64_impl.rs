@@ -384,6 +384,13 @@ impl Float for f64 {
 
     #[inline(always)]
     fn add_down(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::add_down(self, b);
+            if super::embedded::usable(r) {
+                return r;
+            }
+        }
         let (s, e) = two_sum(self, b);
         if s.is_finite() {
             down_by_sign(s, e)
@@ -393,6 +400,13 @@ impl Float for f64 {
     }
     #[inline(always)]
     fn add_up(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::add_up(self, b);
+            if super::embedded::usable(r) {
+                return r;
+            }
+        }
         let (s, e) = two_sum(self, b);
         if s.is_finite() {
             up_by_sign(s, e)
@@ -402,6 +416,13 @@ impl Float for f64 {
     }
     #[inline(always)]
     fn mul_down(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::mul_down(self, b);
+            if super::embedded::usable(r) {
+                return r;
+            }
+        }
         let (p, e) = two_prod(self, b);
         if p.abs() >= PROD_EXACT_MIN && p.abs() <= f64::MAX {
             down_by_sign(p, e)
@@ -411,6 +432,13 @@ impl Float for f64 {
     }
     #[inline(always)]
     fn mul_up(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::mul_up(self, b);
+            if super::embedded::usable(r) {
+                return r;
+            }
+        }
         let (p, e) = two_prod(self, b);
         if p.abs() >= PROD_EXACT_MIN && p.abs() <= f64::MAX {
             up_by_sign(p, e)
@@ -420,6 +448,13 @@ impl Float for f64 {
     }
     #[inline(always)]
     fn div_down(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::div_down(self, b);
+            if super::embedded::usable(r) {
+                return r;
+            }
+        }
         let q = self / b;
         if q.abs() >= QUOT_MIN && q.abs() <= f64::MAX && self.abs() >= DIVIDEND_MIN {
             let r = (-q).mul_add(b, self);
@@ -430,6 +465,13 @@ impl Float for f64 {
     }
     #[inline(always)]
     fn div_up(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::div_up(self, b);
+            if super::embedded::usable(r) {
+                return r;
+            }
+        }
         let q = self / b;
         if q.abs() >= QUOT_MIN && q.abs() <= f64::MAX && self.abs() >= DIVIDEND_MIN {
             let r = (-q).mul_add(b, self);
@@ -440,6 +482,13 @@ impl Float for f64 {
     }
     #[inline(always)]
     fn sqrt_down(self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::sqrt_down(self);
+            if super::embedded::usable(r) {
+                return r;
+            }
+        }
         if (SQRT_ARG_MIN..=f64::MAX).contains(&self) {
             let s = self.sqrt();
             down_by_sign(s, (-s).mul_add(s, self))
@@ -449,6 +498,13 @@ impl Float for f64 {
     }
     #[inline(always)]
     fn sqrt_up(self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::sqrt_up(self);
+            if super::embedded::usable(r) {
+                return r;
+            }
+        }
         if (SQRT_ARG_MIN..=f64::MAX).contains(&self) {
             let s = self.sqrt();
             up_by_sign(s, (-s).mul_add(s, self))
@@ -458,6 +514,13 @@ impl Float for f64 {
     }
     #[inline]
     fn fma_down(self, b: Self, c: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::fma_down(self, b, c);
+            if super::embedded::usable(r) {
+                return r;
+            }
+        }
         match fma_err(self, b, c) {
             Some((r, e)) => down_by_sign(r, e),
             None => fma_slow(self, b, c).0,
@@ -465,6 +528,13 @@ impl Float for f64 {
     }
     #[inline]
     fn fma_up(self, b: Self, c: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::fma_up(self, b, c);
+            if super::embedded::usable(r) {
+                return r;
+            }
+        }
         match fma_err(self, b, c) {
             Some((r, e)) => up_by_sign(r, e),
             None => fma_slow(self, b, c).1,

@@ -74,6 +74,8 @@ macro_rules! forward_inherent {
 }
 
 mod eft;
+#[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+mod embedded;
 mod f32_impl;
 mod f64_impl;
 
