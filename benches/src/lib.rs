@@ -5,6 +5,14 @@
 //! domain of the operation it feeds (see [`Domain`]). With the `inari` feature the same
 //! values can be converted to `inari::Interval` (`to_inari`) and results compared
 //! (`compare`).
+//!
+//! The expression benchmarks (`benches/expr_eval.rs`, the `expr_report` and
+//! `render2d_compare` binaries) share the modules [`expr`] (expressions, points and boxes,
+//! and the same expressions built for fidget) and [`csg2d`] (the generator of the large
+//! `min`/`max`-heavy 2D expression `data/models/csg2d.vm`).
+
+pub mod csg2d;
+pub mod expr;
 
 use interval_core::Interval;
 use rand::rngs::StdRng;
