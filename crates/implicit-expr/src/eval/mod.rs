@@ -8,9 +8,12 @@
 //! | [`Modal<T, Inner>`](interval_core::Modal) | `Inn(fR(X))`, the inner-rounded modal rational extension |
 //! | [`Grad<N>`] | the value and the gradient with respect to `x`, `y`, `z` (forward mode) |
 //!
-//! Point results always lie inside interval results for any box holding the point: the
-//! point operations round to nearest (or correctly round) the same real functions that the
-//! interval operations enclose outward.
+//! Point results lie inside interval results for any box holding the point, wherever the
+//! formula is defined at the point: the point operations round to nearest (or correctly
+//! round) the same real functions that the interval operations enclose outward. Where an
+//! operation is undefined at the point (`sqrt` of a negative number), the point value is NaN
+//! while the interval evaluation, following IEEE 1788's set-based model, encloses only the
+//! values at the points of the box where the formula is defined.
 
 mod grad;
 mod interval;
