@@ -110,6 +110,7 @@
 //! See `docs/numerics.md` of the repository for the numerical model (constants,
 //! simplifications, pruning, derivatives of non-smooth operations, modal rounding).
 
+pub mod catalog;
 pub mod constant;
 pub mod context;
 mod deriv;
