@@ -122,11 +122,41 @@ pub fn expressions(extra_vm: &[(String, String)]) -> Result<Vec<Expr>, Error> {
     for (name, formula) in FORMULAS {
         out.push(Expr::from_formula(name, formula)?);
     }
+    for name in CATALOG {
+        out.push(catalog_expr(name)?);
+    }
     out.push(Expr::from_vm("csg2d", CSG2D_VM)?);
     for (name, text) in extra_vm {
         out.push(Expr::from_vm(name, text)?);
     }
     Ok(out)
+}
+
+/// The catalog surfaces in the benchmarks (fidget can express them: no `log`, no real
+/// powers); their parameters are bound to the catalog's values.
+pub const CATALOG: [&str; 6] = [
+    "chubs",
+    "kusner-schmitt",
+    "mcmullen-k3",
+    "orthocircle",
+    "barth-sextic",
+    "tangle-cube",
+];
+
+/// The catalog surface `name` with its parameters bound to constants.
+///
+/// Returns an error for an unknown name or a formula that does not build.
+pub fn catalog_expr(name: &str) -> Result<Expr, Error> {
+    let surface = implicit_expr::catalog::get(name)?;
+    let mut ctx = Context::new();
+    let root = surface.build(&mut ctx)?;
+    let mut bind = Vec::new();
+    for (i, value) in surface.param_values().into_iter().enumerate() {
+        let c = ctx.constant(value)?;
+        bind.push((implicit_expr::Var(3 + i as u32), c));
+    }
+    let root = ctx.substitute(root, &bind);
+    Expr::from_graph(name, ctx, root)
 }
 
 /// The formula expressions: `(name, text)`.

@@ -429,6 +429,30 @@ impl Context {
             .collect()
     }
 
+    /// `root` with each variable of `map` replaced by its node (for example a parameter
+    /// bound to a constant, which then folds into the rest of the graph).
+    ///
+    /// Rebuilds the nodes that depend on a replaced variable through the simplifying
+    /// constructors; the others are shared.
+    pub fn substitute(&mut self, root: NodeId, map: &[(Var, NodeId)]) -> NodeId {
+        let order = self.reachable(&[root]);
+        let mut new: HashMap<NodeId, NodeId> = HashMap::with_capacity(order.len());
+        for id in order {
+            let n = match *self.get(id) {
+                Node::Var(v) => map
+                    .iter()
+                    .find(|(w, _)| *w == v)
+                    .map_or(id, |&(_, node)| node),
+                Node::Const(_) => id,
+                Node::Unary(op, a) => self.unary(op, new[&a]),
+                Node::Binary(op, a, b) => self.binary(op, new[&a], new[&b]),
+                Node::Pown(a, k) => self.pown(new[&a], k),
+            };
+            new.insert(id, n);
+        }
+        new[&root]
+    }
+
     /// Evaluates `root` directly on the graph (a reference evaluator for tests and one-off
     /// use; compile a [`Tape`](crate::Tape) for speed).
     ///

@@ -91,3 +91,19 @@ fn gradient_and_modal() {
     let r = ei.eval(&[mi(2.0, 1.0), mi(0.0, 0.0), mi(0.0, 0.0)]).unwrap();
     assert_eq!((r.first(), r.second()), (3.0, 0.0));
 }
+
+#[test]
+fn substitute_binds_parameters() {
+    let mut c = Context::new();
+    let x = c.x();
+    let a = c.named_var("a");
+    let f = c.mul(a, x);
+    let two = c.constant(2.0).unwrap();
+    let g = c.substitute(f, &[(implicit_expr::Var(3), two)]);
+    let t = Tape::new(&c, &[g]).unwrap();
+    assert_eq!(Evaluator::<f64>::new(&t).eval(&[3.0, 0.0, 0.0, 100.0]).unwrap(), 6.0);
+    // Binding to zero folds the product away.
+    let zero = c.constant(0.0).unwrap();
+    let h = c.substitute(f, &[(implicit_expr::Var(3), zero)]);
+    assert_eq!(c.as_const(h).map(|k| k.value()), Some(0.0));
+}

@@ -121,6 +121,13 @@ impl Float for f32 {
 
     #[inline(always)]
     fn add_down(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::single::add_down(self, b);
+            if super::embedded::single::usable(r) {
+                return r;
+            }
+        }
         let (s, e) = two_sum(self, b);
         if s.is_finite() {
             down_by_sign(s, e)
@@ -132,6 +139,13 @@ impl Float for f32 {
     }
     #[inline(always)]
     fn add_up(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::single::add_up(self, b);
+            if super::embedded::single::usable(r) {
+                return r;
+            }
+        }
         let (s, e) = two_sum(self, b);
         if s.is_finite() {
             up_by_sign(s, e)
@@ -143,14 +157,35 @@ impl Float for f32 {
     }
     #[inline(always)]
     fn mul_down(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::single::mul_down(self, b);
+            if super::embedded::single::usable(r) {
+                return r;
+            }
+        }
         f32_down(exact_product(self, b))
     }
     #[inline(always)]
     fn mul_up(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::single::mul_up(self, b);
+            if super::embedded::single::usable(r) {
+                return r;
+            }
+        }
         f32_up(exact_product(self, b))
     }
     #[inline(always)]
     fn div_down(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::single::div_down(self, b);
+            if super::embedded::single::usable(r) {
+                return r;
+            }
+        }
         if let Some(q) = div_special(self, b) {
             return q;
         }
@@ -163,6 +198,13 @@ impl Float for f32 {
     }
     #[inline(always)]
     fn div_up(self, b: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::single::div_up(self, b);
+            if super::embedded::single::usable(r) {
+                return r;
+            }
+        }
         if let Some(q) = div_special(self, b) {
             return q;
         }
@@ -175,6 +217,13 @@ impl Float for f32 {
     }
     #[inline(always)]
     fn sqrt_down(self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::single::sqrt_down(self);
+            if super::embedded::single::usable(r) {
+                return r;
+            }
+        }
         let s = self.sqrt();
         if s.is_finite() && s > 0.0 {
             let r = f64::from(self) - f64::from(s) * f64::from(s);
@@ -185,6 +234,13 @@ impl Float for f32 {
     }
     #[inline(always)]
     fn sqrt_up(self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::single::sqrt_up(self);
+            if super::embedded::single::usable(r) {
+                return r;
+            }
+        }
         let s = self.sqrt();
         if s.is_finite() && s > 0.0 {
             let r = f64::from(self) - f64::from(s) * f64::from(s);
@@ -195,11 +251,25 @@ impl Float for f32 {
     }
     #[inline]
     fn fma_down(self, b: Self, c: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::single::fma_down(self, b, c);
+            if super::embedded::single::usable(r) {
+                return r;
+            }
+        }
         let (s, e) = fma_exact(self, b, c);
         f32_down_pair(s, e)
     }
     #[inline]
     fn fma_up(self, b: Self, c: Self) -> Self {
+        #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
+        {
+            let r = super::embedded::single::fma_up(self, b, c);
+            if super::embedded::single::usable(r) {
+                return r;
+            }
+        }
         let (s, e) = fma_exact(self, b, c);
         f32_up_pair(s, e)
     }
