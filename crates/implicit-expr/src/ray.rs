@@ -151,11 +151,15 @@ impl<N: Number> RayEvaluator<N> {
     }
 
     /// `(g(t), g'(t))`.
+    ///
+    /// Where the derivative is undefined somewhere on the beam (a singular point such as
+    /// `sqrt` at 0) its enclosure is the whole line, never the empty set, so that a root
+    /// finder never reads "no derivative" as "no root".
     pub fn g_dg(&mut self, t: N) -> (N, N) {
         self.vars[T.index()] = t;
         self.g_dg
             .eval_outputs(&self.vars, &mut self.out)
             .expect("slot count checked at construction");
-        (self.out[0], self.out[1])
+        (self.out[0], self.out[1].widen_undefined())
     }
 }

@@ -27,6 +27,11 @@ pub trait GradScalar: Number {
     /// `[-1, 1]` (points at zero give `0`).
     fn abs_slope(a: Self) -> Self;
 
+    /// `slope` where it is defined; where the argument `u` is defined but the slope is not
+    /// (the derivative of `sqrt` at `[0, 0]`), the unbounded slope, so that the chain rule
+    /// still multiplies it by the inner derivative (`[-inf, inf] · 0 = 0` for intervals).
+    fn defined_slope(u: Self, slope: Self) -> Self;
+
     /// The derivative of `min(a, b)` (or `max` when `is_max`) given the arguments'
     /// derivatives: the taken branch's, or the hull of both where undecided.
     fn select(a: Self, b: Self, da: Self, db: Self, is_max: bool) -> Self;
@@ -50,6 +55,11 @@ macro_rules! point_grad_scalar {
             fn select(a: Self, b: Self, da: Self, db: Self, is_max: bool) -> Self {
                 if (a < b) != is_max { da } else { db }
             }
+
+            #[inline(always)]
+            fn defined_slope(_u: Self, slope: Self) -> Self {
+                slope
+            }
         }
     };
 }
@@ -65,6 +75,15 @@ impl<T: Float> GradScalar for Interval<T> {
             Some((lo, _)) if lo > T::ZERO => Interval::ONE,
             Some((_, hi)) if hi < T::ZERO => -Interval::ONE,
             Some(_) => Interval::new_unchecked(-T::ONE, T::ONE),
+        }
+    }
+
+    #[inline]
+    fn defined_slope(u: Self, slope: Self) -> Self {
+        if slope.is_empty() && !u.is_empty() {
+            Interval::ENTIRE
+        } else {
+            slope
         }
     }
 
@@ -184,7 +203,7 @@ impl<N: GradScalar> Number for Grad<N> {
                 N::unary(op, u)
             }
         };
-        a.chain(v, slope)
+        a.chain(v, N::defined_slope(u, slope))
     }
 
     fn binary(op: BinaryOp, a: Self, b: Self) -> Self {
@@ -204,8 +223,8 @@ impl<N: GradScalar> Number for Grad<N> {
             BinaryOp::Pow => {
                 // d(a^b) = b a^(b-1) da + a^b ln(a) db
                 let p = N::binary(BinaryOp::Pow, a.v, sub(b.v, k(1.0)));
-                let sa = mul(b.v, p);
-                let sb = mul(v, N::unary(UnaryOp::Ln, a.v));
+                let sa = N::defined_slope(a.v, mul(b.v, p));
+                let sb = N::defined_slope(a.v, mul(v, N::unary(UnaryOp::Ln, a.v)));
                 std::array::from_fn(|i| add(mul(sa, a.d[i]), mul(sb, b.d[i])))
             }
         };
@@ -215,6 +234,6 @@ impl<N: GradScalar> Number for Grad<N> {
     fn pown(a: Self, n: i32) -> Self {
         let v = N::pown(a.v, n);
         let slope = mul(k(f64::from(n)), N::pown(a.v, n - 1));
-        a.chain(v, slope)
+        a.chain(v, N::defined_slope(a.v, slope))
     }
 }

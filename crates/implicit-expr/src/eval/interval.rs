@@ -106,6 +106,11 @@ impl<T: Float> Number for Interval<T> {
     }
 
     #[inline(always)]
+    fn widen_undefined(self) -> Self {
+        if self.is_empty() { Interval::ENTIRE } else { self }
+    }
+
+    #[inline(always)]
     fn min_choice(a: Self, b: Self) -> (Self, Choice) {
         let choice = if a.sup() <= b.inf() {
             Choice::Left

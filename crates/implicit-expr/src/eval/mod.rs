@@ -58,6 +58,17 @@ pub trait Number: Copy + Send + Sync + std::fmt::Debug + 'static {
     /// `a^n`.
     fn pown(a: Self, n: i32) -> Self;
 
+    /// For set types, an undefined (empty) result widened to the whole line; the value
+    /// itself otherwise and for point types.
+    ///
+    /// Derivative enclosures use it: a derivative that is undefined somewhere on a box where
+    /// the function is defined (the slope of `sqrt` at 0, `0 · ∞` in the chain rule) must
+    /// read as "unbounded", never as "no value".
+    #[inline(always)]
+    fn widen_undefined(self) -> Self {
+        self
+    }
+
     /// `min(a, b)` and which argument it took; point types answer [`Choice::Both`].
     #[inline(always)]
     fn min_choice(a: Self, b: Self) -> (Self, Choice) {

@@ -56,7 +56,12 @@ macro_rules! point_number {
                     BinaryOp::Max => {
                         if a.is_nan() || b.is_nan() { a + b } else { a.max(b) }
                     }
-                    BinaryOp::Pow => $pow(a, b),
+                    // IEEE 1788's `pow` domain (`a > 0`, or `a = 0` with `b > 0`), as the
+                    // interval `pow`: C's special cases (`pow(0, 0) = 1`, `pow(-2, 2) = 4`)
+                    // would leave the interval value.
+                    BinaryOp::Pow => {
+                        if a > 0.0 || (a == 0.0 && b > 0.0) { $pow(a, b) } else { <$t>::NAN }
+                    }
                 }
             }
 
