@@ -33,7 +33,8 @@ impl Constant {
     /// Returns `None` unless `lo <= value <= hi` are all finite.
     pub fn enclosed(value: f64, lo: f64, hi: f64) -> Option<Self> {
         let (value, lo, hi) = (plus_zero(value), plus_zero(lo), plus_zero(hi));
-        let ok = value.is_finite() && lo.is_finite() && hi.is_finite() && lo <= value && value <= hi;
+        let ok =
+            value.is_finite() && lo.is_finite() && hi.is_finite() && lo <= value && value <= hi;
         ok.then_some(Self { value, lo, hi })
     }
 
@@ -221,7 +222,10 @@ mod tests {
 
     #[test]
     fn exact_literals() {
-        for s in ["0", "-0.5", "+2", "-0", "0.0", "1", "1.5", "0.25", "2.", ".5", "1e3", "1.25e-1", "3e10", "0.0625"] {
+        for s in [
+            "0", "-0.5", "+2", "-0", "0.0", "1", "1.5", "0.25", "2.", ".5", "1e3", "1.25e-1",
+            "3e10", "0.0625",
+        ] {
             let c = Constant::from_decimal(s).unwrap();
             assert!(c.is_exact(), "{s}");
         }
@@ -229,7 +233,14 @@ mod tests {
 
     #[test]
     fn inexact_literals_are_enclosed() {
-        for s in ["0.1", "0.3", "1e-5", "3.14159", "1e23", "123456789012345678901234567890"] {
+        for s in [
+            "0.1",
+            "0.3",
+            "1e-5",
+            "3.14159",
+            "1e23",
+            "123456789012345678901234567890",
+        ] {
             let c = Constant::from_decimal(s).unwrap();
             assert!(!c.is_exact(), "{s}");
             assert!(c.lo() < c.value() && c.value() < c.hi(), "{s}");

@@ -213,10 +213,7 @@ impl Context {
         let (enc, val) = match *node {
             Node::Unary(op, a) => {
                 let a = self.as_const(a)?;
-                (
-                    Interval::unary(op, a.interval()),
-                    f64::unary(op, a.value()),
-                )
+                (Interval::unary(op, a.interval()), f64::unary(op, a.value()))
             }
             Node::Binary(op, a, b) => {
                 let (a, b) = (self.as_const(a)?, self.as_const(b)?);

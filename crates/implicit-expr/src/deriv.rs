@@ -156,7 +156,11 @@ impl Context {
         let diff = self.sub(a, b);
         let pos = self.max(diff, zero);
         let h = self.unary(UnaryOp::Not, pos);
-        let (base, other) = if op == BinaryOp::Min { (db, da) } else { (da, db) };
+        let (base, other) = if op == BinaryOp::Min {
+            (db, da)
+        } else {
+            (da, db)
+        };
         let delta = self.sub(other, base);
         let t = self.mul(delta, h);
         self.add(base, t)

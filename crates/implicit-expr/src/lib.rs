@@ -122,8 +122,8 @@ pub mod print;
 pub mod ray;
 pub mod semantics;
 pub mod tape;
-pub mod wgsl;
 pub mod vm;
+pub mod wgsl;
 
 pub use constant::Constant;
 pub use context::{Context, Node, NodeId, Var};

@@ -147,7 +147,9 @@ impl<N: Number> RayEvaluator<N> {
     /// `g(t)`.
     pub fn g(&mut self, t: N) -> N {
         self.vars[T.index()] = t;
-        self.g.eval(&self.vars).expect("slot count checked at construction")
+        self.g
+            .eval(&self.vars)
+            .expect("slot count checked at construction")
     }
 
     /// `(g(t), g'(t))`.

@@ -26,7 +26,9 @@ fn point_interval_and_slice_agree() {
     let mut e = Evaluator::<f64>::new(&t);
     assert_eq!(e.eval(&[1.0, 2.0, 3.0]).unwrap(), 13.0);
     let mut ei = Evaluator::<Interval<f64>>::new(&t);
-    let r = ei.eval(&[iv(-1.0, 1.0), iv(0.0, 1.0), iv(2.0, 2.0)]).unwrap();
+    let r = ei
+        .eval(&[iv(-1.0, 1.0), iv(0.0, 1.0), iv(2.0, 2.0)])
+        .unwrap();
     assert_eq!(r, iv(3.0, 5.0));
     let xs: Vec<f64> = (0..200).map(|i| i as f64 * 0.01).collect();
     let ys = vec![0.5; 200];
@@ -88,7 +90,9 @@ fn gradient_and_modal() {
     assert_eq!((r.first(), r.second()), (0.0, 3.0));
     let mi = |a: f64, b: f64| Modal::<f64, Inner>::new(a, b).unwrap();
     let mut ei = Evaluator::<Modal<f64, Inner>>::new(&t);
-    let r = ei.eval(&[mi(2.0, 1.0), mi(0.0, 0.0), mi(0.0, 0.0)]).unwrap();
+    let r = ei
+        .eval(&[mi(2.0, 1.0), mi(0.0, 0.0), mi(0.0, 0.0)])
+        .unwrap();
     assert_eq!((r.first(), r.second()), (3.0, 0.0));
 }
 
@@ -101,7 +105,12 @@ fn substitute_binds_parameters() {
     let two = c.constant(2.0).unwrap();
     let g = c.substitute(f, &[(implicit_expr::Var(3), two)]);
     let t = Tape::new(&c, &[g]).unwrap();
-    assert_eq!(Evaluator::<f64>::new(&t).eval(&[3.0, 0.0, 0.0, 100.0]).unwrap(), 6.0);
+    assert_eq!(
+        Evaluator::<f64>::new(&t)
+            .eval(&[3.0, 0.0, 0.0, 100.0])
+            .unwrap(),
+        6.0
+    );
     // Binding to zero folds the product away.
     let zero = c.constant(0.0).unwrap();
     let h = c.substitute(f, &[(implicit_expr::Var(3), zero)]);

@@ -176,8 +176,7 @@ impl<N: GradScalar> Number for Grad<N> {
             UnaryOp::Ln => N::unary(UnaryOp::Recip, u),
             UnaryOp::Log10 => {
                 let ln10 = std::f64::consts::LN_10;
-                let c = Constant::enclosed(ln10, ln10.next_down(), ln10.next_up())
-                    .expect("finite");
+                let c = Constant::enclosed(ln10, ln10.next_down(), ln10.next_up()).expect("finite");
                 N::unary(UnaryOp::Recip, mul(u, N::constant(&c)))
             }
             UnaryOp::Sin => N::unary(UnaryOp::Cos, u),
@@ -192,16 +191,11 @@ impl<N: GradScalar> Number for Grad<N> {
                     r
                 }
             }
-            UnaryOp::Atan => N::unary(
-                UnaryOp::Recip,
-                add(k(1.0), N::unary(UnaryOp::Sqr, u)),
-            ),
+            UnaryOp::Atan => N::unary(UnaryOp::Recip, add(k(1.0), N::unary(UnaryOp::Sqr, u))),
             UnaryOp::Floor | UnaryOp::Ceil => N::unary(UnaryOp::SlopeFloor, u),
             UnaryOp::Round => N::unary(UnaryOp::SlopeRound, u),
             UnaryOp::Not => N::unary(UnaryOp::SlopeNot, u),
-            UnaryOp::SlopeFloor | UnaryOp::SlopeRound | UnaryOp::SlopeNot => {
-                N::unary(op, u)
-            }
+            UnaryOp::SlopeFloor | UnaryOp::SlopeRound | UnaryOp::SlopeNot => N::unary(op, u),
         };
         a.chain(v, N::defined_slope(u, slope))
     }

@@ -107,7 +107,11 @@ impl<T: Float> Number for Interval<T> {
 
     #[inline(always)]
     fn widen_undefined(self) -> Self {
-        if self.is_empty() { Interval::ENTIRE } else { self }
+        if self.is_empty() {
+            Interval::ENTIRE
+        } else {
+            self
+        }
     }
 
     #[inline(always)]

@@ -31,7 +31,8 @@ impl<N: Number> Evaluator<N> {
         // is read.
         let filler = N::constant(&crate::constant::Constant::exact(0.0).expect("finite"));
         // A power-of-two length lets the loop index with a mask instead of a bounds check.
-        self.regs.resize(self.tape.reg_count().next_power_of_two(), filler);
+        self.regs
+            .resize(self.tape.reg_count().next_power_of_two(), filler);
     }
 
     /// Switches to another tape, reusing the register storage.
@@ -157,7 +158,8 @@ impl<N: Number> SliceEvaluator<N> {
     fn load_consts(&mut self) {
         let filler = N::constant(&crate::constant::Constant::exact(0.0).expect("finite"));
         self.regs.clear();
-        self.regs.resize(self.tape.reg_count() * SLICE_CHUNK, filler);
+        self.regs
+            .resize(self.tape.reg_count() * SLICE_CHUNK, filler);
         for (i, c) in self.tape.consts().iter().enumerate() {
             let v = N::constant(c);
             self.regs[i * SLICE_CHUNK..(i + 1) * SLICE_CHUNK].fill(v);

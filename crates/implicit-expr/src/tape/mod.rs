@@ -85,7 +85,9 @@ impl Tape {
     /// Returns an error when `roots` is empty.
     pub fn new(ctx: &Context, roots: &[NodeId]) -> Result<Self, Error> {
         if roots.is_empty() {
-            return Err(Error::Unsupported("a tape needs at least one output".into()));
+            return Err(Error::Unsupported(
+                "a tape needs at least one output".into(),
+            ));
         }
         let order = ctx.reachable(roots);
         let mut pos = vec![u32::MAX; ctx.len()];
@@ -129,8 +131,14 @@ impl Tape {
         Ok(Self::from_ssa(ssa, consts, outputs, ctx.var_count() as u32))
     }
 
-    fn from_ssa(ssa: Vec<SsaOp>, consts: Vec<Constant>, ssa_outputs: Vec<u32>, var_count: u32) -> Self {
-        let (instrs, outputs, reg_count) = regalloc::allocate(&ssa, consts.len() as u32, &ssa_outputs);
+    fn from_ssa(
+        ssa: Vec<SsaOp>,
+        consts: Vec<Constant>,
+        ssa_outputs: Vec<u32>,
+        var_count: u32,
+    ) -> Self {
+        let (instrs, outputs, reg_count) =
+            regalloc::allocate(&ssa, consts.len() as u32, &ssa_outputs);
         let choice_count = ssa
             .iter()
             .filter(|o| matches!(o.op, Opcode::Binary(BinaryOp::Min | BinaryOp::Max)))

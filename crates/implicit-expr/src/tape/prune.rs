@@ -108,6 +108,11 @@ impl Tape {
             .iter()
             .map(|&o| new_pos[o as usize])
             .collect();
-        Ok(Tape::from_ssa(out, consts, outputs, self.var_count() as u32))
+        Ok(Tape::from_ssa(
+            out,
+            consts,
+            outputs,
+            self.var_count() as u32,
+        ))
     }
 }

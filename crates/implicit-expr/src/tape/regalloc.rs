@@ -14,7 +14,11 @@ pub(super) fn operands(op: &SsaOp) -> ([u32; 2], usize) {
 /// Assigns registers: constants `0..const_count` get their own; every other value a register
 /// taken from a free list (or a new one), released after its last use. Outputs are never
 /// released. Returns the instructions, the output registers and the register count.
-pub(super) fn allocate(ssa: &[SsaOp], const_count: u32, outputs: &[u32]) -> (Vec<Instr>, Vec<u32>, u32) {
+pub(super) fn allocate(
+    ssa: &[SsaOp],
+    const_count: u32,
+    outputs: &[u32],
+) -> (Vec<Instr>, Vec<u32>, u32) {
     let n = ssa.len();
     let mut last_use = vec![0usize; n];
     for (i, op) in ssa.iter().enumerate() {
