@@ -156,6 +156,7 @@ pub fn catalog_expr(name: &str) -> Result<Expr, Error> {
         bind.push((implicit_expr::Var(3 + i as u32), c));
     }
     let root = ctx.substitute(root, &bind);
+    let (ctx, root) = ctx.extract(root);
     Expr::from_graph(name, ctx, root)
 }
 

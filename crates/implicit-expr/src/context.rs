@@ -450,6 +450,39 @@ impl Context {
         new[&root]
     }
 
+    /// A new context holding only what `root` depends on, and `root` in it. Variables keep
+    /// their names; `x`, `y`, `z` keep slots 0, 1, 2 and the other variables that `root`
+    /// uses follow in their old order (unused ones, such as parameters bound by
+    /// [`substitute`](Self::substitute), are gone).
+    pub fn extract(&self, root: NodeId) -> (Context, NodeId) {
+        let order = self.reachable(&[root]);
+        let mut out = Context::new();
+        let mut used: Vec<Var> = order
+            .iter()
+            .filter_map(|&id| match *self.get(id) {
+                Node::Var(v) if v.index() >= 3 => Some(v),
+                _ => None,
+            })
+            .collect();
+        used.sort();
+        for v in &used {
+            out.declare_var(&self.var_names[v.index()]);
+        }
+        let mut new: HashMap<NodeId, NodeId> = HashMap::with_capacity(order.len());
+        for id in order {
+            let n = match *self.get(id) {
+                Node::Var(v) => out.named_var(&self.var_names[v.index()]),
+                Node::Const(c) => out.constant_enclosed(c),
+                Node::Unary(op, a) => out.unary(op, new[&a]),
+                Node::Binary(op, a, b) => out.binary(op, new[&a], new[&b]),
+                Node::Pown(a, k) => out.pown(new[&a], k),
+            };
+            new.insert(id, n);
+        }
+        let r = new[&root];
+        (out, r)
+    }
+
     /// Evaluates `root` directly on the graph (a reference evaluator for tests and one-off
     /// use; compile a [`Tape`](crate::Tape) for speed).
     ///

@@ -116,3 +116,25 @@ fn substitute_binds_parameters() {
     let h = c.substitute(f, &[(implicit_expr::Var(3), zero)]);
     assert_eq!(c.as_const(h).map(|k| k.value()), Some(0.0));
 }
+
+#[test]
+fn extract_drops_bound_parameters() {
+    let mut c = Context::new();
+    let x = c.x();
+    let a = c.named_var("a");
+    let b = c.named_var("b");
+    let f = c.mul(a, x);
+    let f = c.add(f, b);
+    let two = c.constant(2.0).unwrap();
+    let g = c.substitute(f, &[(implicit_expr::Var(3), two)]);
+    let (e, r) = c.extract(g);
+    assert_eq!(e.var_names(), ["x", "y", "z", "b"]);
+    let t = Tape::new(&e, &[r]).unwrap();
+    assert_eq!(t.var_count(), 4);
+    assert_eq!(
+        Evaluator::<f64>::new(&t)
+            .eval(&[3.0, 0.0, 0.0, 1.0])
+            .unwrap(),
+        7.0
+    );
+}
