@@ -339,14 +339,21 @@ impl Context {
     /// `a^n` for an integer `n` (IEEE 1788 `pown`: `a^0 = 1` for every `a`, negative `n`
     /// divides).
     ///
-    /// `n = 0` gives the constant 1, `n = 1` gives `a`, `n = 2` gives `sqr(a)` and `n = -1`
-    /// gives `recip(a)`.
+    /// `n = 0` gives the constant 1, `n = 1` gives `a`, `n = 2` gives `sqr(a)`, `n = -1`
+    /// gives `recip(a)`, and an even `n >= 4` gives `sqr(a^(n/2))`.
     pub fn pown(&mut self, a: NodeId, n: i32) -> NodeId {
         match n {
             0 => return self.intern(Node::Const(Constant::exact(1.0).expect("finite"))),
             1 => return a,
             2 => return self.unary(UnaryOp::Sqr, a),
             -1 => return self.unary(UnaryOp::Recip, a),
+            // a^(2k) = (a^k)²: the same real function, and over intervals the same range
+            // (squaring encloses the exact range of any interval), with cheap tight squares in
+            // place of a general power.
+            _ if n >= 4 && n % 2 == 0 => {
+                let h = self.pown(a, n / 2);
+                return self.unary(UnaryOp::Sqr, h);
+            }
             _ => {}
         }
         let node = Node::Pown(a, n);
