@@ -22,11 +22,11 @@
 //! let f = s.build(&mut ctx)?;
 //! let tape = Tape::new(&ctx, &[f])?;
 //! // Inputs: x, y, z, then the parameters (a, b) at their default values.
-//! let mut inputs = vec![0.0, 0.0, 0.0];
-//! inputs.extend(s.param_values());
-//! let inside_the_tubes = Evaluator::<f64>::new(&tape).eval(&[1.0, 0.0, 0.0, 0.075, 3.0])?;
-//! assert!(inside_the_tubes < 0.0);
-//! assert!(Evaluator::<f64>::new(&tape).eval(&inputs)? > 0.0); // the centre is outside
+//! let at = |p: [f64; 3]| [&p[..], &s.param_values()].concat();
+//! let mut e = Evaluator::<f64>::new(&tape);
+//! assert!(e.eval(&at([1.0, 0.0, 0.0]))? < 0.0); // on the unit circle: inside a tube
+//! assert!(e.eval(&at([0.0, 0.0, 0.0]))? > 0.0); // the centre is outside
+//! assert!(!s.is_clipped()); // the box holds the whole surface
 //!
 //! let err = catalog::get("sphre").unwrap_err();
 //! assert_eq!(err.to_string(), "unknown surface 'sphre'; did you mean 'sphere'?");
@@ -127,7 +127,7 @@ pub fn get(name: &str) -> Result<&'static Surface, Error> {
         })
 }
 
-const ALL: [Surface; 16] = [
+static ALL: [Surface; 16] = [
     SPHERE,
     DROP,
     KUSNER_SCHMITT,
@@ -173,7 +173,7 @@ pub const DROP: Surface = Surface {
 /// The Kusner–Schmitt surface (thesis figures 4.9c, 7.15b; soft-shadow paper figure 6): the
 /// sextic `x²y²z² + 3(x²y² + y²z² + z²x²) + 9(x² + y² + z²) − 32xyz − 5 = 0` of public
 /// implicit-surface collections, written in its factored form
-/// `(x² + 3)(y² + 3)(z² + 3) − 32(xyz + 1)`. Bounded, within `|x|, |y|, |z| < 1`.
+/// `(x² + 3)(y² + 3)(z² + 3) − 32(xyz + 1)`. Bounded, within `|x|, |y|, |z| ≤ 1`.
 pub const KUSNER_SCHMITT: Surface = Surface {
     name: "kusner-schmitt",
     formula: "(x^2 + 3)*(y^2 + 3)*(z^2 + 3) - 32*(x*y*z + 1)",
@@ -232,16 +232,16 @@ pub const HORNED_CUBE: Surface = Surface {
              horns along the diagonals clipped by the box",
 };
 
-/// The gumdrop torus (thesis figures 4.9h, 5.7, 7.15d; the test surface of Mitchell's
-/// interval ray tracer, 1990): `4(x⁴ + (y² + z²)²) + 17x²(y² + z²) − 20(x² + y² + z²) + 17 = 0`,
-/// a surface of revolution about the `x` axis: a ring around it and two gumdrops on it.
+/// The gumdrop torus (thesis figures 4.9h, 5.7, 7.15d): the quartic of public
+/// implicit-surface collections `4(x⁴ + (y² + z²)²) + 17x²(y² + z²) − 20(x² + y² + z²) + 17 = 0`,
+/// a surface of revolution about the `x` axis: a ring around the axis and two gumdrops on it.
 /// Bounded, within `|x|, |y|, |z| < 2`.
 pub const GUMDROP_TORUS: Surface = Surface {
     name: "gumdrop-torus",
     formula: "4*(x^4 + (y^2 + z^2)^2) + 17*x^2*(y^2 + z^2) - 20*(x^2 + y^2 + z^2) + 17",
     params: &[],
     bounds: ([-2.25; 3], [2.25; 3]),
-    source: "Mitchell's gumdrop torus: 4(x^4 + (y^2 + z^2)^2) + 17x^2(y^2 + z^2) \
+    source: "gumdrop torus quartic 4(x^4 + (y^2 + z^2)^2) + 17x^2(y^2 + z^2) \
              - 20(x^2 + y^2 + z^2) + 17 = 0",
 };
 

@@ -277,6 +277,13 @@ impl Context {
         } else {
             (a, b)
         };
+        // An exact integer exponent makes `pow` a `pown` (whose domain includes negative
+        // bases) before anything is folded with `pow`'s real-exponent domain.
+        if op == BinaryOp::Pow
+            && let Some(n) = self.as_const(b).and_then(|c| c.as_i32())
+        {
+            return self.pown(a, n);
+        }
         let node = Node::Binary(op, a, b);
         if let Some(c) = self.fold(&node) {
             return self.constant_enclosed(c);
@@ -327,11 +334,7 @@ impl Context {
                     return a;
                 }
             }
-            BinaryOp::Pow => {
-                if let Some(n) = self.as_const(b).and_then(|c| c.as_i32()) {
-                    return self.pown(a, n);
-                }
-            }
+            BinaryOp::Pow => {}
         }
         self.intern(node)
     }

@@ -9,7 +9,9 @@
 //!
 //! The reference is an oracle that evaluates the same recipe in 200-bit MPFR arithmetic
 //! (`rug`) with the real values of the literals (the decimal `0.1`, not the double nearest
-//! to it), together with its gradient where the function is differentiable. The checks:
+//! to it), together with its gradient where the function is differentiable; it runs again at
+//! 320 bits and gives no answer where the two runs disagree. Points outside the IEEE 1788
+//! domain of some operation are skipped. The checks:
 //!
 //! * interval values (`f64` and `f32`) contain the oracle's value and the point value at
 //!   every point of the box where the function is defined there (the real soundness check:
@@ -23,6 +25,11 @@
 //!   real gradient, the `Grad<f64>` gradient and the symbolic gradient's point value;
 //! * for a beam (origin `c`, direction box `D`, parameter interval `T`), the interval
 //!   `g(T)` and `g'(T)` contain `g(t)` and `g'(t)` of every ray `d ∈ D` at every `t ∈ T`.
+//!
+//! Named regression tests at the end of the file hold the minimal cases these properties
+//! found: undefined slopes (read as unbounded, `Number::widen_undefined`), the undefined
+//! branch of a `min`/`max` derivative, pruning where the formula is partly undefined, and
+//! folding `pow` with an integer exponent.
 //!
 //! The environment variable `INTERVAL_CORE_TEST_SCALE` (a positive integer) multiplies the
 //! number of cases.
@@ -38,8 +45,22 @@ use rug::Float;
 use rug::float::Constant as MpfrConstant;
 use rug::ops::Pow;
 
-/// Working precision of the oracle, in bits.
+/// Working precision of the oracle, in bits; it runs again at [`PREC_CHECK`] bits, and a
+/// value that moves between the two (a cancellation of the rounded `π`, say, or a step
+/// function at a rounded jump) is not used.
 const PREC: u32 = 200;
+
+/// The precision of the oracle's second run.
+const PREC_CHECK: u32 = 320;
+
+thread_local! {
+    /// The precision of the oracle run in progress on this thread.
+    static PRECISION: std::cell::Cell<u32> = const { std::cell::Cell::new(PREC) };
+}
+
+fn prec() -> u32 {
+    PRECISION.with(|p| p.get())
+}
 
 /// Number of variable slots: `x`, `y`, `z` and the parameter `p`.
 const SLOTS: usize = 4;
@@ -98,7 +119,7 @@ struct Recipe {
 
 fn leaf() -> impl Strategy<Value = Leaf> {
     prop_oneof![
-        5 => (0u32..SLOTS as u32).prop_map(Leaf::Var),
+        8 => (0u32..SLOTS as u32).prop_map(Leaf::Var),
         3 => prop::sample::select(DECIMALS.to_vec()).prop_map(Leaf::Dec),
         1 => Just(Leaf::Pi),
         1 => Just(Leaf::E),
@@ -118,18 +139,18 @@ fn step() -> impl Strategy<Value = Step> {
 fn recipe() -> impl Strategy<Value = Recipe> {
     (
         prop::collection::vec(leaf(), 1..5),
-        prop::collection::vec(step(), 1..14),
+        prop::collection::vec(step(), 1..20),
     )
         .prop_map(|(leaves, steps)| Recipe { leaves, steps })
 }
 
-/// The node an argument code `a` selects among `k` earlier nodes: mostly one of the last
-/// three (deep expressions), sometimes any (shared subexpressions).
+/// The node an argument code `a` selects among `k` earlier nodes: often the last one, else
+/// one of the last three (deep expressions), sometimes any (shared subexpressions).
 fn arg(a: usize, k: usize) -> usize {
-    if a % 10 < 7 {
-        k - 1 - (a / 10) % k.min(3)
-    } else {
-        (a / 10) % k
+    match a % 10 {
+        0..5 => k - 1,
+        5..8 => k - 1 - (a / 10) % k.min(3),
+        _ => (a / 10) % k,
     }
 }
 
@@ -142,6 +163,30 @@ impl Recipe {
 
     /// Builds the graph in a fresh context (with `p` declared as slot 3); returns the root.
     fn build(&self) -> (Context, NodeId) {
+        let (ctx, nodes) = self.build_nodes();
+        (ctx, *nodes.last().unwrap())
+    }
+
+    /// For each step, the exponent `n` when it is a `pow` that the graph turned into
+    /// `pown(a, n)` (its exponent folded to an exact integer constant).
+    fn pown_exponents(&self) -> Vec<Option<i32>> {
+        let (ctx, nodes) = self.build_nodes();
+        let l = self.leaves.len();
+        self.steps
+            .iter()
+            .enumerate()
+            .map(|(i, s)| match *s {
+                Step::Bin(BinaryOp::Pow, _, b) => {
+                    let b = nodes[arg(b, l + i)];
+                    ctx.as_const(b).and_then(|c| c.as_i32())
+                }
+                _ => None,
+            })
+            .collect()
+    }
+
+    /// Builds the graph; returns the context and the node of every leaf and step.
+    fn build_nodes(&self) -> (Context, Vec<NodeId>) {
         let mut ctx = Context::new();
         ctx.declare_var("p");
         let mut nodes: Vec<NodeId> = Vec::new();
@@ -164,8 +209,7 @@ impl Recipe {
             };
             nodes.push(n);
         }
-        let root = *nodes.last().unwrap();
-        (ctx, root)
+        (ctx, nodes)
     }
 }
 
@@ -200,7 +244,7 @@ impl Real {
 }
 
 fn fl(v: impl Into<f64>) -> Float {
-    Float::with_val(PREC, v.into())
+    Float::with_val(prec(), v.into())
 }
 
 fn zero3() -> [Float; 3] {
@@ -231,6 +275,12 @@ fn combine(
 /// slow.
 fn in_range(v: &Float) -> bool {
     v.is_finite() && v.get_exp().is_none_or(|e| e < 4000)
+}
+
+/// Whether two oracle runs agree: to a relative 2^-100.
+fn agree(a: &Float, b: &Float) -> bool {
+    let diff = Float::with_val(PREC_CHECK, a - b).abs();
+    diff <= (Float::with_val(PREC_CHECK, b.abs_ref()) >> 100u32)
 }
 
 /// The derivative at a kink, jump or infinite slope of a function of `a`: zero when `a`
@@ -362,7 +412,12 @@ fn real_unary(op: UnaryOp, a: &Real) -> Option<Real> {
 }
 
 /// The value and gradient of `op(a, b)`, or `None` outside the domain.
-fn real_binary(op: BinaryOp, a: &Real, b: &Real) -> Option<Real> {
+/// `pown` is `Some(n)` for a `pow` whose exponent the graph holds as the exact integer
+/// constant `n` (the graph makes it `pown(a, n)`).
+fn real_binary(op: BinaryOp, a: &Real, b: &Real, pown: Option<i32>) -> Option<Real> {
+    if let Some(n) = pown.filter(|_| op == BinaryOp::Pow) {
+        return real_pown(a, n);
+    }
     let (x, y) = (&a.v, &b.v);
     let mut flat = a.flat && b.flat;
     let mut poisoned = false;
@@ -427,8 +482,15 @@ fn real_pown(a: &Real, n: i32) -> Option<Real> {
     if n < 0 && x.is_zero() {
         return None;
     }
-    if n == 0 {
-        return Some(Real::constant(fl(1.0)));
+    // The graph makes `pown(a, n)` for n = 0, 1, 2, -1 the constant 1, `a`, `sqr a` and
+    // `recip a`: compute their derivatives the same way, so that cancellations the graph
+    // simplifies exactly (`pown(a, -1) - recip(a) = 0`) are exact here too.
+    match n {
+        0 => return Some(Real::constant(fl(1.0))),
+        1 => return Some(a.clone()),
+        2 => return real_unary(UnaryOp::Sqr, a),
+        -1 => return real_unary(UnaryOp::Recip, a),
+        _ => {}
     }
     let v = x.clone().pow(n);
     let s = x.clone().pow(n - 1) * n;
@@ -449,6 +511,31 @@ impl Recipe {
     /// The real value and gradient of the root at `inputs` (`x`, `y`, `z`, `p`), or `None`
     /// where some operation is undefined (or overflows even MPFR's exponent range).
     fn oracle(&self, inputs: &[Float; SLOTS]) -> Option<Real> {
+        let a = self.oracle_at(inputs, PREC)?;
+        let b = self.oracle_at(inputs, PREC_CHECK)?;
+        if !agree(&a.v, &b.v) {
+            return None;
+        }
+        let d = match (&a.d, &b.d) {
+            (Some(p), Some(q)) if (0..3).all(|k| agree(&p[k], &q[k])) => b.d.clone(),
+            _ => None,
+        };
+        Some(Real {
+            d,
+            zero_times_undefined: a.zero_times_undefined || b.zero_times_undefined,
+            ..b
+        })
+    }
+
+    /// The oracle at `bits` of precision.
+    fn oracle_at(&self, inputs: &[Float; SLOTS], bits: u32) -> Option<Real> {
+        PRECISION.with(|p| p.set(bits));
+        let r = self.oracle_run(inputs);
+        PRECISION.with(|p| p.set(PREC));
+        r
+    }
+
+    fn oracle_run(&self, inputs: &[Float; SLOTS]) -> Option<Real> {
         let mut vals: Vec<Option<Real>> = Vec::new();
         for l in &self.leaves {
             let r = match l {
@@ -458,25 +545,26 @@ impl Recipe {
                         d[*i as usize] = fl(1.0);
                     }
                     Real {
-                        v: inputs[*i as usize].clone(),
+                        v: Float::with_val(prec(), &inputs[*i as usize]),
                         d: Some(d),
                         // The parameter is constant for derivatives by x, y, z.
                         flat: false,
                         zero_times_undefined: false,
                     }
                 }
-                Leaf::Dec(s) => Real::constant(Float::with_val(PREC, Float::parse(s).unwrap())),
-                Leaf::Pi => Real::constant(Float::with_val(PREC, MpfrConstant::Pi)),
+                Leaf::Dec(s) => Real::constant(Float::with_val(prec(), Float::parse(s).unwrap())),
+                Leaf::Pi => Real::constant(Float::with_val(prec(), MpfrConstant::Pi)),
                 Leaf::E => Real::constant(fl(1.0).exp()),
             };
             vals.push(Some(r));
         }
-        for s in &self.steps {
+        let pown = self.pown_exponents();
+        for (i, s) in self.steps.iter().enumerate() {
             let k = vals.len();
             let r = match *s {
                 Step::Un(op, a) => vals[arg(a, k)].as_ref().and_then(|a| real_unary(op, a)),
                 Step::Bin(op, a, b) => match (&vals[arg(a, k)], &vals[arg(b, k)]) {
-                    (Some(a), Some(b)) => real_binary(op, a, b),
+                    (Some(a), Some(b)) => real_binary(op, a, b, pown[i]),
                     _ => None,
                 },
                 Step::Pown(a, n) => vals[arg(a, k)].as_ref().and_then(|a| real_pown(a, n)),
@@ -720,7 +808,7 @@ fn check_interval_f64_contains_real_and_point_values(
     let fx = Evaluator::<Interval<f64>>::new(&tape).eval(&x).unwrap();
     let mut pe = Evaluator::<f64>::new(&tape);
     for u in us {
-        let p = point(&b, u);
+        let p = point(b, u);
         let Some(real) = r.oracle(&inputs_of(&p)) else {
             continue;
         };
@@ -749,6 +837,9 @@ fn check_interval_f32_contains_real_and_point_values(
             let v = lerp(b[i], u[i]) as f32;
             v.clamp(x[i].inf(), x[i].sup())
         });
+        if p.iter().any(|v| !v.is_finite()) {
+            continue; // a bound beyond the f32 range
+        }
         let inputs: [Float; SLOTS] = std::array::from_fn(|i| fl(p[i]));
         let Some(real) = r.oracle(&inputs) else {
             continue;
@@ -776,7 +867,7 @@ fn check_slice_evaluator_is_bit_identical(
 ) -> Result<(), TestCaseError> {
     let (ctx, root) = r.build();
     let tape = Tape::new(&ctx, &[root]).unwrap();
-    let pts: Vec<[f64; SLOTS]> = us.iter().map(|u| point(&b, u)).collect();
+    let pts: Vec<[f64; SLOTS]> = us.iter().map(|u| point(b, u)).collect();
     let cols: Vec<Vec<f64>> = (0..SLOTS)
         .map(|s| pts.iter().map(|p| p[s]).collect())
         .collect();
@@ -812,7 +903,7 @@ fn check_slice_evaluator_is_bit_identical(
         .iter()
         .zip(ws)
         .map(|(u, w)| {
-            let (p, q) = (point(&b, u), point(&b, w));
+            let (p, q) = (point(b, u), point(b, w));
             std::array::from_fn(|s| iv((p[s].min(q[s]), p[s].max(q[s]))))
         })
         .collect();
@@ -859,7 +950,7 @@ fn check_pruned_tape_agrees_inside_its_box(
     let (mut full, mut short) = (Evaluator::<f64>::new(&tape), Evaluator::<f64>::new(&pruned));
     let mut short_iv = Evaluator::<Interval<f64>>::new(&pruned);
     for (u, w) in us.iter().zip(ws) {
-        let p = point(&b, u);
+        let p = point(b, u);
         // Outside the domain the two may differ: see
         // `pruning_defines_what_the_full_tape_leaves_undefined`.
         let Some(real) = r.oracle(&inputs_of(&p)) else {
@@ -873,7 +964,7 @@ fn check_pruned_tape_agrees_inside_its_box(
         // Equal up to the sign of a zero: where `min(-0, 0)` is decided, the pruned tape
         // returns the argument taken, the full tape whichever zero `f64::min` returns.
         prop_assert!(same_bits(v, s) || v == s, "pruned {s} vs full {v} at {p:?}");
-        let q = point(&b, w);
+        let q = point(b, w);
         let sub: Vec<Interval<f64>> = (0..SLOTS)
             .map(|i| iv((p[i].min(q[i]), p[i].max(q[i]))))
             .collect();
@@ -907,7 +998,7 @@ fn check_modal_outer_contains_points_and_inner_is_included(
     prop_assert!(!out.first().is_nan() && !out.second().is_nan(), "{out:?}");
     let mut pe = Evaluator::<f64>::new(&tape);
     for u in us {
-        let p = point(&b, u);
+        let p = point(b, u);
         let Some(real) = r.oracle(&inputs_of(&p)) else {
             continue;
         };
@@ -974,13 +1065,14 @@ fn check_gradient_enclosures_contain_point_gradients(
     let mut gp = Evaluator::<Grad<f64>>::new(&tape);
     let mut sp = Evaluator::<f64>::new(&gtape);
     for u in us {
-        let p = point(&b, u);
+        let p = point(b, u);
         let Some(real) = r.oracle(&inputs_of(&p)) else {
             continue;
         };
         prop_assert!(holds(gi.v, &real.v), "real {} not in {:?}", real.v, gi.v);
-        // Skips the known failure of `zero_times_undefined_derivative_gives_an_empty_enclosure`.
-        if let Some(d) = real.d.as_ref().filter(|_| !real.zero_times_undefined) {
+        // Where a slope is undefined (`sqrt` at 0) the symbolic derivative is empty and reads
+        // as unbounded (`Number::widen_undefined`, docs/numerics.md); forward mode widens it.
+        if let Some(d) = real.d.as_ref() {
             for k in 0..3 {
                 prop_assert!(
                     holds(gi.d[k], &d[k]),
@@ -989,7 +1081,7 @@ fn check_gradient_enclosures_contain_point_gradients(
                     gi.d[k]
                 );
                 prop_assert!(
-                    holds(si[k], &d[k]),
+                    holds(si[k].widen_undefined(), &d[k]),
                     "real d{k} {} not in symbolic {:?}",
                     d[k],
                     si[k]
@@ -1058,12 +1150,13 @@ fn check_beam_g_and_dg_contain_ray_values(
         let t = lerp(tb, u[3]);
         let pv = lerp(pb, v[0]);
         // The real ray point c + t·d and the real g, g' there.
-        let tf = fl(t);
+        // Exact: 2200 bits hold any sum of a double and a product of two doubles.
+        let exact = |v: f64| Float::with_val(2200, v);
         let at: [Float; SLOTS] = std::array::from_fn(|i| {
             if i < 3 {
-                fl(c[i]) + tf.clone() * d[i]
+                exact(c[i]) + exact(t) * d[i]
             } else {
-                fl(pv)
+                exact(pv)
             }
         });
         let Some(real) = r.oracle(&at) else { continue };
@@ -1080,8 +1173,7 @@ fn check_beam_g_and_dg_contain_ray_values(
             prop_assert!(holds_point(dg, dgp), "f64 g' {dgp} not in {dg:?}");
         }
         prop_assert!(holds(g, &real.v), "real g {} not in {g:?}", real.v);
-        // Skips the known failure of `zero_times_undefined_derivative_gives_an_empty_enclosure`.
-        if let Some(gr) = real.d.as_ref().filter(|_| !real.zero_times_undefined) {
+        if let Some(gr) = real.d.as_ref() {
             let mut dot = fl(0.0);
             for i in 0..3 {
                 dot += gr[i].clone() * d[i];
@@ -1093,7 +1185,7 @@ fn check_beam_g_and_dg_contain_ray_values(
 }
 
 proptest! {
-    #![proptest_config(config(1024))]
+    #![proptest_config(config(2048))]
 
     #[test]
     fn interval_f64_contains_real_and_point_values(
@@ -1174,22 +1266,44 @@ proptest! {
 }
 
 // -------------------------------------------------------------------------------------------
-// Known failures (minimal cases), ignored until fixed
+// Fixed cases
 // -------------------------------------------------------------------------------------------
 
 fn point_iv(v: f64) -> Interval<f64> {
     Interval::new(v, v).unwrap()
 }
 
+/// `f = x^(y·y)` at `x = 0`, `y = 1e-200`: the real value is `0^(1e-400) = 0` and the interval
+/// over the point box is `[0, 0]`; `y·y` underflows to `0` in `f64`, and the point `pow`
+/// must then not answer C's `pow(0, 0) = 1`, a value outside the interval of a box that
+/// holds the point: it follows the IEEE 1788 domain (NaN for `0^0`).
+#[test]
+fn point_pow_of_an_underflowed_exponent_stays_in_the_interval() {
+    let mut ctx = Context::new();
+    let f = implicit_expr::parse::parse(&mut ctx, "pow(x, y*y)", &[]).unwrap();
+    let tape = Tape::new(&ctx, &[f]).unwrap();
+    let p = [0.0, 1e-200, 0.0];
+    let v = Evaluator::<f64>::new(&tape).eval(&p).unwrap();
+    let x = Evaluator::<Interval<f64>>::new(&tape)
+        .eval(&p.map(point_iv))
+        .unwrap();
+    assert_eq!(x, Interval::ZERO);
+    assert!(v.is_nan() || x.contains(v), "point value {v} outside {x:?}");
+}
+
+// -------------------------------------------------------------------------------------------
+// Known failures (minimal cases), ignored until fixed
+// -------------------------------------------------------------------------------------------
+
 /// `f = sqrt(max(x, 0))` is `0` on `x ∈ [-2, -1]`, so its derivative there is `0`. The chain
 /// rule multiplies the slope of `sqrt` at `[0, 0]` (`0.5 / 0`: empty) by the derivative of
-/// `max(x, 0)` (`[0, 0]`), and the empty set times anything is empty: `Grad<Interval>`, the
-/// symbolic gradient and `g'` of a beam all give the empty set, which an interval Newton
-/// step reads as "no root here". The same happens for `asin`/`acos` at `±1`, for
-/// `pow(0, y)` (`ln 0`), and for the slopes of the step functions of such arguments.
+/// `max(x, 0)` (`[0, 0]`), and the empty set times anything is empty. Forward mode replaces
+/// an undefined slope of a defined argument by `[-inf, inf]` (so `[-inf, inf] · 0 = 0`); the
+/// symbolic gradient gives the empty set, which `Number::widen_undefined` reads as unbounded
+/// (docs/numerics.md), and `g'` of a beam is widened so. The same holds for `asin`/`acos`
+/// at `±1`, for `pow(0, y)` (`ln 0`), and for the slopes of the step functions.
 #[test]
-#[ignore = "known bug: zero times an undefined slope gives an empty derivative enclosure"]
-fn zero_times_undefined_derivative_gives_an_empty_enclosure() {
+fn undefined_slopes_read_as_unbounded() {
     let mut ctx = Context::new();
     let (x, zero) = (ctx.x(), ctx.constant(0.0).unwrap());
     let m = ctx.max(x, zero);
@@ -1207,7 +1321,8 @@ fn zero_times_undefined_derivative_gives_an_empty_enclosure() {
     let d = Evaluator::<Interval<f64>>::new(&dtape)
         .eval(&[bx, point_iv(0.0), point_iv(0.0)])
         .unwrap();
-    assert!(d.contains(0.0), "symbolic: {d:?}");
+    assert!(d.is_empty() || d.contains(0.0), "symbolic: {d:?}");
+    assert!(d.widen_undefined().contains(0.0), "symbolic: {d:?}");
 
     let rf = RayFunction::new(&ctx, f).unwrap();
     let mut beam = RayEvaluator::<Interval<f64>>::new(&rf, &[]).unwrap();
@@ -1223,10 +1338,10 @@ fn zero_times_undefined_derivative_gives_an_empty_enclosure() {
 /// The symbolic derivative of `min(a, b)` is `db + (da - db)·H`: where `a < b` is decided
 /// (`H = 1`) an undefined `db` still poisons it. `f = min(x, 1 + 0^y)` is `x` on
 /// `x ∈ [-1, 0]`, `y ∈ [1, 2]` (where `0^y = 0`), so `∂f/∂y = 0`; forward mode (`Grad`)
-/// selects the branch and gets `0`, the symbolic gradient gets the empty set.
+/// selects the branch and gets `0`; the symbolic gradient gets the empty set, which reads as
+/// unbounded (`Number::widen_undefined`): sound, if loose.
 #[test]
-#[ignore = "known bug: the untaken branch's undefined derivative empties a min/max derivative"]
-fn symbolic_min_derivative_is_emptied_by_the_untaken_branch() {
+fn untaken_branch_with_undefined_derivative_reads_as_unbounded() {
     let mut ctx = Context::new();
     let f = implicit_expr::parse::parse(&mut ctx, "min(x, 1 + 0^y)", &[]).unwrap();
     let tape = Tape::new(&ctx, &[f]).unwrap();
@@ -1243,17 +1358,17 @@ fn symbolic_min_derivative_is_emptied_by_the_untaken_branch() {
     let d = Evaluator::<Interval<f64>>::new(&dtape)
         .eval(&[bx, by, point_iv(0.0)])
         .unwrap();
-    assert!(d.contains(0.0), "symbolic: {d:?}");
+    assert!(d.widen_undefined().contains(0.0), "symbolic: {d:?}");
 }
 
 /// `f = min(x, 5 + sqrt(y))` over `x ∈ [0, 1]`, `y ∈ [-1, 1]`: the interval evaluation
 /// decides `min = x` (`sqrt([-1, 1]) = [0, 1]`), and the pruned tape is `x`. At `y = -0.5`
-/// the full tape is undefined (NaN; the empty set over `y ∈ [-1, -0.5]`), the pruned one is
-/// not: a renderer using the pruned tape sees the plane `x = 0` where the formula has no
-/// surface.
+/// the full tape is undefined (NaN; the empty set over `y ∈ [-1, -0.5]`): a pruned tape `x`
+/// would draw the plane `x = 0` where the formula has no surface. The traced evaluation
+/// sees that `sqrt` is undefined on part of its argument and records no choice, so nothing
+/// is pruned.
 #[test]
-#[ignore = "known bug: pruning drops the undefinedness of the dropped branch"]
-fn pruning_defines_what_the_full_tape_leaves_undefined() {
+fn pruning_keeps_the_full_tape_where_it_is_partly_undefined() {
     let mut ctx = Context::new();
     let f = implicit_expr::parse::parse(&mut ctx, "min(x, 5 + sqrt(y))", &[]).unwrap();
     let tape = Tape::new(&ctx, &[f]).unwrap();
@@ -1289,23 +1404,24 @@ fn pruning_defines_what_the_full_tape_leaves_undefined() {
     );
 }
 
-/// `f = x^(y·y)` at `x = 0`, `y = 1e-200`: the real value is `0^(1e-400) = 0` and the interval
-/// over the point box is `[0, 0]`, but `y·y` underflows to `0` in `f64` and the point `pow`
-/// follows IEEE 754 (`pow(0, 0) = 1`), so the point value `1` is outside the interval value of
-/// a box that holds the point (`docs/numerics.md`, "Point and interval evaluation agree").
-/// The point `pow` returns values outside the IEEE 1788 domain that the interval one
-/// excludes (`pow(0, 0) = 1`, `pow(-2, 2.0) = 4`).
+/// `pow(a, n)` with an exact integer `n` is `pown(a, n)`, whose domain includes negative
+/// bases; folding it with the real-exponent `pow` (domain `a >= 0`) would clip a base whose
+/// enclosure straddles 0: here the base is the real `0.1 + 0.2 - 0.30000000000000001 =
+/// -1e-17`, and the folded `pow(base, 3)` must contain `-1e-51`.
 #[test]
-#[ignore = "known bug: point pow follows IEEE 754 special cases, interval pow the 1788 domain"]
-fn point_pow_of_an_underflowed_exponent_leaves_the_interval() {
+fn folding_pow_with_an_integer_exponent_uses_pown() {
     let mut ctx = Context::new();
-    let f = implicit_expr::parse::parse(&mut ctx, "pow(x, y*y)", &[]).unwrap();
-    let tape = Tape::new(&ctx, &[f]).unwrap();
-    let p = [0.0, 1e-200, 0.0];
-    let v = Evaluator::<f64>::new(&tape).eval(&p).unwrap();
-    let x = Evaluator::<Interval<f64>>::new(&tape)
-        .eval(&p.map(point_iv))
-        .unwrap();
-    assert_eq!(x, Interval::ZERO);
-    assert!(v.is_nan() || x.contains(v), "point value {v} outside {x:?}");
+    let base =
+        implicit_expr::parse::parse(&mut ctx, "0.1 + 0.2 - 0.30000000000000001", &[]).unwrap();
+    let c = ctx.as_const(base).unwrap();
+    assert!(c.lo() < 0.0 && c.hi() > 0.0, "{c:?}");
+    let three = ctx.constant(3.0).unwrap();
+    let p = ctx.binary(BinaryOp::Pow, base, three);
+    let q = ctx.pown(base, 3);
+    let (p, q) = (ctx.as_const(p).unwrap(), ctx.as_const(q).unwrap());
+    assert!(q.lo() <= -1e-51, "pown fold {q:?}");
+    assert!(
+        p.lo() <= -1e-51,
+        "pow fold {p:?} misses the real value -1e-51 (pown fold {q:?})"
+    );
 }

@@ -105,6 +105,45 @@ impl<T: Float> Number for Interval<T> {
         a.pown(n)
     }
 
+    #[inline]
+    fn defined_unary(op: UnaryOp, a: Self) -> bool {
+        let Some((lo, hi)) = a.bounds() else {
+            return false;
+        };
+        let (zero, one) = (T::ZERO, T::ONE);
+        match op {
+            UnaryOp::Sqrt => lo >= zero,
+            UnaryOp::Ln | UnaryOp::Log10 => lo > zero,
+            UnaryOp::Asin | UnaryOp::Acos => -one <= lo && hi <= one,
+            UnaryOp::Recip => lo > zero || hi < zero,
+            UnaryOp::Tan => a
+                .tan()
+                .bounds()
+                .is_some_and(|(l, h)| l.is_finite() && h.is_finite()),
+            _ => true,
+        }
+    }
+
+    #[inline]
+    fn defined_binary(op: BinaryOp, a: Self, b: Self) -> bool {
+        let (Some((alo, _)), Some((blo, bhi))) = (a.bounds(), b.bounds()) else {
+            return false;
+        };
+        match op {
+            BinaryOp::Div => blo > T::ZERO || bhi < T::ZERO,
+            BinaryOp::Pow => alo > T::ZERO || (alo >= T::ZERO && blo > T::ZERO),
+            _ => true,
+        }
+    }
+
+    #[inline]
+    fn defined_pown(a: Self, n: i32) -> bool {
+        match a.bounds() {
+            None => false,
+            Some((lo, hi)) => n >= 0 || lo > T::ZERO || hi < T::ZERO,
+        }
+    }
+
     #[inline(always)]
     fn widen_undefined(self) -> Self {
         if self.is_empty() {
@@ -116,7 +155,9 @@ impl<T: Float> Number for Interval<T> {
 
     #[inline(always)]
     fn min_choice(a: Self, b: Self) -> (Self, Choice) {
-        let choice = if a.sup() <= b.inf() {
+        let choice = if a.is_empty() || b.is_empty() {
+            Choice::Both
+        } else if a.sup() <= b.inf() {
             Choice::Left
         } else if b.sup() <= a.inf() {
             Choice::Right
@@ -128,7 +169,9 @@ impl<T: Float> Number for Interval<T> {
 
     #[inline(always)]
     fn max_choice(a: Self, b: Self) -> (Self, Choice) {
-        let choice = if a.inf() >= b.sup() {
+        let choice = if a.is_empty() || b.is_empty() {
+            Choice::Both
+        } else if a.inf() >= b.sup() {
             Choice::Left
         } else if b.inf() >= a.sup() {
             Choice::Right

@@ -58,6 +58,30 @@ pub trait Number: Copy + Send + Sync + std::fmt::Debug + 'static {
     /// `a^n`.
     fn pown(a: Self, n: i32) -> Self;
 
+    /// For set types: whether `op` is defined at every point of `a` (`false` when part of `a`,
+    /// or all of it, lies outside the domain); point types answer `true`. Traced evaluations
+    /// use it: a region where the formula is partly undefined is not pruned, since pruning
+    /// would define the formula there.
+    #[inline(always)]
+    fn defined_unary(op: UnaryOp, a: Self) -> bool {
+        let _ = (op, a);
+        true
+    }
+
+    /// Like [`defined_unary`](Self::defined_unary) for `op(a, b)`.
+    #[inline(always)]
+    fn defined_binary(op: BinaryOp, a: Self, b: Self) -> bool {
+        let _ = (op, a, b);
+        true
+    }
+
+    /// Like [`defined_unary`](Self::defined_unary) for `a^n`.
+    #[inline(always)]
+    fn defined_pown(a: Self, n: i32) -> bool {
+        let _ = (a, n);
+        true
+    }
+
     /// For set types, an undefined (empty) result widened to the whole line; the value
     /// itself otherwise and for point types.
     ///

@@ -89,6 +89,11 @@ impl<N: Number> Evaluator<N> {
 
     /// Like [`eval`](Self::eval), also recording in `trace` (cleared first) which argument
     /// each `min`/`max` took, in tape order: the input of [`Tape::simplify`].
+    ///
+    /// Where some operation is undefined on part of its argument (`sqrt` of an interval
+    /// reaching below 0, a division by an interval holding 0, ...), every choice is recorded
+    /// as [`Choice::Both`]: the formula is then partly undefined in the region, and a pruned
+    /// tape, defined where the full one is not, would change it.
     pub fn eval_traced(&mut self, vars: &[N], trace: &mut Vec<Choice>) -> Result<N, Error> {
         self.check(vars)?;
         trace.clear();
@@ -109,11 +114,17 @@ fn run<N: Number, const TRACE: bool>(
     // changes no index and proves to the compiler that none is out of bounds.
     debug_assert!(regs.len().is_power_of_two());
     let mask = regs.len() - 1;
+    // Whether every operation was defined on all of its arguments (traced runs only).
+    let mut defined = true;
     for ins in instrs {
         let (a, b) = (ins.a as usize & mask, ins.b as usize & mask);
         let v = match ins.op {
             Opcode::Var => vars[ins.a as usize],
             Opcode::Const | Opcode::Copy => regs[a],
+            Opcode::Unary(op) if TRACE => {
+                defined &= N::defined_unary(op, regs[a]);
+                N::unary(op, regs[a])
+            }
             Opcode::Unary(op) => N::unary(op, regs[a]),
             Opcode::Binary(BinaryOp::Min) if TRACE => {
                 let (v, c) = N::min_choice(regs[a], regs[b]);
@@ -125,10 +136,23 @@ fn run<N: Number, const TRACE: bool>(
                 trace.push(c);
                 v
             }
+            Opcode::Binary(op) if TRACE => {
+                defined &= N::defined_binary(op, regs[a], regs[b]);
+                N::binary(op, regs[a], regs[b])
+            }
             Opcode::Binary(op) => N::binary(op, regs[a], regs[b]),
+            Opcode::Pown if TRACE => {
+                defined &= N::defined_pown(regs[a], ins.b as i32);
+                N::pown(regs[a], ins.b as i32)
+            }
             Opcode::Pown => N::pown(regs[a], ins.b as i32),
         };
         regs[ins.out as usize & mask] = v;
+    }
+    if TRACE && !defined {
+        // Somewhere in the region the formula is undefined: a pruned tape would be defined
+        // there (it drops the undefined branch), so nothing may be pruned.
+        trace.fill(Choice::Both);
     }
 }
 
