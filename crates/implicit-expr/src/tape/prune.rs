@@ -14,6 +14,18 @@ use crate::error::Error;
 use crate::eval::Choice;
 use crate::op::BinaryOp;
 
+/// Buffers of [`Tape::simplify`], kept per thread: a renderer prunes once per tile.
+#[derive(Default)]
+struct Scratch {
+    choice_of: Vec<Choice>,
+    live: Vec<bool>,
+    new_pos: Vec<u32>,
+}
+
+thread_local! {
+    static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch::default());
+}
+
 impl Tape {
     /// The tape valid inside the region where `choices` were recorded (by
     /// [`Evaluator::eval_traced`](crate::eval::Evaluator::eval_traced) on this tape).
@@ -31,10 +43,20 @@ impl Tape {
         if choices.iter().all(|&c| c == Choice::Both) {
             return Ok(self.clone());
         }
+        SCRATCH.with_borrow_mut(|scratch| self.simplify_with(choices, scratch))
+    }
+
+    fn simplify_with(&self, choices: &[Choice], scratch: &mut Scratch) -> Result<Tape, Error> {
         let ssa = self.ssa();
         let n = ssa.len();
+        let Scratch {
+            choice_of,
+            live,
+            new_pos,
+        } = scratch;
         // Choice index of each min/max, in SSA order.
-        let mut choice_of = vec![Choice::Both; n];
+        choice_of.clear();
+        choice_of.resize(n, Choice::Both);
         let mut k = 0;
         for (i, op) in ssa.iter().enumerate() {
             if matches!(op.op, Opcode::Binary(BinaryOp::Min | BinaryOp::Max)) {
@@ -43,7 +65,8 @@ impl Tape {
             }
         }
         // Backward pass: liveness, with decided min/max forwarding to one argument.
-        let mut live = vec![false; n];
+        live.clear();
+        live.resize(n, false);
         for &o in self.ssa_outputs() {
             live[o as usize] = true;
         }
@@ -64,7 +87,8 @@ impl Tape {
             }
         }
         // Forward pass: renumber, resolving forwarded min/max to their argument.
-        let mut new_pos = vec![u32::MAX; n];
+        new_pos.clear();
+        new_pos.resize(n, u32::MAX);
         let mut out: Vec<SsaOp> = Vec::with_capacity(n);
         let mut consts = Vec::new();
         for i in 0..n {

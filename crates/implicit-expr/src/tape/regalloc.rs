@@ -19,8 +19,36 @@ pub(super) fn allocate(
     const_count: u32,
     outputs: &[u32],
 ) -> (Vec<Instr>, Vec<u32>, u32) {
+    SCRATCH.with_borrow_mut(|scratch| allocate_with(ssa, const_count, outputs, scratch))
+}
+
+/// Buffers of [`allocate`], kept per thread so that the many small allocations of a
+/// renderer's pruning (one per tile) reuse their storage.
+#[derive(Default)]
+struct Scratch {
+    last_use: Vec<usize>,
+    reg: Vec<u32>,
+    free: Vec<u32>,
+}
+
+thread_local! {
+    static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch::default());
+}
+
+fn allocate_with(
+    ssa: &[SsaOp],
+    const_count: u32,
+    outputs: &[u32],
+    scratch: &mut Scratch,
+) -> (Vec<Instr>, Vec<u32>, u32) {
     let n = ssa.len();
-    let mut last_use = vec![0usize; n];
+    let Scratch {
+        last_use,
+        reg,
+        free,
+    } = scratch;
+    last_use.clear();
+    last_use.resize(n, 0);
     for (i, op) in ssa.iter().enumerate() {
         let (args, k) = operands(op);
         for &a in &args[..k] {
@@ -30,8 +58,9 @@ pub(super) fn allocate(
     for &o in outputs {
         last_use[o as usize] = usize::MAX;
     }
-    let mut reg = vec![u32::MAX; n];
-    let mut free: Vec<u32> = Vec::new();
+    reg.clear();
+    reg.resize(n, u32::MAX);
+    free.clear();
     let mut next = const_count;
     let mut instrs = Vec::with_capacity(n);
     for (i, op) in ssa.iter().enumerate() {
