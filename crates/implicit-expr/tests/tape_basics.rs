@@ -138,3 +138,46 @@ fn extract_drops_bound_parameters() {
         7.0
     );
 }
+
+#[test]
+fn slice_traces_match_scalar_traces() {
+    let mut c = Context::new();
+    let f = implicit_expr::parse::parse(
+        &mut c,
+        "min(max(x - 0.5, y), min(sqrt(x + y) - 2, abs(x) - 0.25))",
+        &[],
+    )
+    .unwrap();
+    let t = Tape::new(&c, &[f]).unwrap();
+    let boxes: Vec<[Interval<f64>; 3]> = (0..150)
+        .map(|k| {
+            let a = -2.0 + 0.03 * k as f64;
+            let b = 1.0 - 0.02 * k as f64;
+            [iv(a, a + 0.1), iv(b, b + 0.05), iv(0.0, 0.0)]
+        })
+        .collect();
+    let cols: Vec<Vec<Interval<f64>>> = (0..3)
+        .map(|s| boxes.iter().map(|b| b[s]).collect())
+        .collect();
+    let vars = [&cols[0][..], &cols[1][..], &cols[2][..]];
+    let mut out = vec![Interval::ZERO; boxes.len()];
+    let mut traces = vec![Vec::new(); boxes.len()];
+    SliceEvaluator::<Interval<f64>>::new(&t)
+        .eval_traced(&vars, &mut out, &mut traces)
+        .unwrap();
+    let mut e = Evaluator::<Interval<f64>>::new(&t);
+    let mut trace = Vec::new();
+    let mut decided = 0;
+    for (k, b) in boxes.iter().enumerate() {
+        let v = e.eval_traced(b, &mut trace).unwrap();
+        assert_eq!(v, out[k]);
+        assert_eq!(trace, traces[k], "box {k}");
+        decided += trace.iter().filter(|&&c| c != Choice::Both).count();
+    }
+    assert!(decided > 0);
+    assert!(
+        SliceEvaluator::<Interval<f64>>::new(&t)
+            .eval_traced(&vars, &mut out, &mut traces[1..])
+            .is_err()
+    );
+}

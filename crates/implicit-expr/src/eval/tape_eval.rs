@@ -203,19 +203,7 @@ impl<N: Number> SliceEvaluator<N> {
     ///
     /// Returns an error when fewer slots than the tape's are given or the lengths differ.
     pub fn eval(&mut self, vars: &[&[N]], out: &mut [N]) -> Result<(), Error> {
-        if vars.len() < self.tape.var_count() {
-            return Err(Error::MissingVar {
-                slot: vars.len() as u32,
-                given: vars.len(),
-            });
-        }
-        if let Some(bad) = vars.iter().position(|v| v.len() != out.len()) {
-            return Err(Error::Unsupported(format!(
-                "variable slot {bad} has {} values, the output {}",
-                vars[bad].len(),
-                out.len()
-            )));
-        }
+        self.check(vars, out.len())?;
         let output = self.tape.outputs()[0] as usize;
         let mut start = 0;
         while start < out.len() {
@@ -225,6 +213,69 @@ impl<N: Number> SliceEvaluator<N> {
             }
             out[start..start + n].copy_from_slice(&self.regs[output * SLICE_CHUNK..][..n]);
             start += n;
+        }
+        Ok(())
+    }
+
+    /// Like [`eval`](Self::eval), also recording for every input `i` in `traces[i]`
+    /// (cleared first) which argument each `min`/`max` took, as
+    /// [`Evaluator::eval_traced`] does for one input: each trace is the input of
+    /// [`Tape::simplify`] for the region of its input. Evaluates many regions (the
+    /// sub-tiles of a tile, the boxes of a screen) in one pass over the tape.
+    ///
+    /// Returns an error when the slots or lengths do not match, or `traces` does not hold
+    /// one trace per input.
+    pub fn eval_traced(
+        &mut self,
+        vars: &[&[N]],
+        out: &mut [N],
+        traces: &mut [Vec<Choice>],
+    ) -> Result<(), Error> {
+        self.check(vars, out.len())?;
+        if traces.len() != out.len() {
+            return Err(Error::Unsupported(format!(
+                "{} traces given for {} inputs",
+                traces.len(),
+                out.len()
+            )));
+        }
+        for t in traces.iter_mut() {
+            t.clear();
+        }
+        let output = self.tape.outputs()[0] as usize;
+        let mut defined = [true; SLICE_CHUNK];
+        let mut start = 0;
+        while start < out.len() {
+            let n = SLICE_CHUNK.min(out.len() - start);
+            defined[..n].fill(true);
+            let lanes = &mut traces[start..start + n];
+            for ins in self.tape.instrs() {
+                step_traced(ins, &mut self.regs, vars, start, n, lanes, &mut defined);
+            }
+            out[start..start + n].copy_from_slice(&self.regs[output * SLICE_CHUNK..][..n]);
+            for (t, &d) in lanes.iter_mut().zip(&defined[..n]) {
+                if !d {
+                    // Partly undefined region: nothing may be pruned (see `eval_traced`).
+                    t.fill(Choice::Both);
+                }
+            }
+            start += n;
+        }
+        Ok(())
+    }
+
+    fn check(&self, vars: &[&[N]], len: usize) -> Result<(), Error> {
+        if vars.len() < self.tape.var_count() {
+            return Err(Error::MissingVar {
+                slot: vars.len() as u32,
+                given: vars.len(),
+            });
+        }
+        if let Some(bad) = vars.iter().position(|v| v.len() != len) {
+            return Err(Error::Unsupported(format!(
+                "variable slot {bad} has {} values, the output {len}",
+                vars[bad].len(),
+            )));
         }
         Ok(())
     }
@@ -258,4 +309,53 @@ fn step<N: Number>(ins: &Instr, regs: &mut [N], vars: &[&[N]], start: usize, n: 
             }
         }
     }
+}
+
+/// One instruction over `n` inputs, recording `min`/`max` choices per input in `lanes` and
+/// clearing `defined[i]` where an operation is undefined on part of input `i`'s arguments.
+#[inline(always)]
+fn step_traced<N: Number>(
+    ins: &Instr,
+    regs: &mut [N],
+    vars: &[&[N]],
+    start: usize,
+    n: usize,
+    lanes: &mut [Vec<Choice>],
+    defined: &mut [bool; SLICE_CHUNK],
+) {
+    let c = SLICE_CHUNK;
+    let (a, b) = (ins.a as usize, ins.b as usize);
+    match ins.op {
+        Opcode::Binary(op @ (BinaryOp::Min | BinaryOp::Max)) => {
+            let o = ins.out as usize;
+            for i in 0..n {
+                let (x, y) = (regs[a * c + i], regs[b * c + i]);
+                let (v, choice) = if op == BinaryOp::Min {
+                    N::min_choice(x, y)
+                } else {
+                    N::max_choice(x, y)
+                };
+                regs[o * c + i] = v;
+                lanes[i].push(choice);
+            }
+            return;
+        }
+        Opcode::Unary(op) => {
+            for (i, d) in defined.iter_mut().enumerate().take(n) {
+                *d &= N::defined_unary(op, regs[a * c + i]);
+            }
+        }
+        Opcode::Binary(op) => {
+            for (i, d) in defined.iter_mut().enumerate().take(n) {
+                *d &= N::defined_binary(op, regs[a * c + i], regs[b * c + i]);
+            }
+        }
+        Opcode::Pown => {
+            for (i, d) in defined.iter_mut().enumerate().take(n) {
+                *d &= N::defined_pown(regs[a * c + i], ins.b as i32);
+            }
+        }
+        Opcode::Var | Opcode::Const | Opcode::Copy => {}
+    }
+    step(ins, regs, vars, start, n);
 }
