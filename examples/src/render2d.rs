@@ -8,8 +8,10 @@
 //! pixels span: an upper bound below zero proves every pixel inside, a lower bound at or
 //! above zero proves every pixel outside. Otherwise the `min`/`max` choices of that
 //! evaluation prune the tape ([`Tape::simplify`]), and the shorter tape is passed down to
-//! the sub-tiles; below the last level the pixels are classified by point evaluation of
-//! their centres with a [`SliceEvaluator`].
+//! the sub-tiles, which are evaluated together in one pass over it
+//! ([`SliceEvaluator::eval_traced`], one choice trace per sub-tile); below the last level
+//! the pixels are classified by point evaluation of their centres with a
+//! [`SliceEvaluator`].
 //!
 //! # Why the image equals plain per-pixel evaluation
 //!
@@ -354,6 +356,7 @@ where
     settings: &'a Settings,
     grid: Grid<T>,
     interval: Evaluator<Interval<T>>,
+    boxes: SliceEvaluator<Interval<T>>,
     point: SliceEvaluator<T>,
     trace: Vec<Choice>,
     xs: Vec<T>,
@@ -372,6 +375,7 @@ where
             settings,
             grid: Grid::new(settings),
             interval: Evaluator::new(tape),
+            boxes: SliceEvaluator::new(tape),
             point: SliceEvaluator::new(tape),
             trace: Vec::new(),
             xs: Vec::new(),
@@ -391,8 +395,17 @@ where
         self.tile(tape, 0, t, t, out)
     }
 
-    /// Renders tile `t` at `level`; `top` is the enclosing top-level tile (whose pixel
-    /// buffer `out` is).
+    /// The box of tile `t`: its edges hold every pixel centre of the tile.
+    fn bounds(&self, t: Tile) -> Result<[Interval<T>; 3], Error> {
+        let g = self.grid;
+        let x = Interval::new(g.x(t.i0 as f64), g.x(t.i1 as f64)).map_err(bad_bounds)?;
+        let y = Interval::new(g.y(t.j1 as f64), g.y(t.j0 as f64)).map_err(bad_bounds)?;
+        let z = Interval::new(g.z, g.z).map_err(bad_bounds)?;
+        Ok([x, y, z])
+    }
+
+    /// Renders tile `t` at `level`, evaluating it on its own; `top` is the enclosing
+    /// top-level tile (whose pixel buffer `out` is).
     fn tile(
         &mut self,
         tape: &Tape,
@@ -401,21 +414,38 @@ where
         top: Tile,
         out: &mut [Pixel],
     ) -> Result<(), Error> {
-        let g = self.grid;
-        // Bounds from the tile's edge indices: they hold every pixel centre of the tile.
-        let x = Interval::new(g.x(t.i0 as f64), g.x(t.i1 as f64)).map_err(bad_bounds)?;
-        let y = Interval::new(g.y(t.j1 as f64), g.y(t.j0 as f64)).map_err(bad_bounds)?;
-        let z = Interval::new(g.z, g.z).map_err(bad_bounds)?;
+        let b = self.bounds(t)?;
         let clock = self.clock();
         self.interval.set_tape(tape);
         let v = if self.settings.prune {
-            self.interval.eval_traced(&[x, y, z], &mut self.trace)?
+            self.interval.eval_traced(&b, &mut self.trace)?
         } else {
-            self.interval.eval(&[x, y, z])?
+            self.interval.eval(&b)?
         };
         if let Some(c) = clock {
             self.stats.interval_time += c.elapsed();
         }
+        let trace = std::mem::take(&mut self.trace);
+        let result = self.evaluated(tape, level, t, v, &trace, top, out);
+        self.trace = trace;
+        result
+    }
+
+    /// Continues with tile `t` once its interval value `v` (and, when pruning, the choice
+    /// `trace` of that evaluation) is known: fills it when `v` decides it, else prunes the
+    /// tape and goes down to the next level (children evaluated together in one slice pass)
+    /// or to the pixels.
+    #[allow(clippy::too_many_arguments)]
+    fn evaluated(
+        &mut self,
+        tape: &Tape,
+        level: usize,
+        t: Tile,
+        v: Interval<T>,
+        trace: &[Choice],
+        top: Tile,
+        out: &mut [Pixel],
+    ) -> Result<(), Error> {
         let stats = &mut self.stats.levels[level];
         stats.add_tape(tape.len());
         let decided = match v.bounds() {
@@ -434,7 +464,7 @@ where
         }
         let sub = if self.settings.prune {
             let clock = self.clock();
-            let sub = tape.simplify(&self.trace)?;
+            let sub = tape.simplify(trace)?;
             if let Some(c) = clock {
                 self.stats.prune_time += c.elapsed();
             }
@@ -445,23 +475,49 @@ where
         } else {
             tape.clone()
         };
-        match self.settings.tiles.get(level + 1) {
-            Some(&size) => {
-                for j0 in (t.j0..t.j1).step_by(size) {
-                    for i0 in (t.i0..t.i1).step_by(size) {
-                        let child = Tile {
-                            i0,
-                            j0,
-                            i1: (i0 + size).min(t.i1),
-                            j1: (j0 + size).min(t.j1),
-                        };
-                        self.tile(&sub, level + 1, child, top, out)?;
-                    }
-                }
-                Ok(())
+        let Some(&size) = self.settings.tiles.get(level + 1) else {
+            return self.points(&sub, t, top, out);
+        };
+        let mut children = Vec::new();
+        for j0 in (t.j0..t.j1).step_by(size) {
+            for i0 in (t.i0..t.i1).step_by(size) {
+                children.push(Tile {
+                    i0,
+                    j0,
+                    i1: (i0 + size).min(t.i1),
+                    j1: (j0 + size).min(t.j1),
+                });
             }
-            None => self.points(&sub, t, top, out),
         }
+        if !self.settings.prune {
+            for child in children {
+                self.tile(&sub, level + 1, child, top, out)?;
+            }
+            return Ok(());
+        }
+        // All children in one pass over the pruned tape, each with its own choice trace.
+        let mut cols: [Vec<Interval<T>>; 3] = Default::default();
+        for &child in &children {
+            for (col, b) in cols.iter_mut().zip(self.bounds(child)?) {
+                col.push(b);
+            }
+        }
+        let mut values = vec![Interval::ENTIRE; children.len()];
+        let mut traces = vec![Vec::new(); children.len()];
+        let clock = self.clock();
+        self.boxes.set_tape(&sub);
+        self.boxes.eval_traced(
+            &[&cols[0][..], &cols[1][..], &cols[2][..]],
+            &mut values,
+            &mut traces,
+        )?;
+        if let Some(c) = clock {
+            self.stats.interval_time += c.elapsed();
+        }
+        for ((child, v), trace) in children.into_iter().zip(values).zip(&traces) {
+            self.evaluated(&sub, level + 1, child, v, trace, top, out)?;
+        }
+        Ok(())
     }
 
     /// Classifies the pixels of tile `t` by their centres.
