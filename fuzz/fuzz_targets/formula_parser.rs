@@ -14,6 +14,8 @@ use implicit_expr::print::to_formula;
 use implicit_expr::{Context, Error, Node, NodeId};
 use libfuzzer_sys::fuzz_target;
 
+mod common;
+
 const PARAMS: [&str; 3] = ["a", "b", "t"];
 
 fuzz_target!(|data: &[u8]| {
@@ -39,13 +41,10 @@ fuzz_target!(|data: &[u8]| {
         ctx.eval::<f64>(f, &point).unwrap(),
         ctx.eval::<f64>(g, &point).unwrap(),
     );
-    // Folded constants read back from their printed values may enable or disable an
-    // identity (`0*a = 0` with an exact zero turns a NaN into 0): compare finite values.
-    let close = vf.to_bits() == vg.to_bits()
-        || !vf.is_finite()
-        || !vg.is_finite()
-        || (vf - vg).abs() <= 1e-9 * vf.abs().max(vg.abs());
-    assert!(close, "{text:?} printed as {printed:?}: {vf} vs {vg}");
+    assert!(
+        common::same_value(vf, vg),
+        "{text:?} printed as {printed:?}: {vf} vs {vg}"
+    );
 });
 
 /// Whether every constant of the graph reads back as itself from its printed form.

@@ -13,6 +13,8 @@ use implicit_expr::vm::{export_vm, import_vm};
 use implicit_expr::{Context, Error, Node, NodeId};
 use libfuzzer_sys::fuzz_target;
 
+mod common;
+
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);
     let mut ctx = Context::new();
@@ -37,13 +39,10 @@ fuzz_target!(|data: &[u8]| {
         ctx.eval::<f64>(f, &point).unwrap(),
         ctx.eval::<f64>(g, &point).unwrap(),
     );
-    // Folded constants read back from their printed values may enable or disable an
-    // identity (`0*a = 0` with an exact zero turns a NaN into 0): compare finite values.
-    let close = vf.to_bits() == vg.to_bits()
-        || !vf.is_finite()
-        || !vg.is_finite()
-        || (vf - vg).abs() <= 1e-9 * vf.abs().max(vg.abs());
-    assert!(close, "{text:?} exported as\n{vm}\n{vf} vs {vg}");
+    assert!(
+        common::same_value(vf, vg),
+        "{text:?} exported as\n{vm}\n{vf} vs {vg}"
+    );
 });
 
 /// Whether every constant of the graph reads back as itself from its `.vm` form.

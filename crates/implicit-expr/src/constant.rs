@@ -16,6 +16,20 @@ pub struct Constant {
 }
 
 impl Constant {
+    /// The exact constant 0.
+    pub const ZERO: Constant = Constant {
+        value: 0.0,
+        lo: 0.0,
+        hi: 0.0,
+    };
+
+    /// The exact constant 1.
+    pub const ONE: Constant = Constant {
+        value: 1.0,
+        lo: 1.0,
+        hi: 1.0,
+    };
+
     /// An exactly representable constant.
     ///
     /// Returns `None` for NaN or an infinity (the graph holds only finite constants).

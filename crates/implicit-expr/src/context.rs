@@ -305,7 +305,7 @@ impl Context {
                     return self.unary(UnaryOp::Neg, b);
                 }
                 if a == b {
-                    return self.intern(Node::Const(Constant::exact(0.0).expect("finite")));
+                    return self.intern(Node::Const(Constant::ZERO));
                 }
             }
             BinaryOp::Mul => {
@@ -346,7 +346,7 @@ impl Context {
     /// gives `recip(a)`, and an even `n >= 4` gives `sqr(a^(n/2))`.
     pub fn pown(&mut self, a: NodeId, n: i32) -> NodeId {
         match n {
-            0 => return self.intern(Node::Const(Constant::exact(1.0).expect("finite"))),
+            0 => return self.intern(Node::Const(Constant::ONE)),
             1 => return a,
             2 => return self.unary(UnaryOp::Sqr, a),
             -1 => return self.unary(UnaryOp::Recip, a),
@@ -442,22 +442,12 @@ impl Context {
     /// Rebuilds the nodes that depend on a replaced variable through the simplifying
     /// constructors; the others are shared.
     pub fn substitute(&mut self, root: NodeId, map: &[(Var, NodeId)]) -> NodeId {
-        let order = self.reachable(&[root]);
-        let mut new: HashMap<NodeId, NodeId> = HashMap::with_capacity(order.len());
-        for id in order {
-            let n = match *self.get(id) {
-                Node::Var(v) => map
-                    .iter()
-                    .find(|(w, _)| *w == v)
-                    .map_or(id, |&(_, node)| node),
-                Node::Const(_) => id,
-                Node::Unary(op, a) => self.unary(op, new[&a]),
-                Node::Binary(op, a, b) => self.binary(op, new[&a], new[&b]),
-                Node::Pown(a, k) => self.pown(new[&a], k),
-            };
-            new.insert(id, n);
-        }
-        new[&root]
+        let nodes = self.subgraph(root);
+        self.rebuild(&nodes, root, |c, v| {
+            map.iter()
+                .find(|(w, _)| *w == v)
+                .map_or_else(|| c.intern(Node::Var(v)), |&(_, node)| node)
+        })
     }
 
     /// A new context holding only what `root` depends on, and `root` in it. Variables keep
@@ -465,11 +455,11 @@ impl Context {
     /// uses follow in their old order (unused ones, such as parameters bound by
     /// [`substitute`](Self::substitute), are gone).
     pub fn extract(&self, root: NodeId) -> (Context, NodeId) {
-        let order = self.reachable(&[root]);
+        let nodes = self.subgraph(root);
         let mut out = Context::new();
-        let mut used: Vec<Var> = order
+        let mut used: Vec<Var> = nodes
             .iter()
-            .filter_map(|&id| match *self.get(id) {
+            .filter_map(|&(_, node)| match node {
                 Node::Var(v) if v.index() >= 3 => Some(v),
                 _ => None,
             })
@@ -478,19 +468,51 @@ impl Context {
         for v in &used {
             out.declare_var(&self.var_names[v.index()]);
         }
-        let mut new: HashMap<NodeId, NodeId> = HashMap::with_capacity(order.len());
-        for id in order {
-            let n = match *self.get(id) {
-                Node::Var(v) => out.named_var(&self.var_names[v.index()]),
-                Node::Const(c) => out.constant_enclosed(c),
-                Node::Unary(op, a) => out.unary(op, new[&a]),
-                Node::Binary(op, a, b) => out.binary(op, new[&a], new[&b]),
-                Node::Pown(a, k) => out.pown(new[&a], k),
+        let r = out.rebuild(&nodes, root, |c, v| c.named_var(&self.var_names[v.index()]));
+        (out, r)
+    }
+
+    /// Copies the graph of `root` from `src` into this context through its simplifying
+    /// constructors, each variable `v` of `src` becoming `var(self, v)` (a variable of this
+    /// context, or any expression: a ray substitutes `c + t·d` for `x`, `y`, `z`). Returns
+    /// the copy of `root`.
+    pub fn copy_graph(
+        &mut self,
+        src: &Context,
+        root: NodeId,
+        var: impl FnMut(&mut Context, Var) -> NodeId,
+    ) -> NodeId {
+        self.rebuild(&src.subgraph(root), root, var)
+    }
+
+    /// The nodes `root` depends on with their contents, in topological order.
+    fn subgraph(&self, root: NodeId) -> Vec<(NodeId, Node)> {
+        self.reachable(&[root])
+            .into_iter()
+            .map(|id| (id, *self.get(id)))
+            .collect()
+    }
+
+    /// Builds `nodes` (a [`subgraph`](Self::subgraph), possibly of another context) in this
+    /// context, mapping variables with `var`; returns the node built for `root`.
+    fn rebuild(
+        &mut self,
+        nodes: &[(NodeId, Node)],
+        root: NodeId,
+        mut var: impl FnMut(&mut Context, Var) -> NodeId,
+    ) -> NodeId {
+        let mut new: HashMap<NodeId, NodeId> = HashMap::with_capacity(nodes.len());
+        for &(id, node) in nodes {
+            let n = match node {
+                Node::Var(v) => var(self, v),
+                Node::Const(c) => self.constant_enclosed(c),
+                Node::Unary(op, a) => self.unary(op, new[&a]),
+                Node::Binary(op, a, b) => self.binary(op, new[&a], new[&b]),
+                Node::Pown(a, k) => self.pown(new[&a], k),
             };
             new.insert(id, n);
         }
-        let r = new[&root];
-        (out, r)
+        new[&root]
     }
 
     /// Evaluates `root` directly on the graph (a reference evaluator for tests and one-off

@@ -15,9 +15,7 @@
 //! point of every ray of the beam for `t ∈ T`, so `0 ∉ g(T)` proves that no ray of the beam
 //! meets the surface for `t ∈ T` (the rejection test).
 
-use std::collections::HashMap;
-
-use crate::context::{Context, Node, NodeId, Var};
+use crate::context::{Context, NodeId, Var};
 use crate::error::Error;
 use crate::eval::{Evaluator, Number};
 use crate::tape::Tape;
@@ -55,23 +53,13 @@ impl RayFunction {
             // Parameter names cannot clash with the ray's own: prefix them in the ray context.
             param_nodes.push(rc.named_var(&format!("param:{p}")));
         }
-        let mut map: HashMap<NodeId, NodeId> = HashMap::new();
-        for id in ctx.reachable(&[f]) {
-            let n = match *ctx.get(id) {
-                Node::Var(v) if v.index() < 3 => {
-                    let i = v.index();
-                    let td = rc.mul(t, d[i]);
-                    rc.add(c[i], td)
-                }
-                Node::Var(v) => param_nodes[v.index() - 3],
-                Node::Const(k) => rc.constant_enclosed(k),
-                Node::Unary(op, a) => rc.unary(op, map[&a]),
-                Node::Binary(op, a, b) => rc.binary(op, map[&a], map[&b]),
-                Node::Pown(a, n) => rc.pown(map[&a], n),
-            };
-            map.insert(id, n);
-        }
-        let g = map[&f];
+        let g = rc.copy_graph(ctx, f, |rc, v| match v.index() {
+            i @ 0..3 => {
+                let td = rc.mul(t, d[i]);
+                rc.add(c[i], td)
+            }
+            i => param_nodes[i - 3],
+        });
         let dg = rc.deriv(g, T);
         Ok(Self {
             g: Tape::new(&rc, &[g])?,
@@ -127,7 +115,7 @@ impl<N: Number> RayEvaluator<N> {
                 params.len()
             )));
         }
-        let zero = N::constant(&crate::Constant::exact(0.0).expect("finite"));
+        let zero = N::constant(&crate::Constant::ZERO);
         let mut vars = vec![zero; RAY_VARS.len()];
         vars.extend_from_slice(params);
         Ok(Self {

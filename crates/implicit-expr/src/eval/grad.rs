@@ -105,7 +105,7 @@ impl<T: Float> GradScalar for Interval<T> {
 impl<N: GradScalar> Grad<N> {
     /// A constant (zero gradient).
     pub fn constant_value(v: N) -> Self {
-        let zero = N::constant(&Constant::exact(0.0).expect("finite"));
+        let zero = N::constant(&Constant::ZERO);
         Self { v, d: [zero; 3] }
     }
 
@@ -115,7 +115,7 @@ impl<N: GradScalar> Grad<N> {
     /// If `axis > 2`.
     pub fn var(v: N, axis: usize) -> Self {
         let mut g = Self::constant_value(v);
-        g.d[axis] = N::constant(&Constant::exact(1.0).expect("finite"));
+        g.d[axis] = N::constant(&Constant::ONE);
         g
     }
 

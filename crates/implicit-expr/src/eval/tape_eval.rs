@@ -1,6 +1,7 @@
 //! The walk over a register tape, for one point (or box) at a time and for slices.
 
 use super::{Choice, Number};
+use crate::constant::Constant;
 use crate::error::Error;
 use crate::op::BinaryOp;
 use crate::tape::{Instr, Opcode, Tape};
@@ -13,33 +14,37 @@ pub struct Evaluator<N> {
     regs: Vec<N>,
 }
 
+/// The register file of `width` lanes per register for a tape: constant `i` fills the
+/// lanes of register `i`, the working registers start as zeros (each is written before it is
+/// read). The register count is padded to a power of two, so that the scalar loop can index
+/// with a mask instead of a bounds check.
+fn load_registers<N: Number>(tape: &Tape, width: usize, regs: &mut Vec<N>) {
+    regs.clear();
+    regs.resize(
+        tape.reg_count().next_power_of_two() * width,
+        N::constant(&Constant::ZERO),
+    );
+    for (lanes, c) in regs.chunks_exact_mut(width).zip(tape.consts()) {
+        lanes.fill(N::constant(c));
+    }
+}
+
 impl<N: Number> Evaluator<N> {
     /// An evaluator for `tape`.
     pub fn new(tape: &Tape) -> Self {
-        let mut e = Self {
+        let mut regs = Vec::new();
+        load_registers(tape, 1, &mut regs);
+        Self {
             tape: tape.clone(),
-            regs: Vec::new(),
-        };
-        e.load_consts();
-        e
-    }
-
-    fn load_consts(&mut self) {
-        self.regs.clear();
-        self.regs.extend(self.tape.consts().iter().map(N::constant));
-        // Working registers start as a copy of any value; every one is written before it
-        // is read.
-        let filler = N::constant(&crate::constant::Constant::exact(0.0).expect("finite"));
-        // A power-of-two length lets the loop index with a mask instead of a bounds check.
-        self.regs
-            .resize(self.tape.reg_count().next_power_of_two(), filler);
+            regs,
+        }
     }
 
     /// Switches to another tape, reusing the register storage.
     pub fn set_tape(&mut self, tape: &Tape) {
         if !self.tape.ptr_eq(tape) {
             self.tape = tape.clone();
-            self.load_consts();
+            load_registers(tape, 1, &mut self.regs);
         }
     }
 
@@ -121,11 +126,12 @@ fn run<N: Number, const TRACE: bool>(
         let v = match ins.op {
             Opcode::Var => vars[ins.a as usize],
             Opcode::Const | Opcode::Copy => regs[a],
-            Opcode::Unary(op) if TRACE => {
-                defined &= N::defined_unary(op, regs[a]);
+            Opcode::Unary(op) => {
+                if TRACE {
+                    defined &= N::defined_unary(op, regs[a]);
+                }
                 N::unary(op, regs[a])
             }
-            Opcode::Unary(op) => N::unary(op, regs[a]),
             Opcode::Binary(BinaryOp::Min) if TRACE => {
                 let (v, c) = N::min_choice(regs[a], regs[b]);
                 trace.push(c);
@@ -136,16 +142,18 @@ fn run<N: Number, const TRACE: bool>(
                 trace.push(c);
                 v
             }
-            Opcode::Binary(op) if TRACE => {
-                defined &= N::defined_binary(op, regs[a], regs[b]);
+            Opcode::Binary(op) => {
+                if TRACE {
+                    defined &= N::defined_binary(op, regs[a], regs[b]);
+                }
                 N::binary(op, regs[a], regs[b])
             }
-            Opcode::Binary(op) => N::binary(op, regs[a], regs[b]),
-            Opcode::Pown if TRACE => {
-                defined &= N::defined_pown(regs[a], ins.b as i32);
+            Opcode::Pown => {
+                if TRACE {
+                    defined &= N::defined_pown(regs[a], ins.b as i32);
+                }
                 N::pown(regs[a], ins.b as i32)
             }
-            Opcode::Pown => N::pown(regs[a], ins.b as i32),
         };
         regs[ins.out as usize & mask] = v;
     }
@@ -171,22 +179,11 @@ pub struct SliceEvaluator<N> {
 impl<N: Number> SliceEvaluator<N> {
     /// An evaluator for `tape`.
     pub fn new(tape: &Tape) -> Self {
-        let mut e = Self {
+        let mut regs = Vec::new();
+        load_registers(tape, SLICE_CHUNK, &mut regs);
+        Self {
             tape: tape.clone(),
-            regs: Vec::new(),
-        };
-        e.load_consts();
-        e
-    }
-
-    fn load_consts(&mut self) {
-        let filler = N::constant(&crate::constant::Constant::exact(0.0).expect("finite"));
-        self.regs.clear();
-        self.regs
-            .resize(self.tape.reg_count() * SLICE_CHUNK, filler);
-        for (i, c) in self.tape.consts().iter().enumerate() {
-            let v = N::constant(c);
-            self.regs[i * SLICE_CHUNK..(i + 1) * SLICE_CHUNK].fill(v);
+            regs,
         }
     }
 
@@ -194,7 +191,7 @@ impl<N: Number> SliceEvaluator<N> {
     pub fn set_tape(&mut self, tape: &Tape) {
         if !self.tape.ptr_eq(tape) {
             self.tape = tape.clone();
-            self.load_consts();
+            load_registers(tape, SLICE_CHUNK, &mut self.regs);
         }
     }
 

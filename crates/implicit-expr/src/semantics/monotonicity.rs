@@ -349,18 +349,7 @@ pub(crate) fn variable_partials(
     for name in ctx.var_names().iter().skip(3) {
         c.declare_var(name);
     }
-    let mut map: HashMap<NodeId, NodeId> = HashMap::new();
-    for id in ctx.reachable(&[f]) {
-        let n = match *ctx.get(id) {
-            Node::Var(v) => c.var(v)?,
-            Node::Const(k) => c.constant_enclosed(k),
-            Node::Unary(op, a) => c.unary(op, map[&a]),
-            Node::Pown(a, n) => c.pown(map[&a], n),
-            Node::Binary(op, a, b) => c.binary(op, map[&a], map[&b]),
-        };
-        map.insert(id, n);
-    }
-    let g = map[&f];
+    let g = c.copy_graph(ctx, f, |c, v| c.named_var(&ctx.var_names()[v.index()]));
     let roots: Vec<NodeId> = vars.iter().map(|&v| c.deriv(g, v)).collect();
     let tape = Tape::new(&c, &roots)?;
     let mut eval = Evaluator::new(&tape);
