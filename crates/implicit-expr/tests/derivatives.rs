@@ -11,21 +11,9 @@ use implicit_expr::{
 };
 use interval_core::Interval;
 use proptest::prelude::*;
-use proptest::test_runner::Config;
 
-/// The test configuration: `cases` cases, times `INTERVAL_CORE_TEST_SCALE`.
-fn config(cases: u32) -> Config {
-    let scale = std::env::var("INTERVAL_CORE_TEST_SCALE")
-        .ok()
-        .and_then(|v| v.parse::<u32>().ok())
-        .filter(|&v| v > 0)
-        .unwrap_or(1);
-    Config {
-        cases: cases.saturating_mul(scale),
-        failure_persistence: None,
-        ..Config::default()
-    }
-}
+mod common;
+use common::config;
 
 fn iv(lo: f64, hi: f64) -> Interval<f64> {
     Interval::new(lo, hi).unwrap()

@@ -40,7 +40,6 @@ use implicit_expr::{
 };
 use interval_core::{Inner, Interval, Modal, Outer};
 use proptest::prelude::*;
-use proptest::test_runner::Config;
 use rug::Float;
 use rug::float::Constant as MpfrConstant;
 use rug::ops::Pow;
@@ -65,19 +64,8 @@ fn prec() -> u32 {
 /// Number of variable slots: `x`, `y`, `z` and the parameter `p`.
 const SLOTS: usize = 4;
 
-/// The test configuration: `cases` cases, times `INTERVAL_CORE_TEST_SCALE`.
-fn config(cases: u32) -> Config {
-    let scale = std::env::var("INTERVAL_CORE_TEST_SCALE")
-        .ok()
-        .and_then(|v| v.parse::<u32>().ok())
-        .filter(|&v| v > 0)
-        .unwrap_or(1);
-    Config {
-        cases: cases.saturating_mul(scale),
-        failure_persistence: None,
-        ..Config::default()
-    }
-}
+mod common;
+use common::config;
 
 // -------------------------------------------------------------------------------------------
 // Random expressions
