@@ -100,6 +100,21 @@ impl UnaryOp {
         UnaryOp::SlopeNot,
     ];
 
+    /// Whether the operation jumps somewhere inside its domain (the step functions and their
+    /// slopes). Every other unary operation is continuous wherever it is defined.
+    pub fn is_discontinuous(self) -> bool {
+        matches!(
+            self,
+            UnaryOp::Floor
+                | UnaryOp::Ceil
+                | UnaryOp::Round
+                | UnaryOp::Not
+                | UnaryOp::SlopeFloor
+                | UnaryOp::SlopeRound
+                | UnaryOp::SlopeNot
+        )
+    }
+
     /// The name used in formulas and in printed graphs (`neg` prints as a prefix `-`).
     pub fn name(self) -> &'static str {
         match self {

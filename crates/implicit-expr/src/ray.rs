@@ -99,6 +99,7 @@ pub struct RayEvaluator<N> {
     g_dg: Evaluator<N>,
     vars: Vec<N>,
     out: [N; 2],
+    continuous: bool,
 }
 
 impl<N: Number> RayEvaluator<N> {
@@ -123,6 +124,7 @@ impl<N: Number> RayEvaluator<N> {
             g_dg: Evaluator::new(&f.g_dg),
             vars,
             out: [zero; 2],
+            continuous: f.g.is_continuous(),
         })
     }
 
@@ -138,6 +140,18 @@ impl<N: Number> RayEvaluator<N> {
         self.g
             .eval(&self.vars)
             .expect("slot count checked at construction")
+    }
+
+    /// `g(t)`, and whether `g` is proven continuous over the region: every operation defined
+    /// on all of its arguments and none of them a step function. A sign change of `g` between
+    /// two parameters proves a root between them only where this holds.
+    pub fn g_checked(&mut self, t: N) -> (N, bool) {
+        self.vars[T.index()] = t;
+        let (v, defined) = self
+            .g
+            .eval_defined(&self.vars)
+            .expect("slot count checked at construction");
+        (v, defined && self.continuous)
     }
 
     /// `(g(t), g'(t))`.

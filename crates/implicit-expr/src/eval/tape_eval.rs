@@ -69,8 +69,21 @@ impl<N: Number> Evaluator<N> {
     /// Returns an error when fewer values than the tape's variable slots are given.
     pub fn eval(&mut self, vars: &[N]) -> Result<N, Error> {
         self.check(vars)?;
-        run::<N, false>(self.tape.instrs(), &mut self.regs, vars, &mut Vec::new());
+        run::<N, false, false>(self.tape.instrs(), &mut self.regs, vars, &mut Vec::new());
         Ok(self.regs[self.tape.outputs()[0] as usize])
+    }
+
+    /// Like [`eval`](Self::eval), also telling whether every operation was defined on all of
+    /// its arguments (for set types: at every point of the region). Together with
+    /// [`Tape::is_continuous`] this proves the formula continuous over the region, which a
+    /// sign-change argument (the inclusion test of a beam) needs.
+    ///
+    /// Returns an error when fewer values than the tape's variable slots are given.
+    pub fn eval_defined(&mut self, vars: &[N]) -> Result<(N, bool), Error> {
+        self.check(vars)?;
+        let defined =
+            run::<N, false, true>(self.tape.instrs(), &mut self.regs, vars, &mut Vec::new());
+        Ok((self.regs[self.tape.outputs()[0] as usize], defined))
     }
 
     /// Every output at `vars`, written to `out` (which must hold one value per output).
@@ -85,7 +98,7 @@ impl<N: Number> Evaluator<N> {
                 self.tape.outputs().len()
             )));
         }
-        run::<N, false>(self.tape.instrs(), &mut self.regs, vars, &mut Vec::new());
+        run::<N, false, false>(self.tape.instrs(), &mut self.regs, vars, &mut Vec::new());
         for (o, &r) in out.iter_mut().zip(self.tape.outputs()) {
             *o = self.regs[r as usize];
         }
@@ -102,24 +115,26 @@ impl<N: Number> Evaluator<N> {
     pub fn eval_traced(&mut self, vars: &[N], trace: &mut Vec<Choice>) -> Result<N, Error> {
         self.check(vars)?;
         trace.clear();
-        run::<N, true>(self.tape.instrs(), &mut self.regs, vars, trace);
+        run::<N, true, false>(self.tape.instrs(), &mut self.regs, vars, trace);
         Ok(self.regs[self.tape.outputs()[0] as usize])
     }
 }
 
-/// The interpreter loop. `TRACE` selects choice recording at compile time.
+/// The interpreter loop. `TRACE` selects choice recording and `CHECK` the definedness check
+/// at compile time; returns whether every operation was defined on all of its arguments
+/// (always `true` when neither is selected).
 #[inline(always)]
-fn run<N: Number, const TRACE: bool>(
+fn run<N: Number, const TRACE: bool, const CHECK: bool>(
     instrs: &[Instr],
     regs: &mut [N],
     vars: &[N],
     trace: &mut Vec<Choice>,
-) {
+) -> bool {
     // `regs.len()` is a power of two above every register index of the tape, so masking
     // changes no index and proves to the compiler that none is out of bounds.
     debug_assert!(regs.len().is_power_of_two());
     let mask = regs.len() - 1;
-    // Whether every operation was defined on all of its arguments (traced runs only).
+    // Whether every operation was defined on all of its arguments (traced and checked runs).
     let mut defined = true;
     for ins in instrs {
         let (a, b) = (ins.a as usize & mask, ins.b as usize & mask);
@@ -127,7 +142,7 @@ fn run<N: Number, const TRACE: bool>(
             Opcode::Var => vars[ins.a as usize],
             Opcode::Const | Opcode::Copy => regs[a],
             Opcode::Unary(op) => {
-                if TRACE {
+                if TRACE || CHECK {
                     defined &= N::defined_unary(op, regs[a]);
                 }
                 N::unary(op, regs[a])
@@ -143,13 +158,13 @@ fn run<N: Number, const TRACE: bool>(
                 v
             }
             Opcode::Binary(op) => {
-                if TRACE {
+                if TRACE || CHECK {
                     defined &= N::defined_binary(op, regs[a], regs[b]);
                 }
                 N::binary(op, regs[a], regs[b])
             }
             Opcode::Pown => {
-                if TRACE {
+                if TRACE || CHECK {
                     defined &= N::defined_pown(regs[a], ins.b as i32);
                 }
                 N::pown(regs[a], ins.b as i32)
@@ -162,6 +177,7 @@ fn run<N: Number, const TRACE: bool>(
         // there (it drops the undefined branch), so nothing may be pruned.
         trace.fill(Choice::Both);
     }
+    defined
 }
 
 /// Number of inputs a [`SliceEvaluator`] processes per pass over the tape.

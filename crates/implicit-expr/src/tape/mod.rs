@@ -190,6 +190,17 @@ impl Tape {
         self.0.var_count as usize
     }
 
+    /// Whether every operation of the tape is continuous on its domain: no step function
+    /// (`floor`, `ceil`, `round`, `not`) and no slope of one. On a region where
+    /// [`Evaluator::eval_defined`](crate::Evaluator::eval_defined) reports every operation
+    /// defined, such a tape is then a continuous function of its variables.
+    pub fn is_continuous(&self) -> bool {
+        self.instrs().iter().all(|ins| match ins.op {
+            Opcode::Unary(op) => !op.is_discontinuous(),
+            _ => true,
+        })
+    }
+
     /// Number of `min`/`max` operations: the length of a choice trace.
     pub fn choice_count(&self) -> usize {
         self.0.choice_count as usize

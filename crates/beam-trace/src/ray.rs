@@ -1,0 +1,140 @@
+//! Rays and beams (thesis 5.4.1), and the evaluator that restricts a scene function to one.
+//!
+//! A [`Ray`] is a point origin and a point direction; a [`Beam`] is the set of rays whose
+//! origin lies in a box and whose direction lies in a box (the eye and a screen area for a
+//! primary beam, a surface patch and a light for a shadow beam). Points on a ray are
+//! `origin + t · dir`; for a beam, `origin + T · dir` encloses the points of every ray.
+
+use glam::DVec3;
+use implicit_expr::{RayEvaluator, RayFunction};
+use interval_core::Interval;
+
+use crate::root::RayFn;
+
+/// A box in space: one interval per axis.
+pub type IBox = [Interval<f64>; 3];
+
+/// The degenerate interval `[x, x]` (`x` finite).
+#[inline]
+pub fn ipoint(x: f64) -> Interval<f64> {
+    Interval::new_unchecked(x, x)
+}
+
+/// `[lo, hi]` (the caller guarantees `lo <= hi`, both not NaN).
+#[inline]
+pub fn ival(lo: f64, hi: f64) -> Interval<f64> {
+    debug_assert!(lo <= hi, "[{lo}, {hi}]");
+    Interval::new_unchecked(lo, hi)
+}
+
+/// A box of one point.
+pub fn point_box(p: DVec3) -> IBox {
+    [ipoint(p.x), ipoint(p.y), ipoint(p.z)]
+}
+
+/// A ray `origin + t · dir`.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Ray {
+    /// Origin.
+    pub origin: DVec3,
+    /// Direction (not necessarily unit length).
+    pub dir: DVec3,
+}
+
+impl Ray {
+    /// The point at parameter `t`.
+    pub fn at(&self, t: f64) -> DVec3 {
+        self.origin + t * self.dir
+    }
+
+    /// The ray as a beam of one ray.
+    pub fn beam(&self) -> Beam {
+        Beam {
+            origin: point_box(self.origin),
+            dir: point_box(self.dir),
+        }
+    }
+}
+
+/// A beam: every ray with origin in `origin` and direction in `dir`.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Beam {
+    /// Box of origins (a point box for primary beams).
+    pub origin: IBox,
+    /// Box of directions.
+    pub dir: IBox,
+}
+
+impl Beam {
+    /// An enclosure of the points of every ray of the beam for `t ∈ t`.
+    pub fn points(&self, t: Interval<f64>) -> IBox {
+        std::array::from_fn(|i| self.origin[i] + t * self.dir[i])
+    }
+
+    /// The central ray (midpoints of the boxes).
+    pub fn central_ray(&self) -> Ray {
+        Ray {
+            origin: DVec3::new(
+                self.origin[0].mid(),
+                self.origin[1].mid(),
+                self.origin[2].mid(),
+            ),
+            dir: DVec3::new(self.dir[0].mid(), self.dir[1].mid(), self.dir[2].mid()),
+        }
+    }
+}
+
+/// Evaluates `g` and `g'` of a [`RayFunction`] on one ray or beam at a time: the
+/// renderer's [`RayFn`]. Owns its scratch space; make one per thread.
+#[derive(Clone, Debug)]
+pub struct BeamEval {
+    interval: RayEvaluator<Interval<f64>>,
+    point: RayEvaluator<f64>,
+}
+
+impl BeamEval {
+    /// An evaluator for `f` (a function without free parameters).
+    pub fn new(f: &RayFunction) -> Self {
+        Self {
+            interval: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
+            point: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
+        }
+    }
+
+    /// Sets the beam the following evaluations are about.
+    pub fn set_beam(&mut self, beam: &Beam) {
+        self.interval.set_ray(beam.origin, beam.dir);
+        let c = beam.central_ray();
+        self.point.set_ray(c.origin.to_array(), c.dir.to_array());
+    }
+
+    /// Sets a single ray.
+    pub fn set_ray(&mut self, ray: &Ray) {
+        self.interval
+            .set_ray(point_box(ray.origin), point_box(ray.dir));
+        self.point
+            .set_ray(ray.origin.to_array(), ray.dir.to_array());
+    }
+}
+
+impl RayFn for BeamEval {
+    #[inline]
+    fn g(&mut self, t: Interval<f64>) -> Interval<f64> {
+        self.interval.g(t)
+    }
+
+    #[inline]
+    fn g_dg(&mut self, t: Interval<f64>) -> (Interval<f64>, Interval<f64>) {
+        self.interval.g_dg(t)
+    }
+
+    #[inline]
+    fn g_checked(&mut self, t: Interval<f64>) -> (Interval<f64>, bool) {
+        self.interval.g_checked(t)
+    }
+
+    #[inline]
+    fn g_point(&mut self, t: f64) -> f64 {
+        self.point.g(t)
+    }
+}

@@ -1,0 +1,253 @@
+//! The compiled geometry of a scene: leaf surfaces, CSG objects, the scene function.
+
+use glam::DVec3;
+use implicit_expr::{Context, Evaluator, Grad, NodeId, RayFunction, Tape};
+use interval_core::Interval;
+
+use crate::error::Error;
+use crate::ray::{BeamEval, IBox};
+use crate::scene::Material;
+
+/// A leaf surface `f(x, y, z) = 0` (parameters bound, transform applied), with the solid
+/// `f < 0` on its inside.
+#[derive(Clone, Debug)]
+pub struct Leaf {
+    /// Name (from the scene file).
+    pub name: String,
+    /// The function, in the geometry's context.
+    pub node: NodeId,
+    /// Material.
+    pub material: Material,
+    /// Bounding box (in world coordinates).
+    pub bounds: IBox,
+}
+
+/// A CSG tree over leaves (point-set operations, thesis 6.3).
+#[derive(Clone, Debug, PartialEq, Eq, Hash)]
+pub enum Csg {
+    /// Leaf `i` of [`Geometry::leaves`].
+    Leaf(usize),
+    /// Union of the children (`min`).
+    Union(Vec<Csg>),
+    /// Intersection of the children (`max`).
+    Intersection(Vec<Csg>),
+    /// The first minus the second (`max(a, −b)`).
+    Difference(Box<Csg>, Box<Csg>),
+}
+
+impl Csg {
+    /// The function of the tree in `ctx`, from the leaves' functions.
+    pub fn build(&self, ctx: &mut Context, leaves: &[NodeId]) -> NodeId {
+        match self {
+            Csg::Leaf(i) => leaves[*i],
+            Csg::Union(c) | Csg::Intersection(c) => {
+                let union = matches!(self, Csg::Union(_));
+                let mut acc = c[0].build(ctx, leaves);
+                for child in &c[1..] {
+                    let n = child.build(ctx, leaves);
+                    acc = if union {
+                        ctx.min(acc, n)
+                    } else {
+                        ctx.max(acc, n)
+                    };
+                }
+                acc
+            }
+            Csg::Difference(a, b) => {
+                let a = a.build(ctx, leaves);
+                let b = b.build(ctx, leaves);
+                let nb = ctx.neg(b);
+                ctx.max(a, nb)
+            }
+        }
+    }
+
+    /// The leaves the tree uses.
+    pub fn leaves(&self, out: &mut Vec<usize>) {
+        match self {
+            Csg::Leaf(i) => out.push(*i),
+            Csg::Union(c) | Csg::Intersection(c) => c.iter().for_each(|c| c.leaves(out)),
+            Csg::Difference(a, b) => {
+                a.leaves(out);
+                b.leaves(out);
+            }
+        }
+    }
+}
+
+/// The compiled geometry of a scene.
+#[derive(Clone, Debug)]
+pub struct Geometry {
+    ctx: Context,
+    leaves: Vec<Leaf>,
+    objects: Vec<Csg>,
+    root: NodeId,
+    bounds: IBox,
+    ray: RayFunction,
+    f_tape: Tape,
+    leaf_tape: Tape,
+}
+
+impl Geometry {
+    /// Compiles the scene function: the union of `objects` (CSG trees over `leaves`, whose
+    /// nodes live in `ctx`, a context with the variables `x y z` only).
+    ///
+    /// Returns an error when there is no object, a tree names a missing leaf, the context
+    /// has free parameters, or a tape cannot be built.
+    pub fn new(mut ctx: Context, leaves: Vec<Leaf>, objects: Vec<Csg>) -> Result<Self, Error> {
+        let setup = |m: String| Error::Setting {
+            name: "geometry".into(),
+            message: m,
+        };
+        if objects.is_empty() {
+            return Err(setup("the scene has no surface".into()));
+        }
+        if ctx.var_count() > 3 {
+            return Err(setup(format!(
+                "unbound parameters: {}",
+                ctx.var_names()[3..].join(", ")
+            )));
+        }
+        let mut used = Vec::new();
+        for o in &objects {
+            o.leaves(&mut used);
+        }
+        if let Some(&bad) = used.iter().find(|&&i| i >= leaves.len()) {
+            return Err(setup(format!(
+                "CSG names leaf {bad}, there are {}",
+                leaves.len()
+            )));
+        }
+        let nodes: Vec<NodeId> = leaves.iter().map(|l| l.node).collect();
+        let mut root = objects[0].build(&mut ctx, &nodes);
+        for o in &objects[1..] {
+            let n = o.build(&mut ctx, &nodes);
+            root = ctx.min(root, n);
+        }
+        let mut bounds = leaves[used[0]].bounds;
+        for &i in &used[1..] {
+            for (b, l) in bounds.iter_mut().zip(leaves[i].bounds) {
+                *b = b.convex_hull(l);
+            }
+        }
+        let ray = RayFunction::new(&ctx, root)?;
+        let f_tape = Tape::new(&ctx, &[root])?;
+        let leaf_tape = Tape::new(&ctx, &nodes)?;
+        Ok(Self {
+            ctx,
+            leaves,
+            objects,
+            root,
+            bounds,
+            ray,
+            f_tape,
+            leaf_tape,
+        })
+    }
+
+    /// The expression graph (leaves, objects and the scene function).
+    pub fn context(&self) -> &Context {
+        &self.ctx
+    }
+
+    /// The scene function `f = min(objects)`.
+    pub fn root(&self) -> NodeId {
+        self.root
+    }
+
+    /// The leaf surfaces.
+    pub fn leaves(&self) -> &[Leaf] {
+        &self.leaves
+    }
+
+    /// The top-level CSG objects.
+    pub fn objects(&self) -> &[Csg] {
+        &self.objects
+    }
+
+    /// The scene bounds: the hull of the leaves' boxes. Rays are searched only inside it.
+    pub fn bounds(&self) -> IBox {
+        self.bounds
+    }
+
+    /// `g` and `g'` of the scene function.
+    pub fn ray_function(&self) -> &RayFunction {
+        &self.ray
+    }
+
+    /// The tape of the scene function in `x y z`.
+    pub fn tape(&self) -> &Tape {
+        &self.f_tape
+    }
+
+    /// Per-thread evaluators of this geometry.
+    pub fn evaluator(&self) -> GeometryEval {
+        GeometryEval {
+            beam: BeamEval::new(&self.ray),
+            grad: Evaluator::new(&self.f_tape),
+            igrad: Evaluator::new(&self.f_tape),
+            interval: Evaluator::new(&self.f_tape),
+            leaves: Evaluator::new(&self.leaf_tape),
+            leaf_values: vec![0.0; self.leaves.len()],
+        }
+    }
+}
+
+/// Evaluators of a [`Geometry`] for one thread: `g`/`g'` on rays and beams, the gradient
+/// (normals), interval values on boxes, and which leaf a point lies on.
+#[derive(Clone, Debug)]
+pub struct GeometryEval {
+    /// `g` and `g'` of the scene function on rays and beams.
+    pub beam: BeamEval,
+    grad: Evaluator<Grad<f64>>,
+    igrad: Evaluator<Grad<Interval<f64>>>,
+    interval: Evaluator<Interval<f64>>,
+    leaves: Evaluator<f64>,
+    leaf_values: Vec<f64>,
+}
+
+impl GeometryEval {
+    /// The gradient of the scene function at `p` (rounded to nearest).
+    pub fn gradient(&mut self, p: DVec3) -> DVec3 {
+        let g = self
+            .grad
+            .eval(&Grad::point(p.x, p.y, p.z))
+            .expect("tape in x y z");
+        DVec3::new(g.d[0], g.d[1], g.d[2])
+    }
+
+    /// The unit normal at `p`, or `None` where the gradient vanishes or is not finite.
+    pub fn normal(&mut self, p: DVec3) -> Option<DVec3> {
+        let g = self.gradient(p);
+        let n = g.normalize_or_zero();
+        (n != DVec3::ZERO && n.is_finite()).then_some(n)
+    }
+
+    /// Enclosures of the scene function and its gradient over a box.
+    pub fn gradient_box(&mut self, b: &IBox) -> (Interval<f64>, IBox) {
+        let vars = Grad::point(b[0], b[1], b[2]);
+        let g = self.igrad.eval(&vars).expect("tape in x y z");
+        (g.v, g.d)
+    }
+
+    /// An enclosure of the scene function over a box.
+    pub fn value_box(&mut self, b: &IBox) -> Interval<f64> {
+        self.interval.eval(b).expect("tape in x y z")
+    }
+
+    /// The leaf whose surface passes nearest `p` (smallest `|f_leaf(p)|`): whose material
+    /// shades a hit at `p`.
+    pub fn leaf_at(&mut self, p: DVec3) -> usize {
+        self.leaves
+            .eval_outputs(&[p.x, p.y, p.z], &mut self.leaf_values)
+            .expect("tape in x y z");
+        let mut best = (f64::INFINITY, 0);
+        for (i, v) in self.leaf_values.iter().enumerate() {
+            let a = v.abs();
+            if a < best.0 {
+                best = (a, i);
+            }
+        }
+        best.1
+    }
+}

@@ -1,0 +1,149 @@
+//! The scene model: camera, lights, materials, surfaces combined by CSG, render settings.
+//!
+//! A [`Scene`] is what the renderer consumes. It is built from a TOML scene file
+//! ([`Scene::from_toml`], [`Scene::load`]) or from the built-in default
+//! ([`Scene::default_scene`]). Its geometry is compiled once into one expression graph:
+//! each leaf surface (formula, `.vm` file or catalog name, with its parameters bound and its
+//! affine transform applied), CSG nodes as `min`/`max` (union = `min`, intersection =
+//! `max`, difference `a − b` = `max(a, −b)`: the point-set operations of thesis 6.3), and
+//! the scene function the union of the top-level objects.
+
+mod file;
+mod geometry;
+
+pub use file::DEFAULT_SCENE;
+pub use geometry::{Csg, Geometry, Leaf};
+
+use glam::DVec3;
+
+use crate::camera::Camera;
+use crate::root::{RootMethod, RootSettings};
+
+/// Phong material (thesis eq. 2.6).
+#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Material {
+    /// Diffuse reflectance `c_r` per channel, in `[0, 1]`.
+    pub color: [f32; 3],
+    /// Weight of the highlight term.
+    pub specular: f32,
+    /// Highlight exponent `p`.
+    pub shininess: f32,
+}
+
+impl Default for Material {
+    fn default() -> Self {
+        Self {
+            color: [0.8, 0.8, 0.8],
+            specular: 0.3,
+            shininess: 32.0,
+        }
+    }
+}
+
+/// A point light.
+#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
+pub struct PointLight {
+    /// Position.
+    pub position: DVec3,
+    /// Colour times intensity (`c_l` per channel).
+    pub color: [f32; 3],
+}
+
+/// A light source.
+#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
+pub enum Light {
+    /// A point light: hard shadows.
+    Point(PointLight),
+}
+
+/// Anti-aliasing mode.
+#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
+pub enum AaMode {
+    /// One ray per pixel (the screen box structure traces more in undecided boxes).
+    None,
+    /// Interval anti-aliasing (thesis 5.5.2): one beam per pixel, split in four where the
+    /// beam is undecided or the normals vary, to `max_depth`.
+    Iaa {
+        /// Largest subdivision depth (thesis: 4).
+        max_depth: u32,
+        /// Largest width of the normal-variation estimator for a sub-pixel to be shaded once.
+        threshold: f64,
+    },
+    /// `n × n` stratified rays per pixel (point-sampling supersampling).
+    Supersample(u32),
+}
+
+/// How primary visibility is computed.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum PrimaryMode {
+    /// The screen box structure of thesis 5.4 (beams classify boxes; 1 ray per pixel in
+    /// Hit boxes, `rays_per_undecided` in Undecided ones).
+    ScreenBoxes,
+    /// Classic interval ray casting: `rays_per_pixel` rays in every pixel.
+    PerPixel,
+}
+
+/// Render settings.
+#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
+pub struct RenderSettings {
+    /// Root finder of every ray search.
+    #[serde(serialize_with = "serialize_display")]
+    pub root_finder: RootMethod,
+    /// Tolerances and limits of the root finder.
+    #[serde(skip)]
+    pub root: RootSettings,
+    /// Primary visibility mode.
+    pub primary: PrimaryMode,
+    /// Anti-aliasing mode.
+    pub aa: AaMode,
+    /// Rays per pixel in Undecided screen boxes (a square number; thesis: 9).
+    pub rays_per_undecided: u32,
+    /// Rays per pixel of [`PrimaryMode::PerPixel`] (a square number).
+    pub rays_per_pixel: u32,
+    /// Largest width of `T_final` (relative to the scene diagonal) for a Hit box not to be
+    /// split further (aliasing regions, thesis 5.5.1).
+    pub t_final_width: f64,
+    /// Cells of the regular grid along the longest side of the scene bounds (0: no grid).
+    pub grid_resolution: u32,
+    /// Whether lights cast shadows.
+    pub shadows: bool,
+}
+
+fn serialize_display<S: serde::Serializer>(m: &RootMethod, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(m.name())
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            root_finder: RootMethod::NewtonAlefeldHansen,
+            root: RootSettings::default(),
+            primary: PrimaryMode::ScreenBoxes,
+            aa: AaMode::None,
+            rays_per_undecided: 9,
+            rays_per_pixel: 1,
+            t_final_width: 0.05,
+            grid_resolution: 16,
+            shadows: true,
+        }
+    }
+}
+
+/// A scene ready to render.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Where the scene came from (a file name or `<built-in>`), for messages.
+    pub name: String,
+    /// The camera and image size.
+    pub camera: Camera,
+    /// Background colour.
+    pub background: [f32; 3],
+    /// Ambient light `c_a`.
+    pub ambient: f32,
+    /// Lights.
+    pub lights: Vec<Light>,
+    /// The compiled geometry.
+    pub geometry: Geometry,
+    /// Render settings.
+    pub settings: RenderSettings,
+}
