@@ -13,14 +13,28 @@
 //! 5. [`aa`], [`shading`], [`shadow`]: anti-aliasing, Phong shading, shadows.
 //! 6. [`render`]: the passes in parallel, an image and per-pass statistics.
 
+pub mod aa;
+pub mod beam;
 pub mod camera;
 pub mod error;
+pub mod grid;
+pub mod image;
+pub mod plan;
 pub mod ray;
+pub mod render;
 pub mod root;
 pub mod scene;
+pub mod screen;
+pub mod shading;
+pub mod shadow;
+pub mod stats;
 
 pub use camera::Camera;
 pub use error::Error;
+pub use image::Image;
+pub use plan::Plan;
 pub use ray::{Beam, BeamEval, IBox, Ray};
+pub use render::{NoProgress, Progress, RenderOutput, render};
 pub use root::{Proof, RayFn, RootCounters, RootFinder, RootMethod, RootResult, RootSettings};
 pub use scene::{Geometry, Light, Material, Scene};
+pub use stats::RenderStats;

@@ -9,7 +9,8 @@
 //! the scene function the union of the top-level objects.
 
 mod file;
-mod geometry;
+pub mod geometry;
+mod transform;
 
 pub use file::DEFAULT_SCENE;
 pub use geometry::{Csg, Geometry, Leaf};
@@ -71,6 +72,37 @@ pub enum AaMode {
     },
     /// `n × n` stratified rays per pixel (point-sampling supersampling).
     Supersample(u32),
+}
+
+impl AaMode {
+    /// Default IAA depth limit (thesis 5.5.2: 4).
+    pub const IAA_DEPTH: u32 = 4;
+    /// Default IAA normal-variation threshold.
+    pub const IAA_THRESHOLD: f64 = 0.05;
+}
+
+impl std::str::FromStr for AaMode {
+    type Err = String;
+
+    /// `none`, `iaa`, or `ss:N` (`N × N` rays per pixel, `1 <= N <= 16`).
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "none" => Ok(AaMode::None),
+            "iaa" => Ok(AaMode::Iaa {
+                max_depth: AaMode::IAA_DEPTH,
+                threshold: AaMode::IAA_THRESHOLD,
+            }),
+            _ => match s.strip_prefix("ss:").map(str::parse::<u32>) {
+                Some(Ok(n)) if (1..=16).contains(&n) => Ok(AaMode::Supersample(n)),
+                Some(_) => Err(format!(
+                    "'{s}': the supersampling count must be an integer from 1 to 16"
+                )),
+                None => Err(format!(
+                    "unknown anti-aliasing mode '{s}' (one of: none, iaa, ss:N)"
+                )),
+            },
+        }
+    }
 }
 
 /// How primary visibility is computed.

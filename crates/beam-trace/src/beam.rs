@@ -1,0 +1,191 @@
+//! Beam classification: the rejection test, the inclusion test and EvaluateBox
+//! (thesis 5.4.2-5.4.3, Figs 5.6, 5.9 and 5.10).
+//!
+//! A beam is searched over its parameter ranges front to back, depth first, left half
+//! first, with the enclosure `G(T)` of `g` over every ray of the beam:
+//!
+//! * **rejection** — `0 ∉ G(T)`: no ray of the beam meets the surface for `t ∈ T`;
+//! * **inclusion** — the enclosures of `g` at the two ends of `T` have opposite signs for
+//!   every ray, and `g` is proven continuous over the beam and `T`: by the intermediate
+//!   value theorem every ray has a root in `T`. With everything before `T` rejected, every
+//!   ray's *first* root lies in `T`, which is then tightened into `T_final`.
+//!
+//! The thesis states the inclusion test with the meet of *inner*-rounded values
+//! `Inn(fR(X_s, Y_s, t))` at the ends of `T` (eq. 5.6). Written with the modal meet, the
+//! condition `R_a ∧ R_b ⊆ [0, 0]` says that one end value is `≥ 0` and the other `≤ 0` for
+//! every ray. For that to be a proof the end values must be *outer* enclosures of `g` over
+//! the beam: an inner rounding may drop the very values that would contradict the sign, so
+//! this implementation takes the meet of outer-rounded enclosures ([`sign_change`]), and
+//! adds the continuity check the intermediate value theorem needs (a formula with a pole
+//! or a step changes sign without a root).
+
+use interval_core::{Interval, Modal, Outer};
+
+use crate::ray::ipoint;
+use crate::root::{RayFn, RootCounters};
+
+/// What EvaluateBox proved about a beam.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum BoxClass {
+    /// Rejection: no ray of the beam meets the surface in the searched ranges.
+    Miss,
+    /// Inclusion: every ray of the beam meets the surface, and its first root lies in
+    /// `t_final`.
+    Hit {
+        /// Enclosure of the first root of every ray of the beam (thesis `T_final`).
+        t_final: Interval<f64>,
+    },
+    /// Neither test decided; some ray may meet the surface in `t` (the first range that
+    /// could not be rejected), none before it.
+    Undecided {
+        /// The first parameter range not rejected.
+        t: Interval<f64>,
+    },
+}
+
+/// Tolerances of the beam tests.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct BeamSettings {
+    /// Width of `T` below which the subdivision stops (thesis `ε_T`).
+    pub epsilon: f64,
+    /// Largest number of bisections per beam.
+    pub max_bisections: u64,
+    /// Bisection steps spent tightening `T_final` after an inclusion.
+    pub refine_steps: u32,
+}
+
+impl Default for BeamSettings {
+    fn default() -> Self {
+        Self {
+            epsilon: 1e-4,
+            max_bisections: 1024,
+            refine_steps: 12,
+        }
+    }
+}
+
+#[inline]
+fn excludes_zero(g: Interval<f64>) -> bool {
+    g.is_empty() || g.inf() > 0.0 || g.sup() < 0.0
+}
+
+/// The meet test of eq. 5.6 on outer enclosures `ra`, `rb` of `g` at two parameters: `true`
+/// when `ra ∧ rb ⊆ [0, 0]` as modal intervals, i.e. one is `≥ 0` and the other `≤ 0` for
+/// every ray (then, for a continuous `g`, every ray has a root between the two parameters).
+pub fn sign_change(ra: Interval<f64>, rb: Interval<f64>) -> bool {
+    let (Some((a0, a1)), Some((b0, b1))) = (ra.bounds(), rb.bounds()) else {
+        return false;
+    };
+    let (Ok(a), Ok(b)) = (Modal::<f64, Outer>::proper(a0, a1), Modal::proper(b0, b1)) else {
+        return false;
+    };
+    let zero = Modal::<f64, Outer>::point(0.0).expect("0 is finite");
+    // A meet of two intervals that share no point is improper; it lies inside [0, 0]
+    // (modal inclusion) exactly when 0 separates them.
+    a.meet(b).subset(zero) && !(a.subset(zero) && b.subset(zero))
+}
+
+/// The rejection test (Fig. 5.6): `true` when every range of `ranges` is proven free of
+/// roots for every ray of the beam, subdividing down to `settings.epsilon`.
+pub fn rejection_test(
+    g: &mut dyn RayFn,
+    ranges: &[Interval<f64>],
+    settings: &BeamSettings,
+    counters: &mut RootCounters,
+) -> bool {
+    search(g, ranges, settings, false, counters) == BoxClass::Miss
+}
+
+/// The inclusion test on one range `t` (Fig. 5.9, made sound as described in the module
+/// documentation): `true` when every ray of the beam has a root in `t`.
+pub fn inclusion_test(g: &mut dyn RayFn, t: Interval<f64>, counters: &mut RootCounters) -> bool {
+    let (_, continuous) = g.g_checked(t);
+    counters.g_evals += 1;
+    continuous && ends_change_sign(g, t, counters)
+}
+
+fn ends_change_sign(g: &mut dyn RayFn, t: Interval<f64>, counters: &mut RootCounters) -> bool {
+    let ra = g.g(ipoint(t.inf()));
+    let rb = g.g(ipoint(t.sup()));
+    counters.g_evals += 2;
+    sign_change(ra, rb)
+}
+
+/// EvaluateBox (Fig. 5.10): the rejection and inclusion tests in one front-to-back search
+/// over `ranges` (increasing, as the regular grid gives them).
+pub fn evaluate_box(
+    g: &mut dyn RayFn,
+    ranges: &[Interval<f64>],
+    settings: &BeamSettings,
+    counters: &mut RootCounters,
+) -> BoxClass {
+    search(g, ranges, settings, true, counters)
+}
+
+fn search(
+    g: &mut dyn RayFn,
+    ranges: &[Interval<f64>],
+    settings: &BeamSettings,
+    inclusion: bool,
+    counters: &mut RootCounters,
+) -> BoxClass {
+    let mut stack: Vec<Interval<f64>> = ranges.iter().rev().copied().collect();
+    let mut bisections = 0u64;
+    while let Some(t) = stack.pop() {
+        let (gt, continuous) = g.g_checked(t);
+        counters.g_evals += 1;
+        if excludes_zero(gt) {
+            continue;
+        }
+        if t.wid() <= settings.epsilon || bisections >= settings.max_bisections {
+            return BoxClass::Undecided { t };
+        }
+        if inclusion && continuous && ends_change_sign(g, t, counters) {
+            return BoxClass::Hit {
+                t_final: t_final(g, t, settings, counters),
+            };
+        }
+        let (l, r) = t.bisect();
+        bisections += 1;
+        counters.bisections += 1;
+        stack.push(r);
+        stack.push(l);
+    }
+    BoxClass::Miss
+}
+
+/// Tightens the range `t` of an inclusion into `T_final` (thesis Fig. 5.11): every ray has
+/// no root before `t.inf()` and a sign change (so a root) before `t.sup()`. The lower end
+/// moves up over rejected parts, the upper end down to parameters where the sign has
+/// already changed for every ray.
+fn t_final(
+    g: &mut dyn RayFn,
+    t: Interval<f64>,
+    settings: &BeamSettings,
+    counters: &mut RootCounters,
+) -> Interval<f64> {
+    let (mut lo, mut hi) = (t.inf(), t.sup());
+    let start = g.g(ipoint(lo));
+    counters.g_evals += 1;
+    for _ in 0..settings.refine_steps {
+        let m = lo + 0.5 * (hi - lo);
+        if !(m > lo && m < hi) {
+            break;
+        }
+        let rm = g.g(ipoint(m));
+        counters.g_evals += 1;
+        if sign_change(start, rm) {
+            // Every ray changes sign on [lo, m] (g is continuous on all of t).
+            hi = m;
+            continue;
+        }
+        let left = g.g(Interval::new_unchecked(lo, m));
+        counters.g_evals += 1;
+        if excludes_zero(left) {
+            lo = m;
+        } else {
+            break;
+        }
+    }
+    Interval::new_unchecked(lo, hi)
+}

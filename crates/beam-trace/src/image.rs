@@ -1,0 +1,118 @@
+//! Images: linear RGB in `f32`, written as 8-bit sRGB PNG, whole or not at all.
+
+use std::fs;
+use std::io::BufWriter;
+use std::path::{Path, PathBuf};
+
+use crate::error::Error;
+
+/// An RGB image, row-major from the top-left pixel, channels in `[0, 1]` (linear).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `width × height` pixels.
+    pub pixels: Vec<[f32; 3]>,
+}
+
+impl Image {
+    /// An image filled with `color`.
+    pub fn new(width: u32, height: u32, color: [f32; 3]) -> Self {
+        Self {
+            width,
+            height,
+            pixels: vec![color; width as usize * height as usize],
+        }
+    }
+
+    /// The pixel at `(x, y)`.
+    pub fn get(&self, x: u32, y: u32) -> [f32; 3] {
+        self.pixels[(y * self.width + x) as usize]
+    }
+
+    /// Sets the pixel at `(x, y)`.
+    pub fn set(&mut self, x: u32, y: u32, c: [f32; 3]) {
+        self.pixels[(y * self.width + x) as usize] = c;
+    }
+
+    /// 8-bit RGB bytes (sRGB transfer curve, clamped).
+    pub fn to_rgb8(&self) -> Vec<u8> {
+        fn encode(c: f32) -> u8 {
+            let c = c.clamp(0.0, 1.0);
+            let s = if c <= 0.003_130_8 {
+                12.92 * c
+            } else {
+                1.055 * c.powf(1.0 / 2.4) - 0.055
+            };
+            (s * 255.0 + 0.5) as u8
+        }
+        self.pixels
+            .iter()
+            .flat_map(|p| p.iter().map(|&c| encode(c)))
+            .collect()
+    }
+
+    /// Writes the image as a PNG at `path`, whole or not at all (a temporary file in the
+    /// same folder, then a rename).
+    pub fn write_png(&self, path: &Path) -> Result<(), Error> {
+        write_atomic(path, |file| {
+            let mut enc = png::Encoder::new(BufWriter::new(file), self.width, self.height);
+            enc.set_color(png::ColorType::Rgb);
+            enc.set_depth(png::BitDepth::Eight);
+            let mut w = enc.write_header().map_err(std::io::Error::other)?;
+            w.write_image_data(&self.to_rgb8())
+                .map_err(std::io::Error::other)?;
+            w.finish().map_err(std::io::Error::other)
+        })
+    }
+}
+
+fn temp_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    path.with_file_name(format!(".{name}.{}.tmp", std::process::id()))
+}
+
+/// Writes a file through `write` into a temporary sibling, then renames it over `path`:
+/// the file appears whole or not at all. The temporary file is removed on failure.
+pub fn write_atomic(
+    path: &Path,
+    write: impl FnOnce(&mut fs::File) -> std::io::Result<()>,
+) -> Result<(), Error> {
+    let tmp = temp_path(path);
+    let io = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    let result = (|| {
+        let mut f = fs::File::create(&tmp)?;
+        write(&mut f)?;
+        f.sync_all()?;
+        fs::rename(&tmp, path)
+    })();
+    if let Err(e) = result {
+        let _ = fs::remove_file(&tmp);
+        return Err(io(e));
+    }
+    Ok(())
+}
+
+/// Checks before a long render that `path` can be written: it is not a folder, its folder
+/// exists and a file can be created there (the probe is removed again).
+pub fn check_writable(path: &Path) -> Result<(), Error> {
+    let io = |source| Error::Io {
+        path: path.to_path_buf(),
+        source,
+    };
+    if path.is_dir() {
+        return Err(io(std::io::Error::other("is a folder, not a file")));
+    }
+    let probe = temp_path(path);
+    fs::File::create(&probe)
+        .and_then(|_| fs::remove_file(&probe))
+        .map_err(io)
+}

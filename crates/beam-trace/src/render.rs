@@ -1,0 +1,751 @@
+//! The render pipeline: the passes of the [`Plan`], in parallel with rayon, into an image
+//! and per-pass statistics.
+//!
+//! Each pass is a pure function of the scene and the previous passes' results over
+//! independent pieces (tiles, rows, samples) that rayon schedules; counters are sums of
+//! per-piece counts, so images and counters do not depend on the thread count.
+
+use std::time::{Duration, Instant};
+
+use glam::DVec3;
+use interval_core::Interval;
+use rayon::prelude::*;
+
+use crate::aa;
+use crate::beam::{BoxClass, evaluate_box};
+use crate::camera::Camera;
+use crate::error::Error;
+use crate::grid::{Grid, GridEval};
+use crate::image::Image;
+use crate::plan::{PASSES, Plan, Primary};
+use crate::ray::{Beam, Ray};
+use crate::root::{RootCounters, RootFinder, RootResult};
+use crate::scene::geometry::GeometryEval;
+use crate::scene::{Light, Scene};
+use crate::screen::{PixelRect, ScreenBox, subdivide};
+use crate::shading::{Incoming, phong};
+use crate::shadow::hard::{Visibility, segment_visibility};
+use crate::stats::{PassStats, RenderStats};
+
+/// Reports progress of long passes (the render binary shows a progress bar).
+pub trait Progress: Sync {
+    /// A pass with `total` units of work begins.
+    fn begin(&self, pass: &str, total: u64) {
+        let _ = (pass, total);
+    }
+    /// `n` more units are done.
+    fn advance(&self, n: u64) {
+        let _ = n;
+    }
+    /// The pass is over.
+    fn end(&self) {}
+}
+
+/// Progress that shows nothing.
+#[derive(Copy, Clone, Debug, Default)]
+pub struct NoProgress;
+
+impl Progress for NoProgress {}
+
+/// What a render produces.
+#[derive(Clone, Debug)]
+pub struct RenderOutput {
+    /// The image.
+    pub image: Image,
+    /// Per-pass time and counters.
+    pub stats: RenderStats,
+    /// Proven-miss (blue), proven-hit (red) and undecided (yellow) screen boxes, with box
+    /// outlines (thesis fig. 5.13); grey where no beam classified the pixel.
+    pub classification: Image,
+    /// Time spent per pixel by primary visibility, as a heat map (thesis fig. 5.8).
+    pub cost_map: Image,
+    /// The plan that ran.
+    pub plan: Plan,
+}
+
+/// A surface point seen by a primary sample.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Hit {
+    /// Enclosure of the ray parameter of the first root.
+    pub t: Interval<f64>,
+    /// The point (central ray at the middle of `t`).
+    pub point: DVec3,
+    /// Unit vector from the point to the eye.
+    pub to_eye: DVec3,
+    /// The leaf surface whose material shades it.
+    pub leaf: u32,
+    /// Unit normal (set by the normals pass).
+    pub normal: DVec3,
+}
+
+/// One primary sample of a pixel: its weight (area fraction) and what it sees.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Sample {
+    /// Weight of the sample in its pixel (the weights of a pixel sum to 1).
+    pub weight: f32,
+    /// The surface point, or `None` for background.
+    pub hit: Option<Hit>,
+}
+
+/// Per-thread evaluators.
+pub(crate) struct Evals {
+    pub(crate) geo: GeometryEval,
+    pub(crate) grid: Option<GridEval>,
+}
+
+/// The ray and beam queries every pass shares.
+pub(crate) struct Tracer<'a> {
+    pub(crate) scene: &'a Scene,
+    pub(crate) plan: &'a Plan,
+    pub(crate) grid: Option<&'a Grid>,
+    pub(crate) finder: &'static dyn RootFinder,
+}
+
+/// `[0, +∞]`: rays start at their origin.
+pub(crate) fn forward() -> Interval<f64> {
+    Interval::new_unchecked(0.0, f64::INFINITY)
+}
+
+impl Tracer<'_> {
+    pub(crate) fn evals(&self) -> Evals {
+        Evals {
+            geo: self.scene.geometry.evaluator(),
+            grid: self.grid.map(Grid::evaluator),
+        }
+    }
+
+    /// The parameter ranges a beam must search: the grid's non-empty cells, or the scene
+    /// bounds, from the origin on.
+    pub(crate) fn beam_ranges(&self, beam: &Beam) -> Vec<Interval<f64>> {
+        match self.grid {
+            Some(g) => g.beam_t_ranges(beam),
+            None => beam
+                .t_range_within(&self.scene.geometry.bounds(), forward())
+                .into_iter()
+                .collect(),
+        }
+    }
+
+    /// EvaluateBox of a beam against the whole scene function.
+    pub(crate) fn classify(&self, ev: &mut Evals, beam: &Beam, c: &mut RootCounters) -> BoxClass {
+        let ranges = self.beam_ranges(beam);
+        if ranges.is_empty() {
+            return BoxClass::Miss;
+        }
+        ev.geo.beam.set_beam(beam);
+        evaluate_box(&mut ev.geo.beam, &ranges, &self.plan.beam, c)
+    }
+
+    /// The first root along `ray` for parameters in `t` (clipped to `t ≥ 0`): through the
+    /// grid's cells when there is a grid (each with its reduced function), else with the
+    /// whole scene function inside the scene bounds.
+    pub(crate) fn cast(
+        &self,
+        ev: &mut Evals,
+        ray: &Ray,
+        t: Interval<f64>,
+        c: &mut RootCounters,
+    ) -> RootResult {
+        let root = &self.plan.root;
+        let t = t.intersection(forward());
+        if t.is_empty() {
+            return RootResult::NoRoot;
+        }
+        match (self.grid, ev.grid.as_mut()) {
+            (Some(g), Some(gev)) => g.first_root_within(gev, ray, t, self.finder, root, c),
+            _ => match ray.beam().t_range_within(&self.scene.geometry.bounds(), t) {
+                Some(t) => {
+                    ev.geo.beam.set_ray(ray);
+                    self.finder.first_root(&mut ev.geo.beam, t, root, c)
+                }
+                None => RootResult::NoRoot,
+            },
+        }
+    }
+
+    /// Whether the segment from `from` to `to` is free of surface points (a hard shadow
+    /// ray): a reliable "no root" is a proof that it is lit.
+    pub(crate) fn segment(
+        &self,
+        ev: &mut Evals,
+        from: DVec3,
+        to: DVec3,
+        c: &mut RootCounters,
+    ) -> Visibility {
+        let ray = Ray {
+            origin: from,
+            dir: to - from,
+        };
+        let r = self.cast(ev, &ray, Interval::new_unchecked(0.0, 1.0), c);
+        segment_visibility(r, self.finder.is_reliable())
+    }
+
+    /// A hit record for the first root `t` of `ray` (or the first undecided range).
+    pub(crate) fn hit(&self, ev: &mut Evals, ray: &Ray, t: Interval<f64>) -> Hit {
+        let tm = t.mid();
+        let point = ray.at(tm);
+        Hit {
+            t,
+            point,
+            to_eye: (-ray.dir).normalize_or_zero(),
+            leaf: ev.geo.leaf_at(point) as u32,
+            normal: -ray.dir.normalize_or_zero(),
+        }
+    }
+}
+
+/// Work counters of a pass, summed over pieces.
+#[derive(Copy, Clone, Debug, Default)]
+pub(crate) struct Work {
+    pub(crate) root: RootCounters,
+    pub(crate) items: [u64; 6],
+}
+
+impl Work {
+    fn add(mut self, o: Work) -> Work {
+        self.root.add(&o.root);
+        for (a, b) in self.items.iter_mut().zip(o.items) {
+            *a += b;
+        }
+        self
+    }
+
+    fn stats(&self, name: &str, time: Duration, labels: &[&str]) -> PassStats {
+        let mut counters: Vec<(String, u64)> = labels
+            .iter()
+            .zip(self.items)
+            .map(|(l, v)| (l.to_string(), v))
+            .collect();
+        counters.extend([
+            ("g_evals".to_string(), self.root.g_evals),
+            ("dg_evals".to_string(), self.root.dg_evals),
+            ("point_evals".to_string(), self.root.point_evals),
+            ("bisections".to_string(), self.root.bisections),
+        ]);
+        PassStats {
+            name: name.into(),
+            ran: true,
+            time,
+            counters,
+        }
+    }
+}
+
+/// Stratified sample positions inside a pixel: `n` must be a square.
+fn pixel_offsets(n: u32) -> Vec<(f64, f64)> {
+    let k = (n as f64).sqrt().round().max(1.0) as u32;
+    (0..k * k)
+        .map(|i| {
+            (
+                (f64::from(i % k) + 0.5) / f64::from(k),
+                (f64::from(i / k) + 0.5) / f64::from(k),
+            )
+        })
+        .collect()
+}
+
+/// Renders `scene`: plans the passes, runs them, and returns the image and statistics.
+pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Error> {
+    let start = Instant::now();
+    let plan = Plan::for_scene(scene);
+    let cam = &scene.camera;
+    let (w, h) = (cam.width(), cam.height());
+    let npix = w as usize * h as usize;
+    let mut passes: Vec<PassStats> = Vec::new();
+
+    // Pass: regular grid.
+    let grid = plan.grid.map(|res| {
+        progress.begin("grid", 1);
+        let t0 = Instant::now();
+        let g = Grid::build(&scene.geometry, res);
+        let s = g.stats();
+        passes.push(PassStats {
+            name: "grid".into(),
+            ran: true,
+            time: t0.elapsed(),
+            counters: vec![
+                ("cells".into(), s.cells),
+                ("non_empty".into(), s.non_empty),
+                ("functions".into(), s.functions),
+                ("leaf_evals".into(), s.leaf_evals),
+            ],
+        });
+        progress.end();
+        g
+    });
+    let tracer = Tracer {
+        scene,
+        plan: &plan,
+        grid: grid.as_ref(),
+        finder: plan.root_finder.finder(),
+    };
+
+    // Pass: screen boxes.
+    let mut classes: Vec<Option<(BoxClass, bool)>> = vec![None; npix];
+    if let Primary::ScreenBoxes { .. } = plan.primary {
+        let t0 = Instant::now();
+        let tiles = tiles(w, h, 32);
+        progress.begin("screen-boxes", tiles.len() as u64);
+        let results: Vec<(Vec<ScreenBox>, Work)> = tiles
+            .par_iter()
+            .map_init(
+                || tracer.evals(),
+                |ev, tile| {
+                    let mut work = Work::default();
+                    let boxes = subdivide(*tile, plan.t_final_width, |r| {
+                        work.items[0] += 1;
+                        let beam = cam.beam(
+                            f64::from(r.x0),
+                            f64::from(r.y0),
+                            f64::from(r.x1),
+                            f64::from(r.y1),
+                        );
+                        tracer.classify(ev, &beam, &mut work.root)
+                    });
+                    for b in &boxes {
+                        let k = match b.class {
+                            BoxClass::Miss => 1,
+                            BoxClass::Hit { .. } => 2,
+                            BoxClass::Undecided { .. } => 3,
+                        };
+                        work.items[k] += b.rect.area();
+                    }
+                    progress.advance(1);
+                    (boxes, work)
+                },
+            )
+            .collect();
+        let mut work = Work::default();
+        for (boxes, wk) in results {
+            work = work.add(wk);
+            for b in boxes {
+                for (x, y) in b.rect.pixels() {
+                    let edge = x == b.rect.x0 || y == b.rect.y0;
+                    classes[(y * w + x) as usize] = Some((b.class, edge));
+                }
+            }
+        }
+        progress.end();
+        passes.push(work.stats(
+            "screen-boxes",
+            t0.elapsed(),
+            &["beams", "miss_pixels", "hit_pixels", "undecided_pixels"],
+        ));
+    } else {
+        passes.push(PassStats::skipped("screen-boxes"));
+    }
+
+    // Pass: primary rays (or IAA).
+    let mut cost = vec![0f32; npix];
+    let samples: Vec<Vec<Sample>> = match plan.primary {
+        Primary::Iaa {
+            max_depth,
+            threshold,
+        } => {
+            passes.push(PassStats::skipped("primary-rays"));
+            let t0 = Instant::now();
+            progress.begin("iaa", u64::from(h));
+            let rows: Vec<(Vec<Vec<Sample>>, Vec<f32>, Work)> = (0..h)
+                .into_par_iter()
+                .map_init(
+                    || tracer.evals(),
+                    |ev, y| {
+                        let mut work = Work::default();
+                        let mut costs = Vec::with_capacity(w as usize);
+                        let row = (0..w)
+                            .map(|x| {
+                                let tp = Instant::now();
+                                let s = aa::iaa_pixel(
+                                    &tracer, ev, x, y, max_depth, threshold, &mut work,
+                                );
+                                costs.push(tp.elapsed().as_secs_f32());
+                                s
+                            })
+                            .collect();
+                        progress.advance(1);
+                        (row, costs, work)
+                    },
+                )
+                .collect();
+            progress.end();
+            let mut work = Work::default();
+            let mut out = Vec::with_capacity(npix);
+            for (y, (row, costs, wk)) in rows.into_iter().enumerate() {
+                work = work.add(wk);
+                out.extend(row);
+                cost[y * w as usize..(y + 1) * w as usize].copy_from_slice(&costs);
+            }
+            passes.push(work.stats("iaa", t0.elapsed(), &aa::COUNTERS));
+            out
+        }
+        Primary::ScreenBoxes { rays_per_undecided }
+        | Primary::PerPixel {
+            rays_per_pixel: rays_per_undecided,
+        } => {
+            let per_pixel = matches!(plan.primary, Primary::PerPixel { .. });
+            let offsets = pixel_offsets(rays_per_undecided);
+            let t0 = Instant::now();
+            progress.begin("primary-rays", u64::from(h));
+            let rows: Vec<(Vec<Vec<Sample>>, Vec<f32>, Work)> = (0..h)
+                .into_par_iter()
+                .map_init(
+                    || tracer.evals(),
+                    |ev, y| {
+                        let mut work = Work::default();
+                        let mut costs = Vec::with_capacity(w as usize);
+                        let row = (0..w)
+                            .map(|x| {
+                                let tp = Instant::now();
+                                let class = if per_pixel {
+                                    None
+                                } else {
+                                    classes[(y * w + x) as usize].map(|c| c.0)
+                                };
+                                let s = primary_pixel(
+                                    &tracer, ev, cam, x, y, class, &offsets, &mut work,
+                                );
+                                costs.push(tp.elapsed().as_secs_f32());
+                                s
+                            })
+                            .collect();
+                        progress.advance(1);
+                        (row, costs, work)
+                    },
+                )
+                .collect();
+            progress.end();
+            let mut work = Work::default();
+            let mut out = Vec::with_capacity(npix);
+            for (y, (row, costs, wk)) in rows.into_iter().enumerate() {
+                work = work.add(wk);
+                out.extend(row);
+                cost[y * w as usize..(y + 1) * w as usize].copy_from_slice(&costs);
+            }
+            passes.push(work.stats(
+                "primary-rays",
+                t0.elapsed(),
+                &["rays", "hits", "proven_unique", "possible", "undecided"],
+            ));
+            passes.push(PassStats::skipped("iaa"));
+            out
+        }
+    };
+    let mut samples = samples;
+
+    // Pass: normals.
+    if plan.shading {
+        let t0 = Instant::now();
+        progress.begin("normals", u64::from(h));
+        let works: Vec<Work> = samples
+            .par_chunks_mut(w as usize)
+            .map_init(
+                || tracer.evals(),
+                |ev, row| {
+                    let mut work = Work::default();
+                    for s in row.iter_mut().flatten() {
+                        if let Some(hit) = s.hit.as_mut() {
+                            work.items[0] += 1;
+                            match ev.geo.normal(hit.point) {
+                                Some(n) => hit.normal = n,
+                                None => work.items[1] += 1,
+                            }
+                        }
+                    }
+                    progress.advance(1);
+                    work
+                },
+            )
+            .collect();
+        progress.end();
+        let work = works.into_iter().fold(Work::default(), Work::add);
+        passes.push(work.stats("normals", t0.elapsed(), &["normals", "degenerate"]));
+    } else {
+        passes.push(PassStats::skipped("normals"));
+    }
+
+    // Pass: hard shadows. Visibility per sample and light.
+    let lights: Vec<(DVec3, [f32; 3])> = scene
+        .lights
+        .iter()
+        .map(|l| match l {
+            Light::Point(p) => (p.position, p.color),
+        })
+        .collect();
+    let nl = lights.len();
+    let mut vis: Vec<Vec<f32>> = samples.iter().map(|s| vec![1.0; s.len() * nl]).collect();
+    if plan.runs("hard-shadows") {
+        let t0 = Instant::now();
+        progress.begin("hard-shadows", u64::from(h));
+        let diag = diagonal(&scene.geometry.bounds());
+        let works: Vec<Work> = samples
+            .par_chunks(w as usize)
+            .zip(vis.par_chunks_mut(w as usize))
+            .map_init(
+                || tracer.evals(),
+                |ev, (srow, vrow)| {
+                    let mut work = Work::default();
+                    for (px, v) in srow.iter().zip(vrow.iter_mut()) {
+                        for (si, s) in px.iter().enumerate() {
+                            let Some(hit) = s.hit else { continue };
+                            let n = if hit.normal.dot(hit.to_eye) < 0.0 {
+                                -hit.normal
+                            } else {
+                                hit.normal
+                            };
+                            for (li, (pos, _)) in lights.iter().enumerate() {
+                                work.items[0] += 1;
+                                if n.dot(*pos - hit.point) <= 0.0 {
+                                    // Facing away from the light: no direct light anyway.
+                                    work.items[4] += 1;
+                                    v[si * nl + li] = 0.0;
+                                    continue;
+                                }
+                                let from = hit.point + n * (1e-7 * diag);
+                                let r = tracer.segment(ev, from, *pos, &mut work.root);
+                                let (k, lit) = match r {
+                                    Visibility::Lit => (1, 1.0),
+                                    Visibility::Occluded => (2, 0.0),
+                                    Visibility::Undecided => (3, 0.0),
+                                };
+                                work.items[k] += 1;
+                                v[si * nl + li] = lit;
+                            }
+                        }
+                    }
+                    progress.advance(1);
+                    work
+                },
+            )
+            .collect();
+        progress.end();
+        let work = works.into_iter().fold(Work::default(), Work::add);
+        passes.push(work.stats(
+            "hard-shadows",
+            t0.elapsed(),
+            &["segments", "lit", "occluded", "undecided", "back_facing"],
+        ));
+    } else {
+        passes.push(PassStats::skipped("hard-shadows"));
+    }
+
+    // Pass: shading (or flat colour without lights).
+    let t0 = Instant::now();
+    let leaves = scene.geometry.leaves();
+    let pixels: Vec<[f32; 3]> = samples
+        .par_iter()
+        .zip(vis.par_iter())
+        .map(|(px, v)| {
+            let mut acc = [0f32; 3];
+            let mut wsum = 0f32;
+            let mut incoming = Vec::with_capacity(nl);
+            for (si, s) in px.iter().enumerate() {
+                let c = match s.hit {
+                    None => scene.background,
+                    Some(hit) => {
+                        let m = &leaves[hit.leaf as usize].material;
+                        if plan.shading {
+                            incoming.clear();
+                            for (li, (pos, col)) in lights.iter().enumerate() {
+                                let f = v[si * nl + li];
+                                incoming.push(Incoming {
+                                    dir: (*pos - hit.point).normalize_or_zero(),
+                                    color: col.map(|c| c * f),
+                                });
+                            }
+                            phong(m, scene.ambient, hit.normal, hit.to_eye, &incoming)
+                        } else {
+                            m.color
+                        }
+                    }
+                };
+                for k in 0..3 {
+                    acc[k] += s.weight * c[k];
+                }
+                wsum += s.weight;
+            }
+            if wsum > 0.0 {
+                acc.map(|a| a / wsum)
+            } else {
+                scene.background
+            }
+        })
+        .collect();
+    if plan.shading {
+        let shaded = samples.iter().flatten().filter(|s| s.hit.is_some()).count() as u64;
+        passes.push(PassStats {
+            name: "shading".into(),
+            ran: true,
+            time: t0.elapsed(),
+            counters: vec![("shaded_samples".into(), shaded)],
+        });
+    } else {
+        passes.push(PassStats::skipped("shading"));
+    }
+
+    // Keep the pass order of PASSES.
+    passes.sort_by_key(|p| PASSES.iter().position(|n| *n == p.name));
+    if !passes.iter().any(|p| p.name == "grid") {
+        passes.insert(0, PassStats::skipped("grid"));
+    }
+    let image = Image {
+        width: w,
+        height: h,
+        pixels,
+    };
+    Ok(RenderOutput {
+        classification: classification_image(w, h, &classes),
+        cost_map: cost_image(w, h, &cost),
+        image,
+        stats: RenderStats {
+            passes,
+            total: start.elapsed(),
+        },
+        plan,
+    })
+}
+
+fn diagonal(b: &crate::ray::IBox) -> f64 {
+    b.iter().map(|i| i.wid() * i.wid()).sum::<f64>().sqrt()
+}
+
+fn tiles(w: u32, h: u32, size: u32) -> Vec<PixelRect> {
+    let mut out = Vec::new();
+    for y0 in (0..h).step_by(size as usize) {
+        for x0 in (0..w).step_by(size as usize) {
+            out.push(PixelRect {
+                x0,
+                y0,
+                x1: (x0 + size).min(w),
+                y1: (y0 + size).min(h),
+            });
+        }
+    }
+    out
+}
+
+/// The samples of one pixel for ray-based primary visibility.
+#[allow(clippy::too_many_arguments)]
+fn primary_pixel(
+    tracer: &Tracer<'_>,
+    ev: &mut Evals,
+    cam: &Camera,
+    x: u32,
+    y: u32,
+    class: Option<BoxClass>,
+    offsets: &[(f64, f64)],
+    work: &mut Work,
+) -> Vec<Sample> {
+    let (fx, fy) = (f64::from(x), f64::from(y));
+    let trace = |ev: &mut Evals, ray: &Ray, t: Option<Interval<f64>>, work: &mut Work| {
+        work.items[0] += 1;
+        let mut r = tracer.cast(ev, ray, t.unwrap_or(forward()), &mut work.root);
+        if t.is_some() && !matches!(r, RootResult::Root { .. }) {
+            // A limit inside T_final: search the whole ray.
+            r = tracer.cast(ev, ray, forward(), &mut work.root);
+        }
+        match r {
+            RootResult::Root { t, proof } => {
+                work.items[1] += 1;
+                match proof {
+                    crate::root::Proof::Unique => work.items[2] += 1,
+                    crate::root::Proof::Possible => work.items[3] += 1,
+                    crate::root::Proof::Exists => {}
+                }
+                Some(tracer.hit(ev, ray, t))
+            }
+            RootResult::Undecided { t } => {
+                work.items[4] += 1;
+                Some(tracer.hit(ev, ray, t))
+            }
+            RootResult::NoRoot => None,
+        }
+    };
+    match class {
+        Some(BoxClass::Miss) => vec![Sample {
+            weight: 1.0,
+            hit: None,
+        }],
+        Some(BoxClass::Hit { t_final }) => {
+            let ray = cam.ray(fx + 0.5, fy + 0.5);
+            let hit = trace(ev, &ray, Some(t_final), work);
+            vec![Sample { weight: 1.0, hit }]
+        }
+        Some(BoxClass::Undecided { .. }) | None => {
+            let wgt = 1.0 / offsets.len() as f32;
+            offsets
+                .iter()
+                .map(|&(ox, oy)| {
+                    let ray = cam.ray(fx + ox, fy + oy);
+                    Sample {
+                        weight: wgt,
+                        hit: trace(ev, &ray, None, work),
+                    }
+                })
+                .collect()
+        }
+    }
+}
+
+fn classification_image(w: u32, h: u32, classes: &[Option<(BoxClass, bool)>]) -> Image {
+    let pixels = classes
+        .iter()
+        .map(|c| match c {
+            None => [0.5, 0.5, 0.5],
+            Some((class, edge)) => {
+                let base = match class {
+                    BoxClass::Miss => [0.1, 0.25, 0.8],
+                    BoxClass::Hit { .. } => [0.85, 0.15, 0.1],
+                    BoxClass::Undecided { .. } => [0.95, 0.85, 0.1],
+                };
+                if *edge { base.map(|v| v * 0.6) } else { base }
+            }
+        })
+        .collect();
+    Image {
+        width: w,
+        height: h,
+        pixels,
+    }
+}
+
+fn cost_image(w: u32, h: u32, cost: &[f32]) -> Image {
+    let max = cost.iter().copied().fold(0f32, f32::max).max(1e-9);
+    let min = cost
+        .iter()
+        .copied()
+        .filter(|&c| c > 0.0)
+        .fold(f32::INFINITY, f32::min)
+        .min(max);
+    let (lmin, lmax) = (min.ln(), max.ln());
+    let pixels = cost
+        .iter()
+        .map(|&c| {
+            let s = if c <= 0.0 || lmax <= lmin {
+                0.0
+            } else {
+                ((c.ln() - lmin) / (lmax - lmin)).clamp(0.0, 1.0)
+            };
+            heat(s)
+        })
+        .collect();
+    Image {
+        width: w,
+        height: h,
+        pixels,
+    }
+}
+
+/// A blue → green → yellow → red colour ramp.
+fn heat(s: f32) -> [f32; 3] {
+    let stops = [
+        [0.0, 0.0, 0.3],
+        [0.0, 0.4, 1.0],
+        [0.0, 0.9, 0.3],
+        [1.0, 0.9, 0.0],
+        [1.0, 0.1, 0.0],
+    ];
+    let x = s * (stops.len() - 1) as f32;
+    let i = (x.floor() as usize).min(stops.len() - 2);
+    let f = x - i as f32;
+    std::array::from_fn(|k| stops[i][k] * (1.0 - f) + stops[i + 1][k] * f)
+}

@@ -1,0 +1,99 @@
+//! The screen box structure (thesis 5.4.3-5.4.5, 5.5.1): the image is subdivided into
+//! boxes that beams classify as Miss, Hit or Undecided.
+//!
+//! A Miss box is background without a ray. A Hit box needs one ray per pixel, searched only
+//! in the box's `T_final`; a Hit box whose `T_final` is wide (the surface's depth varies a lot
+//! across it: an aliasing region, thesis 5.5.1) is split further. Undecided boxes are split
+//! down to single pixels, which then get several rays.
+
+use interval_core::Interval;
+
+use crate::beam::BoxClass;
+
+/// A rectangle of pixels `[x0, x1) × [y0, y1)`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub struct PixelRect {
+    /// Left column.
+    pub x0: u32,
+    /// Top row.
+    pub y0: u32,
+    /// One past the right column.
+    pub x1: u32,
+    /// One past the bottom row.
+    pub y1: u32,
+}
+
+impl PixelRect {
+    /// Number of pixels.
+    pub fn area(&self) -> u64 {
+        u64::from(self.x1 - self.x0) * u64::from(self.y1 - self.y0)
+    }
+
+    /// Whether the rectangle is one pixel.
+    pub fn is_pixel(&self) -> bool {
+        self.x1 - self.x0 == 1 && self.y1 - self.y0 == 1
+    }
+
+    /// The (up to) four quadrants.
+    pub fn split(&self) -> Vec<PixelRect> {
+        let xm = self.x0 + (self.x1 - self.x0).div_ceil(2);
+        let ym = self.y0 + (self.y1 - self.y0).div_ceil(2);
+        let xs = [(self.x0, xm), (xm, self.x1)];
+        let ys = [(self.y0, ym), (ym, self.y1)];
+        let mut out = Vec::with_capacity(4);
+        for &(y0, y1) in &ys {
+            for &(x0, x1) in &xs {
+                if x1 > x0 && y1 > y0 {
+                    out.push(PixelRect { x0, y0, x1, y1 });
+                }
+            }
+        }
+        out
+    }
+
+    /// The pixels, row by row.
+    pub fn pixels(&self) -> impl Iterator<Item = (u32, u32)> + '_ {
+        (self.y0..self.y1).flat_map(move |y| (self.x0..self.x1).map(move |x| (x, y)))
+    }
+}
+
+/// A classified box of the structure.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ScreenBox {
+    /// Its pixels.
+    pub rect: PixelRect,
+    /// What its beam proved.
+    pub class: BoxClass,
+}
+
+/// Subdivides `tile` into classified boxes: `classify` evaluates the beam of a rectangle.
+/// Hit boxes with `T_final` wider than `t_final_width` and Undecided boxes are split until
+/// they are single pixels. The boxes come out in a fixed order (depth first, quadrants in
+/// reading order), independent of threads.
+pub fn subdivide(
+    tile: PixelRect,
+    t_final_width: f64,
+    mut classify: impl FnMut(&PixelRect) -> BoxClass,
+) -> Vec<ScreenBox> {
+    let mut out = Vec::new();
+    let mut stack = vec![tile];
+    while let Some(rect) = stack.pop() {
+        let class = classify(&rect);
+        let split = !rect.is_pixel()
+            && match class {
+                BoxClass::Miss => false,
+                BoxClass::Hit { t_final } => wide(t_final, t_final_width),
+                BoxClass::Undecided { .. } => true,
+            };
+        if split {
+            stack.extend(rect.split().into_iter().rev());
+        } else {
+            out.push(ScreenBox { rect, class });
+        }
+    }
+    out
+}
+
+fn wide(t: Interval<f64>, width: f64) -> bool {
+    t.wid() > width
+}

@@ -1,0 +1,92 @@
+//! Per-pass statistics: time and work counters, printed as a table and saved as JSON.
+
+use std::fmt;
+use std::time::Duration;
+
+/// Time and counters of one pass of the render.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct PassStats {
+    /// Name of the pass.
+    pub name: String,
+    /// Whether the plan ran it.
+    pub ran: bool,
+    /// Wall-clock time (excluded from comparisons between runs).
+    #[serde(serialize_with = "seconds")]
+    pub time: Duration,
+    /// Work counters, in a fixed order.
+    pub counters: Vec<(String, u64)>,
+}
+
+fn seconds<S: serde::Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_f64(d.as_secs_f64())
+}
+
+impl PassStats {
+    /// A pass that did not run: zero time, zero counters.
+    pub fn skipped(name: &str) -> Self {
+        Self {
+            name: name.into(),
+            ..Self::default()
+        }
+    }
+
+    /// The counter `name` (0 when absent).
+    pub fn counter(&self, name: &str) -> u64 {
+        self.counters
+            .iter()
+            .find(|(n, _)| n == name)
+            .map_or(0, |(_, v)| *v)
+    }
+
+    /// Sum of every counter.
+    pub fn total_work(&self) -> u64 {
+        self.counters.iter().map(|(_, v)| v).sum()
+    }
+}
+
+/// Statistics of a whole render.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct RenderStats {
+    /// Passes, in the order they ran.
+    pub passes: Vec<PassStats>,
+    /// Total wall-clock time.
+    #[serde(serialize_with = "seconds")]
+    pub total: Duration,
+}
+
+impl RenderStats {
+    /// The pass called `name`.
+    pub fn pass(&self, name: &str) -> Option<&PassStats> {
+        self.passes.iter().find(|p| p.name == name)
+    }
+
+    /// The statistics without the times: what must not depend on the thread count.
+    pub fn work(&self) -> Vec<(String, bool, Vec<(String, u64)>)> {
+        self.passes
+            .iter()
+            .map(|p| (p.name.clone(), p.ran, p.counters.clone()))
+            .collect()
+    }
+}
+
+impl fmt::Display for RenderStats {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        writeln!(f, "{:<16} {:>10}  counters", "pass", "time (ms)")?;
+        for p in &self.passes {
+            let time = if p.ran {
+                format!("{:.1}", p.time.as_secs_f64() * 1e3)
+            } else {
+                "skipped".to_string()
+            };
+            let counters: Vec<String> =
+                p.counters.iter().map(|(n, v)| format!("{n}={v}")).collect();
+            writeln!(f, "{:<16} {:>10}  {}", p.name, time, counters.join(" "))?;
+        }
+        write!(
+            f,
+            "{:<16} {:>10.1}",
+            "total",
+            self.total.as_secs_f64() * 1e3
+        )
+    }
+}

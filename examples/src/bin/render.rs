@@ -1,0 +1,221 @@
+//! Renders a scene file (or the built-in default scene) with the reliable CPU renderer and
+//! prints the effect plan before and the cost of each pass after.
+//!
+//! ```text
+//! render [SCENE] [--out FILE.png] [--width W --height H] [--root-finder NAME]
+//!        [--epsilon E] [--aa none|iaa|ss:N] [--threads N] [--stats FILE.json]
+//!        [--classification FILE.png] [--cost-map FILE.png]
+//! ```
+//!
+//! `SCENE` is a TOML scene file or the name of a catalog surface.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::sync::Mutex;
+
+use beam_trace::image::{check_writable, write_atomic};
+use beam_trace::root::RootMethod;
+use beam_trace::scene::{AaMode, PrimaryMode};
+use beam_trace::{Progress, Scene, render};
+use clap::Parser;
+use indicatif::{ProgressBar, ProgressStyle};
+
+/// Reliable interval ray tracing of implicit surfaces.
+#[derive(Parser, Debug)]
+#[command(version, about)]
+struct Args {
+    /// Scene file (TOML) or catalog surface name; the built-in default scene when absent.
+    scene: Option<String>,
+    /// Output image.
+    #[arg(long, default_value = "render.png")]
+    out: PathBuf,
+    /// Image width (keeps the scene's field of view).
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height.
+    #[arg(long)]
+    height: Option<u32>,
+    /// Root finder (bisection, mitchell, newton, newton-alefeld-hansen, mrf, mrfro,
+    /// mrfro-newton, counter-bisection, point-sampling, sphere-tracing).
+    #[arg(long)]
+    root_finder: Option<RootMethod>,
+    /// Root enclosure width.
+    #[arg(long)]
+    epsilon: Option<f64>,
+    /// Anti-aliasing: none, iaa, or ss:N (N × N rays per pixel).
+    #[arg(long)]
+    aa: Option<AaMode>,
+    /// Primary visibility: screen-boxes or per-pixel.
+    #[arg(long, value_parser = ["screen-boxes", "per-pixel"])]
+    primary: Option<String>,
+    /// Rays per pixel in per-pixel mode (a square number).
+    #[arg(long)]
+    rays_per_pixel: Option<u32>,
+    /// Regular grid resolution (0: no grid).
+    #[arg(long)]
+    grid: Option<u32>,
+    /// Worker threads (default: all cores).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Write the statistics as JSON.
+    #[arg(long)]
+    stats: Option<PathBuf>,
+    /// Write the screen box classification image.
+    #[arg(long)]
+    classification: Option<PathBuf>,
+    /// Write the per-pixel cost map.
+    #[arg(long)]
+    cost_map: Option<PathBuf>,
+    /// No progress bar.
+    #[arg(long)]
+    quiet: bool,
+}
+
+struct Bar {
+    bar: Mutex<Option<ProgressBar>>,
+    quiet: bool,
+}
+
+impl Progress for Bar {
+    fn begin(&self, pass: &str, total: u64) {
+        if self.quiet {
+            return;
+        }
+        let b = ProgressBar::new(total);
+        b.set_style(
+            ProgressStyle::with_template("{prefix:>13} [{bar:40}] {pos}/{len} {elapsed}")
+                .expect("valid template")
+                .progress_chars("=> "),
+        );
+        b.set_prefix(pass.to_string());
+        *self.bar.lock().expect("progress lock") = Some(b);
+    }
+    fn advance(&self, n: u64) {
+        if let Some(b) = self.bar.lock().expect("progress lock").as_ref() {
+            b.inc(n);
+        }
+    }
+    fn end(&self) {
+        if let Some(b) = self.bar.lock().expect("progress lock").take() {
+            b.finish_and_clear();
+        }
+    }
+}
+
+fn load(args: &Args) -> Result<Scene, String> {
+    let mut scene = match &args.scene {
+        None => Scene::default_scene(),
+        Some(s) if Path::new(s).exists() => Scene::load(Path::new(s)).map_err(|e| e.to_string())?,
+        Some(s) if !s.ends_with(".toml") => {
+            Scene::catalog(s, 512, 512).map_err(|e| e.to_string())?
+        }
+        Some(s) => return Err(format!("{s}: no such scene file")),
+    };
+    if args.width.is_some() || args.height.is_some() {
+        let w = args.width.unwrap_or(scene.camera.width());
+        let h = args.height.unwrap_or(scene.camera.height());
+        if !(1..=16384).contains(&w) || !(1..=16384).contains(&h) {
+            return Err("--width and --height must lie in 1..=16384".into());
+        }
+        scene.camera = scene.camera.resized(w, h).map_err(|e| e.to_string())?;
+    }
+    let s = &mut scene.settings;
+    if let Some(m) = args.root_finder {
+        s.root_finder = m;
+    }
+    if let Some(e) = args.epsilon {
+        if !(e > 0.0 && e.is_finite()) {
+            return Err("--epsilon must be positive".into());
+        }
+        s.root.epsilon = e;
+    }
+    if let Some(aa) = args.aa {
+        s.aa = aa;
+    }
+    if let Some(p) = &args.primary {
+        s.primary = if p == "per-pixel" {
+            PrimaryMode::PerPixel
+        } else {
+            PrimaryMode::ScreenBoxes
+        };
+    }
+    if let Some(n) = args.rays_per_pixel {
+        let k = (n as f64).sqrt().round() as u32;
+        if n == 0 || k * k != n || n > 256 {
+            return Err("--rays-per-pixel must be a square number from 1 to 256".into());
+        }
+        s.rays_per_pixel = n;
+    }
+    if let Some(g) = args.grid {
+        s.grid_resolution = g;
+    }
+    Ok(scene)
+}
+
+fn run(args: Args) -> Result<(), String> {
+    if let Some(n) = args.threads {
+        if n == 0 {
+            return Err("--threads must be at least 1".into());
+        }
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(n)
+            .build_global()
+            .map_err(|e| e.to_string())?;
+    }
+    let scene = load(&args)?;
+    // Report unwritable outputs before the work starts.
+    for p in [
+        Some(&args.out),
+        args.stats.as_ref(),
+        args.classification.as_ref(),
+        args.cost_map.as_ref(),
+    ]
+    .into_iter()
+    .flatten()
+    {
+        check_writable(p).map_err(|e| format!("cannot write output: {e}"))?;
+    }
+    println!(
+        "scene {}: {} × {} pixels, {} surface(s), {} light(s), {} thread(s)",
+        scene.name,
+        scene.camera.width(),
+        scene.camera.height(),
+        scene.geometry.leaves().len(),
+        scene.lights.len(),
+        rayon::current_num_threads()
+    );
+    print!("{}", beam_trace::Plan::for_scene(&scene));
+    let bar = Bar {
+        bar: Mutex::new(None),
+        quiet: args.quiet,
+    };
+    let out = render(&scene, &bar).map_err(|e| e.to_string())?;
+    out.image.write_png(&args.out).map_err(|e| e.to_string())?;
+    println!("{}", out.stats);
+    println!("wrote {}", args.out.display());
+    if let Some(p) = &args.classification {
+        out.classification.write_png(p).map_err(|e| e.to_string())?;
+        println!("wrote {}", p.display());
+    }
+    if let Some(p) = &args.cost_map {
+        out.cost_map.write_png(p).map_err(|e| e.to_string())?;
+        println!("wrote {}", p.display());
+    }
+    if let Some(p) = &args.stats {
+        let json = serde_json::to_string_pretty(&out.stats).map_err(|e| e.to_string())?;
+        write_atomic(p, |f| std::io::Write::write_all(f, json.as_bytes()))
+            .map_err(|e| e.to_string())?;
+        println!("wrote {}", p.display());
+    }
+    Ok(())
+}
+
+fn main() -> ExitCode {
+    match run(Args::parse()) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            ExitCode::FAILURE
+        }
+    }
+}
