@@ -129,35 +129,88 @@ fn search(
     inclusion: bool,
     counters: &mut RootCounters,
 ) -> BoxClass {
-    let mut stack: Vec<Interval<f64>> = ranges.iter().rev().copied().collect();
+    // Each piece carries the end of the range it came from (how far a look-ahead may go).
+    let mut stack: Vec<(Interval<f64>, f64)> = ranges.iter().rev().map(|r| (*r, r.sup())).collect();
     let mut bisections = 0u64;
-    while let Some(t) = stack.pop() {
+    while let Some((t, end)) = stack.pop() {
         let (gt, continuous) = g.g_checked(t);
         counters.g_evals += 1;
         if excludes_zero(gt) {
             continue;
-        }
-        if t.wid() <= settings.epsilon || bisections >= settings.max_bisections {
-            return BoxClass::Undecided { t };
         }
         if inclusion && continuous && ends_change_sign(g, t, counters) {
             return BoxClass::Hit {
                 t_final: t_final(g, t, settings, counters),
             };
         }
+        if t.wid() <= settings.epsilon || bisections >= settings.max_bisections {
+            if inclusion && let Some(t) = look_ahead(g, t, end, counters) {
+                return BoxClass::Hit {
+                    t_final: t_final(g, t, settings, counters),
+                };
+            }
+            return BoxClass::Undecided { t };
+        }
         let (l, r) = t.bisect();
         bisections += 1;
         counters.bisections += 1;
-        stack.push(r);
-        stack.push(l);
+        stack.push((r, end));
+        stack.push((l, end));
     }
     BoxClass::Miss
 }
 
+/// How far [`look_ahead`] looks: up to `2^LOOK_AHEAD` widths of the final piece.
+const LOOK_AHEAD: u32 = 8;
+
+/// The inclusion test across piece boundaries. Bisection cuts `T` at the same dyadic
+/// points at every level, so when the roots of the beam's rays straddle such a point, no
+/// piece ever holds them with a margin and the test on single pieces never succeeds; the
+/// thesis's search avoids this by accumulating the meet over every evaluated end. Here the
+/// final piece `[a, b]` (everything before `a` rejected, so `g(a)` usually has one strict
+/// sign for all rays) is paired with ends `b' = b + w·2^k` further on: a sign change between
+/// `a` and `b'` with `g` continuous on `[a, b']` proves that every ray's first root lies in
+/// `[a, b']`.
+fn look_ahead(
+    g: &mut dyn RayFn,
+    t: Interval<f64>,
+    end: f64,
+    counters: &mut RootCounters,
+) -> Option<Interval<f64>> {
+    let (a, b) = (t.inf(), t.sup());
+    let w = t.wid();
+    let ra = g.g(ipoint(a));
+    counters.g_evals += 1;
+    if !excludes_zero(ra) || !(w > 0.0) || !end.is_finite() {
+        return None;
+    }
+    let mut step = w;
+    for _ in 0..=LOOK_AHEAD {
+        let bb = (b + step).min(end);
+        if !(bb > b) {
+            return None;
+        }
+        let rb = g.g(ipoint(bb));
+        counters.g_evals += 1;
+        if sign_change(ra, rb) {
+            let span = Interval::new_unchecked(a, bb);
+            let (_, continuous) = g.g_checked(span);
+            counters.g_evals += 1;
+            return continuous.then_some(span);
+        }
+        if bb >= end {
+            return None;
+        }
+        step *= 2.0;
+    }
+    None
+}
+
 /// Tightens the range `t` of an inclusion into `T_final` (thesis Fig. 5.11): every ray has
 /// no root before `t.inf()` and a sign change (so a root) before `t.sup()`. The lower end
-/// moves up over rejected parts, the upper end down to parameters where the sign has
-/// already changed for every ray.
+/// moves up over parts that the rejection test removes, the upper end down to parameters
+/// where the sign has already changed for every ray; each side halves its step when a move
+/// fails, `settings.refine_steps` times.
 fn t_final(
     g: &mut dyn RayFn,
     t: Interval<f64>,
@@ -167,24 +220,42 @@ fn t_final(
     let (mut lo, mut hi) = (t.inf(), t.sup());
     let start = g.g(ipoint(lo));
     counters.g_evals += 1;
+    let mut step = 0.5 * (hi - lo);
     for _ in 0..settings.refine_steps {
-        let m = lo + 0.5 * (hi - lo);
-        if !(m > lo && m < hi) {
+        let m = lo + step;
+        if !(m > lo) {
             break;
+        }
+        if m >= hi {
+            step *= 0.5;
+            continue;
+        }
+        let left = g.g(Interval::new_unchecked(lo, m));
+        counters.g_evals += 1;
+        if excludes_zero(left) {
+            // No ray has a root in [lo, m]; the sign at m is the sign at lo.
+            lo = m;
+        } else {
+            step *= 0.5;
+        }
+    }
+    let mut step = 0.5 * (hi - lo);
+    for _ in 0..settings.refine_steps {
+        let m = hi - step;
+        if !(m < hi) {
+            break;
+        }
+        if m <= lo {
+            step *= 0.5;
+            continue;
         }
         let rm = g.g(ipoint(m));
         counters.g_evals += 1;
         if sign_change(start, rm) {
             // Every ray changes sign on [lo, m] (g is continuous on all of t).
             hi = m;
-            continue;
-        }
-        let left = g.g(Interval::new_unchecked(lo, m));
-        counters.g_evals += 1;
-        if excludes_zero(left) {
-            lo = m;
         } else {
-            break;
+            step *= 0.5;
         }
     }
     Interval::new_unchecked(lo, hi)

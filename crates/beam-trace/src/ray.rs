@@ -71,6 +71,42 @@ impl Beam {
         std::array::from_fn(|i| self.origin[i] + t * self.dir[i])
     }
 
+    /// The slab test on one axis: an enclosure, rounded outward, of the parameters `t ∈ t`
+    /// at which some ray of the beam has its coordinate on `axis` in `slab`. Empty when no
+    /// ray of the beam reaches the slab for `t ∈ t`.
+    ///
+    /// Solves `o + t·d ∈ slab` for `o ∈ origin[axis]`, `d ∈ dir[axis]` with the extended
+    /// division (`t ∈ (slab − o) / d`): a direction interval holding 0 gives up to two
+    /// unbounded pieces, each is clipped to `t` before their hull is taken; a zero direction
+    /// gives every `t` when the origin lies in the slab and none otherwise (rays parallel
+    /// to the slab).
+    pub fn slab_t(&self, axis: usize, slab: Interval<f64>, t: Interval<f64>) -> Interval<f64> {
+        let v = slab - self.origin[axis];
+        let (p, q) = self.dir[axis].mul_rev_to_pair(v);
+        p.intersection(t).convex_hull(q.intersection(t))
+    }
+
+    /// An enclosure, rounded outward, of the parameters `t ∈ t` at which some ray of the
+    /// beam is inside the box `b` (the intersection of the three slab tests of
+    /// [`Beam::slab_t`]); `None` when it is empty, a proof that no ray of the beam is in
+    /// `b` for `t ∈ t`. For a beam of many rays it is a hull: different rays may be inside
+    /// at different parameters.
+    pub fn t_range_within(&self, b: &IBox, t: Interval<f64>) -> Option<Interval<f64>> {
+        let mut r = t;
+        for (axis, slab) in b.iter().enumerate() {
+            r = self.slab_t(axis, *slab, r);
+            if r.is_empty() {
+                return None;
+            }
+        }
+        Some(r)
+    }
+
+    /// [`Beam::t_range_within`] over every parameter (negative ones included).
+    pub fn t_range(&self, b: &IBox) -> Option<Interval<f64>> {
+        self.t_range_within(b, Interval::ENTIRE)
+    }
+
     /// The central ray (midpoints of the boxes).
     pub fn central_ray(&self) -> Ray {
         Ray {

@@ -1,23 +1,73 @@
-//! Bisection (to be written).
+//! Classic interval bisection (thesis 4.3.3): the rejection test `0 ∉ G(T)` alone.
+//!
+//! ```text
+//! search(T):  push T
+//!   pop X (leftmost first)
+//!   if X is final (width ≤ ε):  if 0 ∈ G(X): return X, else reject
+//!   if 0 ∉ G(X): reject X
+//!   else bisect X, left half first
+//! ```
+//!
+//! A final piece is settled by the signs of `g` at its ends: a sign change of a `g` proven
+//! continuous on it proves a root ([`Proof::Exists`](super::Proof::Exists)). Where both
+//! ends have one sign, the piece usually lies a few widths before a simple root (the
+//! interval extension overestimates `g` there); the search then looks for the sign change
+//! at points `b + w·2^k` just after it (`w` its width, `k ≤ 10`), and where one is found
+//! with `g` continuous it returns `[a, p]` as a proven root, wider than `ε`. Otherwise a
+//! root is only possible in the piece ([`Proof::Possible`](super::Proof::Possible)).
+//! Every interval method but the counter bisection settles its final pieces this way.
 
-/// Bisection.
+use interval_core::Interval;
+
+use super::search::{Budget, Eval, Stack, is_small, may_vanish, settle_piece};
+use super::{RayFn, RootCounters, RootFinder, RootResult, RootSettings};
+
+/// Classic interval bisection: reject by `0 ∉ G(X)`, otherwise halve, to width `ε`.
 #[derive(Copy, Clone, Debug, Default)]
 pub struct Bisection;
 
-impl super::RootFinder for Bisection {
+impl RootFinder for Bisection {
     fn name(&self) -> &'static str {
-        "Bisection"
+        "bisection"
     }
+
     fn is_reliable(&self) -> bool {
         true
     }
+
     fn first_root(
         &self,
-        _g: &mut dyn super::RayFn,
-        _t: interval_core::Interval<f64>,
-        _s: &super::RootSettings,
-        _c: &mut super::RootCounters,
-    ) -> super::RootResult {
-        unimplemented!()
+        g: &mut dyn RayFn,
+        t: Interval<f64>,
+        settings: &RootSettings,
+        counters: &mut RootCounters,
+    ) -> RootResult {
+        if t.is_empty() {
+            return RootResult::NoRoot;
+        }
+        let mut ev = Eval::new(g, counters);
+        let mut budget = Budget::new(settings, t);
+        let mut stack = Stack::new(t);
+        while let Some(x) = stack.pop() {
+            if is_small(x, settings.epsilon) {
+                let (gx, cont) = ev.checked(x);
+                if !may_vanish(gx) {
+                    continue;
+                }
+                if let Some(root) = settle_piece(&mut ev, x, cont, None, t.sup()) {
+                    return root;
+                }
+                continue;
+            }
+            if !may_vanish(ev.g(x)) {
+                continue;
+            }
+            if let Some(undecided) = budget.step(x.inf()) {
+                return undecided;
+            }
+            let (l, r) = ev.bisect(x);
+            stack.push_pair(l, r);
+        }
+        RootResult::NoRoot
     }
 }

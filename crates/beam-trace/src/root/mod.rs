@@ -264,4 +264,5 @@ pub mod mrf;
 pub mod mrfro_newton;
 pub mod newton;
 pub mod point_sampling;
+mod search;
 pub mod sphere_tracing;

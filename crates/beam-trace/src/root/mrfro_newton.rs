@@ -1,23 +1,39 @@
-//! MrfroNewton (to be written).
+//! MRFro with interval Newton steps (thesis 4.3.4, Table 4.1 "MRFro+Newt.").
+//!
+//! The search is [`Mrfro`](super::mrf::Mrfro)'s (end-value conditions made sound, see
+//! [`mrf`](super::mrf)), and on every piece `X` that survives them `G'(X)` is evaluated:
+//! where `0 ∉ G'(X)` and `g` is proven continuous, an interval Newton step
+//! `N = (m − G([m]) / G'(X)) ∩ X` replaces the bisection. An empty `N` rejects `X`; a piece
+//! where a root is proven (end values of opposite signs) with `0 ∉ G'(X)`, or with
+//! `N ⊂ interior(X)`, holds exactly one root, is searched on by Newton steps alone and
+//! returned as [`Proof::Unique`](super::Proof::Unique). Where `0 ∈ G'(X)` the piece is
+//! bisected as in MRFro.
 
-/// MrfroNewton.
+use interval_core::Interval;
+
+use super::mrf::mrfro_search;
+use super::{RayFn, RootCounters, RootFinder, RootResult, RootSettings};
+
+/// MRFro conditions plus interval Newton steps where `0 ∉ G'(X)`.
 #[derive(Copy, Clone, Debug, Default)]
 pub struct MrfroNewton;
 
-impl super::RootFinder for MrfroNewton {
+impl RootFinder for MrfroNewton {
     fn name(&self) -> &'static str {
-        "MrfroNewton"
+        "mrfro-newton"
     }
+
     fn is_reliable(&self) -> bool {
         true
     }
+
     fn first_root(
         &self,
-        _g: &mut dyn super::RayFn,
-        _t: interval_core::Interval<f64>,
-        _s: &super::RootSettings,
-        _c: &mut super::RootCounters,
-    ) -> super::RootResult {
-        unimplemented!()
+        g: &mut dyn RayFn,
+        t: Interval<f64>,
+        settings: &RootSettings,
+        counters: &mut RootCounters,
+    ) -> RootResult {
+        mrfro_search(g, t, settings, counters, true)
     }
 }

@@ -1,0 +1,332 @@
+//! The pieces every interval root finder shares: counted evaluations, the depth-first
+//! stack, the step budget, the width test, the sign tests at the ends of a piece and the
+//! interval Newton operator.
+//!
+//! # Why the search finds the *first* root
+//!
+//! Every finder keeps the pieces of `T` still to be searched on a [`Stack`] in order: the
+//! piece on top is the leftmost one, and the pieces below it follow it along the ray.
+//! [`Stack::push_pair`] pushes the right piece first, so the left one is searched first.
+//! A piece leaves the stack only by being rejected (`0 ∉ G(piece)`, or an empty Newton
+//! image), replaced by sub-pieces that cover every root it holds, or returned as a root.
+//! So when a piece is returned, everything before its lower end has been proven free of
+//! roots, and when the budget runs out the undecided part is `[piece.inf(), T.sup()]`.
+//!
+//! # Proofs
+//!
+//! A sign test proves a root only where `g` is continuous, and `RayFn::g_checked` is the only
+//! source of that: [`Eval::checked`] is used for the rejection test of every piece whose
+//! ends may later be compared, so the continuity proof costs no extra evaluation.
+//! Continuity over a piece holds on each of its sub-pieces.
+
+use interval_core::Interval;
+
+use super::{Proof, RayFn, RootCounters, RootResult, RootSettings};
+use crate::ray::{ipoint, ival};
+
+/// A [`RayFn`] with the evaluations it does counted in [`RootCounters`].
+pub(crate) struct Eval<'a> {
+    g: &'a mut dyn RayFn,
+    /// The counters of the search.
+    pub counters: &'a mut RootCounters,
+}
+
+impl<'a> Eval<'a> {
+    /// Wraps `g`, counting into `counters`.
+    pub fn new(g: &'a mut dyn RayFn, counters: &'a mut RootCounters) -> Self {
+        Self { g, counters }
+    }
+
+    /// `G(x)`.
+    #[inline]
+    pub fn g(&mut self, x: Interval<f64>) -> Interval<f64> {
+        self.counters.g_evals += 1;
+        self.g.g(x)
+    }
+
+    /// `G(x)` and whether `g` is proven continuous over `x`.
+    #[inline]
+    pub fn checked(&mut self, x: Interval<f64>) -> (Interval<f64>, bool) {
+        self.counters.g_evals += 1;
+        self.g.g_checked(x)
+    }
+
+    /// `G([t, t])`: an enclosure of the value at one parameter, rounded outward.
+    #[inline]
+    pub fn at(&mut self, t: f64) -> Interval<f64> {
+        self.counters.g_evals += 1;
+        self.g.g(ipoint(t))
+    }
+
+    /// `(G(x), G'(x))`.
+    #[inline]
+    pub fn g_dg(&mut self, x: Interval<f64>) -> (Interval<f64>, Interval<f64>) {
+        self.counters.dg_evals += 1;
+        self.g.g_dg(x)
+    }
+
+    /// The point value `g(t)`, rounded to nearest (baselines only).
+    #[inline]
+    pub fn point(&mut self, t: f64) -> f64 {
+        self.counters.point_evals += 1;
+        self.g.g_point(t)
+    }
+
+    /// Splits `x` at its midpoint, counting one bisection.
+    #[inline]
+    pub fn bisect(&mut self, x: Interval<f64>) -> (Interval<f64>, Interval<f64>) {
+        self.counters.bisections += 1;
+        x.bisect()
+    }
+}
+
+/// The pieces of `T` still to be searched, leftmost on top (see the module documentation).
+/// An explicit stack: no finder recurses.
+pub(crate) struct Stack<I> {
+    items: Vec<I>,
+}
+
+impl<I> Stack<I> {
+    /// A stack holding `first`.
+    pub fn new(first: I) -> Self {
+        let mut items = Vec::with_capacity(64);
+        items.push(first);
+        Self { items }
+    }
+
+    /// The leftmost piece.
+    #[inline]
+    pub fn pop(&mut self) -> Option<I> {
+        self.items.pop()
+    }
+
+    /// Puts back one piece, to be searched next.
+    #[inline]
+    pub fn push(&mut self, item: I) {
+        self.items.push(item);
+    }
+
+    /// Puts back two adjacent pieces so that `left` is searched before `right`.
+    #[inline]
+    pub fn push_pair(&mut self, left: I, right: I) {
+        self.items.push(right);
+        self.items.push(left);
+    }
+
+    /// Drops every piece after the current one: called when a root is proven in the current
+    /// piece, so that the first root of `T` lies in it and nothing after it matters.
+    #[inline]
+    pub fn clear(&mut self) {
+        self.items.clear();
+    }
+}
+
+/// The budget of subdivision steps ([`RootSettings::max_steps`]) of one search.
+pub(crate) struct Budget {
+    left: u64,
+    end: f64,
+}
+
+impl Budget {
+    /// The budget of a search over `t`.
+    pub fn new(settings: &RootSettings, t: Interval<f64>) -> Self {
+        Self {
+            left: settings.max_steps,
+            end: t.sup(),
+        }
+    }
+
+    /// Takes one step (a bisection or a Newton step) on the piece starting at `from`.
+    /// `Some(Undecided { [from, T.sup()] })` when the budget is spent.
+    #[inline]
+    pub fn step(&mut self, from: f64) -> Option<RootResult> {
+        if self.left == 0 {
+            return Some(RootResult::Undecided {
+                t: ival(from, self.end),
+            });
+        }
+        self.left -= 1;
+        None
+    }
+}
+
+/// Whether `x` is a final piece: no wider than `epsilon`, or too narrow to split (its
+/// midpoint is one of its ends, so floating point cannot refine it further).
+#[inline]
+pub(crate) fn is_small(x: Interval<f64>, epsilon: f64) -> bool {
+    let m = x.mid();
+    x.wid() <= epsilon || !(x.inf() < m && m < x.sup())
+}
+
+/// `0 ∈ v`: a root may lie where `v` was evaluated. False for the empty set (`g` is
+/// undefined on the whole piece, so the surface does not pass there).
+#[inline]
+pub(crate) fn may_vanish(v: Interval<f64>) -> bool {
+    v.contains(0.0)
+}
+
+/// `v` is non-empty and holds no zero: `v > 0` or `v < 0` everywhere. The test for a
+/// derivative enclosure (an empty one proves nothing).
+#[inline]
+pub(crate) fn excludes_zero(v: Interval<f64>) -> bool {
+    !v.is_empty() && (v.inf() > 0.0 || v.sup() < 0.0)
+}
+
+/// `g(a) · g(b) ≤ 0` for every value of the enclosures `ga`, `gb`: with `g` continuous on
+/// `[a, b]` a root lies in `[a, b]` (ends included).
+#[inline]
+pub(crate) fn sign_change(ga: Interval<f64>, gb: Interval<f64>) -> bool {
+    !ga.is_empty() && !gb.is_empty() && (ga * gb).sup() <= 0.0
+}
+
+/// `ga` and `gb` are both `> 0` or both `< 0`.
+#[inline]
+pub(crate) fn same_sign(ga: Interval<f64>, gb: Interval<f64>) -> bool {
+    (ga.inf() > 0.0 && gb.inf() > 0.0) || (ga.sup() < 0.0 && gb.sup() < 0.0)
+}
+
+/// The sign of `v` as `1` or `-1`, or `0` when `v` may vanish (or is empty).
+#[inline]
+pub(crate) fn sign(v: Interval<f64>) -> i8 {
+    if v.is_empty() {
+        0
+    } else if v.inf() > 0.0 {
+        1
+    } else if v.sup() < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+/// What the values `ga`, `gb` at the ends of a final piece prove about it, given that
+/// `0 ∈ G(piece)`: `cont` is continuity over the piece, `monotone` that moreover
+/// `0 ∉ G'(piece)`.
+///
+/// * a sign change with continuity: a root exists (unique if monotone);
+/// * monotone with both ends of one sign: `g(piece)` lies between the end values, so there
+///   is no root (`None`: the piece is rejected);
+/// * otherwise a root is only possible.
+#[inline]
+fn classify(ga: Interval<f64>, gb: Interval<f64>, cont: bool, monotone: bool) -> Option<Proof> {
+    if cont && sign_change(ga, gb) {
+        Some(if monotone {
+            Proof::Unique
+        } else {
+            Proof::Exists
+        })
+    } else if cont && monotone && same_sign(ga, gb) {
+        None
+    } else {
+        Some(Proof::Possible)
+    }
+}
+
+/// The answer for a final piece `x = [a, b]` with `0 ∈ G(x)` and end values `ga`, `gb`:
+/// [`classify`], and where that leaves only a possible root with both ends of one sign,
+/// [`look_ahead`] for a sign change just after `x`. `None` rejects `x`. `end` is `T.sup()`.
+pub(crate) fn settle(
+    ev: &mut Eval<'_>,
+    x: Interval<f64>,
+    (ga, gb): (Interval<f64>, Interval<f64>),
+    cont: bool,
+    monotone: bool,
+    end: f64,
+) -> Option<RootResult> {
+    let proof = classify(ga, gb, cont, monotone)?;
+    if proof == Proof::Possible
+        && same_sign(ga, gb)
+        && let Some(r) = look_ahead(ev, x, gb, end)
+    {
+        return Some(r);
+    }
+    Some(RootResult::Root { t: x, proof })
+}
+
+/// [`settle`] for a final piece whose end values are not known yet; `dg` is `G'(x)` where
+/// the finder has it.
+pub(crate) fn settle_piece(
+    ev: &mut Eval<'_>,
+    x: Interval<f64>,
+    cont: bool,
+    dg: Option<Interval<f64>>,
+    end: f64,
+) -> Option<RootResult> {
+    let ends = (ev.at(x.inf()), ev.at(x.sup()));
+    settle(ev, x, ends, cont, dg.is_some_and(excludes_zero), end)
+}
+
+/// How far [`look_ahead`] looks: `2^LOOK_AHEAD` widths of the final piece.
+const LOOK_AHEAD: u32 = 10;
+
+/// Turns a possible root into a proven one where a sign change follows closely.
+///
+/// The final piece `x = [a, b]` of a search holds 0 in `G(x)` but `g` has one strict sign
+/// at both ends: the natural interval extension overestimates `g` near a root, so such
+/// pieces occur a few widths *before* a simple root, where no rejection test of the piece
+/// alone can remove them. Nothing before `a` is a root. If `G([p])` has the opposite
+/// strict sign at some `p = b + w·2^k` (`w` the width of `x`, `k ≤ LOOK_AHEAD`, `p ≤ T.sup()`)
+/// and `g` is proven continuous on `[a, p]`, a root lies in `[a, p]`, so the first root of
+/// `T` does too: `[a, p]` is returned with [`Proof::Exists`]. Its width may exceed `ε`;
+/// it is proven. Costs at most `LOOK_AHEAD + 2` evaluations; `None` when nothing is found.
+fn look_ahead(
+    ev: &mut Eval<'_>,
+    x: Interval<f64>,
+    gb: Interval<f64>,
+    end: f64,
+) -> Option<RootResult> {
+    let (a, b) = (x.inf(), x.sup());
+    let w = x.wid();
+    let s = sign(gb);
+    if w.is_nan() || w <= 0.0 || s == 0 {
+        return None;
+    }
+    let mut step = w;
+    for _ in 0..=LOOK_AHEAD {
+        let p = (b + step).min(end);
+        if p <= b {
+            return None;
+        }
+        if sign(ev.at(p)) == -s {
+            let h = ival(a, p);
+            let (_, cont) = ev.checked(h);
+            return cont.then_some(RootResult::Root {
+                t: h,
+                proof: Proof::Exists,
+            });
+        }
+        if p == end {
+            return None;
+        }
+        step *= 2.0;
+    }
+    None
+}
+
+/// One interval Newton step over `x` from its point `m`, with `gm = G([m])` and
+/// `dg = G'(x)` free of zero: `N = m − gm / dg`. Returns `N ∩ x` and whether `N` lies in the
+/// interior of `x`.
+///
+/// By the mean value theorem every root `r ∈ x` satisfies `r = m − g(m)/g'(ξ)` for some `ξ`
+/// in `x`, so `r ∈ N`: an empty `N ∩ x` proves that `x` holds no root, and `N ⊂ int(x)` proves
+/// exactly one (the interval Newton theorem). Both need `g` continuous and differentiable on
+/// `x` (the caller passes only continuous pieces).
+#[inline]
+pub(crate) fn newton(
+    x: Interval<f64>,
+    m: f64,
+    gm: Interval<f64>,
+    dg: Interval<f64>,
+) -> (Interval<f64>, bool) {
+    let n = ipoint(m) - gm / dg;
+    let inside = !n.is_empty() && n.interior(x);
+    (n.intersection(x), inside)
+}
+
+/// Whether a contracted piece `p ⊆ x` has made enough progress to be searched as it is: at
+/// most half as wide as `x`. Otherwise the finders bisect it, so every step at least halves
+/// the width and the search ends.
+#[inline]
+pub(crate) fn shrunk(p: Interval<f64>, x: Interval<f64>) -> bool {
+    p.wid() <= 0.5 * x.wid()
+}
