@@ -38,7 +38,7 @@ pub fn normal_variation(normal: [Interval<f64>; 3], view: [Interval<f64>; 3]) ->
         return f64::INFINITY;
     }
     let mag = d.mag();
-    if !(mag > 0.0) || !mag.is_finite() {
+    if !mag.is_finite() || mag <= 0.0 {
         return f64::INFINITY;
     }
     d.wid() / mag

@@ -181,13 +181,13 @@ fn look_ahead(
     let w = t.wid();
     let ra = g.g(ipoint(a));
     counters.g_evals += 1;
-    if !excludes_zero(ra) || !(w > 0.0) || !end.is_finite() {
+    if !excludes_zero(ra) || w.is_nan() || w <= 0.0 || !end.is_finite() {
         return None;
     }
     let mut step = w;
     for _ in 0..=LOOK_AHEAD {
         let bb = (b + step).min(end);
-        if !(bb > b) {
+        if bb <= b {
             return None;
         }
         let rb = g.g(ipoint(bb));
@@ -223,7 +223,7 @@ fn t_final(
     let mut step = 0.5 * (hi - lo);
     for _ in 0..settings.refine_steps {
         let m = lo + step;
-        if !(m > lo) {
+        if m <= lo {
             break;
         }
         if m >= hi {
@@ -242,7 +242,7 @@ fn t_final(
     let mut step = 0.5 * (hi - lo);
     for _ in 0..settings.refine_steps {
         let m = hi - step;
-        if !(m < hi) {
+        if m >= hi {
             break;
         }
         if m <= lo {

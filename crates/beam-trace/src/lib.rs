@@ -11,7 +11,7 @@
 //! 4. [`beam`] and [`screen`]: beams over screen boxes are classified Miss / Hit /
 //!    Undecided by the rejection and inclusion tests; [`root`] finders search single rays.
 //! 5. [`aa`], [`shading`], [`shadow`]: anti-aliasing, Phong shading, shadows.
-//! 6. [`render`]: the passes in parallel, an image and per-pass statistics.
+//! 6. [`render()`](mod@render): the passes in parallel, an image and per-pass statistics.
 
 pub mod aa;
 pub mod beam;

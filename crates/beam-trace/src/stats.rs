@@ -44,6 +44,9 @@ impl PassStats {
     }
 }
 
+/// The work of one pass: its name, whether it ran, its counters.
+pub type PassWork = (String, bool, Vec<(String, u64)>);
+
 /// Statistics of a whole render.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct RenderStats {
@@ -61,7 +64,7 @@ impl RenderStats {
     }
 
     /// The statistics without the times: what must not depend on the thread count.
-    pub fn work(&self) -> Vec<(String, bool, Vec<(String, u64)>)> {
+    pub fn work(&self) -> Vec<PassWork> {
         self.passes
             .iter()
             .map(|p| (p.name.clone(), p.ran, p.counters.clone()))
