@@ -7,7 +7,7 @@ use std::path::PathBuf;
 pub enum Error {
     /// A scene file or text is malformed: the file (or `<built-in>`), the field path
     /// (`lights[1].size`) and the problem.
-    #[error("{file}: {path}: {message}")]
+    #[error("{file}: {}{message}", if path.is_empty() { String::new() } else { format!("{path}: ") })]
     Scene {
         /// The file, or a name for an in-memory scene.
         file: String,

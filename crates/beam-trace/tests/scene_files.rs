@@ -489,6 +489,30 @@ fn formula_errors_show_the_span() {
 }
 
 #[test]
+fn vm_paths_are_relative_to_the_scene() {
+    let dir = std::env::temp_dir().join(format!("beam-trace-scene-vm-{}", std::process::id()));
+    std::fs::create_dir_all(dir.join("models")).unwrap();
+    // x^2 + y^2 + z^2 - 1
+    let vm = "_0 var-x\n_1 square _0\n_2 var-y\n_3 square _2\n_4 var-z\n_5 square _4\n\
+              _6 add _1 _3\n_7 add _6 _5\n_8 const 1\n_9 sub _7 _8\n";
+    std::fs::write(dir.join("models/ball.vm"), vm).unwrap();
+    let scene = "[camera]\n[[surfaces]]\nvm = \"models/ball.vm\"\n\
+                 bounds = [[-1, -1, -1], [1, 1, 1]]\ntransform = { translate = [0, 2, 0] }\n";
+    std::fs::write(dir.join("scene.toml"), scene).unwrap();
+    let loaded = Scene::load(&dir.join("scene.toml"));
+    let from_text = Scene::from_toml(scene, "scene.toml", Some(&dir));
+    let elsewhere = Scene::from_toml(scene, "scene.toml", Some(&dir.join("models")));
+    std::fs::remove_dir_all(&dir).unwrap();
+    for s in [loaded.unwrap(), from_text.unwrap()] {
+        assert_eq!(s.geometry.leaves()[0].name, "ball");
+        assert_eq!(leaf_value(&s, 0, DVec3::new(0.0, 2.0, 0.0)), -1.0);
+        assert_eq!(leaf_value(&s, 0, DVec3::new(0.0, 3.0, 0.0)), 0.0);
+    }
+    let e = elsewhere.unwrap_err().to_string();
+    assert!(e.contains("surfaces[0].vm: cannot read"), "{e}");
+}
+
+#[test]
 fn io_errors_name_the_path() {
     let missing = repo_root().join("scenes/no-such-scene.toml");
     let e = Scene::load(&missing).unwrap_err();
