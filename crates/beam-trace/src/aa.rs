@@ -20,28 +20,29 @@ use crate::render::{Evals, Hit, Sample, Tracer, Work, forward};
 use crate::root::RootResult;
 
 /// Names of the IAA pass counters (in `Work::items` order).
-pub const COUNTERS: [&str; 6] = [
+pub const COUNTERS: [&str; 7] = [
     "beams",
     "rejected",
     "shaded_once",
-    "splits",
+    "splits_undecided",
     "depth_limit",
     "rays",
+    "splits_variation",
 ];
 
-/// The normal-variation estimator of eq. 5.10, relative: the width of
-/// `N · (P − c)` over the hit region divided by its magnitude (0 for a flat, evenly lit
-/// region; up to 2 when the normals turn across the view).
+/// The normal-variation estimator of eq. 5.10: the width of the interval dot product
+/// `N · (P − c)` of the normals' enclosure `N` over the hit region with the viewing
+/// directions, scaled by the largest lengths of both, so that it reads as the spread of the
+/// cosine between normal and view over the region (0 for a flat region seen head-on, at
+/// most 2). A sub-pixel whose spread is at most the threshold is shaded once.
 pub fn normal_variation(normal: [Interval<f64>; 3], view: [Interval<f64>; 3]) -> f64 {
     let d = normal[0] * view[0] + normal[1] * view[1] + normal[2] * view[2];
-    if d.is_empty() {
+    let length = |v: &[Interval<f64>; 3]| v.iter().map(|c| c.mag() * c.mag()).sum::<f64>().sqrt();
+    let scale = length(&normal) * length(&view);
+    if d.is_empty() || !scale.is_finite() || scale <= 0.0 {
         return f64::INFINITY;
     }
-    let mag = d.mag();
-    if !mag.is_finite() || mag <= 0.0 {
-        return f64::INFINITY;
-    }
-    d.wid() / mag
+    d.wid() / scale
 }
 
 /// The samples of pixel `(x, y)` under IAA.
@@ -87,7 +88,7 @@ pub(crate) fn iaa_pixel(
                         hit: Some(tracer.hit(ev, &centre, hit)),
                     });
                 } else {
-                    work.items[3] += 1;
+                    work.items[6] += 1;
                     push_quadrants(&mut stack, x0, y0, size, depth);
                 }
             }

@@ -198,7 +198,7 @@ impl Tracer<'_> {
 #[derive(Copy, Clone, Debug, Default)]
 pub(crate) struct Work {
     pub(crate) root: RootCounters,
-    pub(crate) items: [u64; 6],
+    pub(crate) items: [u64; 8],
 }
 
 impl Work {
