@@ -3,7 +3,7 @@
 //! casting with 9 rays in every pixel, on the same scenes, in one run.
 //!
 //! ```text
-//! screen_boxes [--size N] [--surfaces orthocircle,blobby,drop] [--root-finder NAME]
+//! screen-boxes [--size N] [--surfaces orthocircle,blobby,drop] [--root-finder NAME]
 //! ```
 
 use std::process::ExitCode;

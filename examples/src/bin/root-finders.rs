@@ -15,9 +15,9 @@
 //! otherwise (one method could not reject a piece that another rejected).
 //!
 //! ```text
-//! cargo run --release -p examples --bin root_finders
-//! cargo run --release -p examples --bin root_finders -- --size 300 --surfaces sphere,drop
-//! cargo run --release -p examples --bin root_finders -- --epsilon 1e-4 --surfaces all
+//! cargo run --release -p examples --bin root-finders
+//! cargo run --release -p examples --bin root-finders -- --size 300 --surfaces sphere,drop
+//! cargo run --release -p examples --bin root-finders -- --epsilon 1e-4 --surfaces all
 //! ```
 
 use std::fmt::Write as _;
