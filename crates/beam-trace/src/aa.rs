@@ -58,12 +58,12 @@ pub(crate) fn iaa_pixel(
     let cam = &tracer.scene.camera;
     let mut out = Vec::new();
     let (fx, fy) = (f64::from(x), f64::from(y));
-    let mut stack = vec![(fx, fy, 1.0f64, 0u32)];
-    while let Some((x0, y0, size, depth)) = stack.pop() {
+    let mut stack: Vec<Part> = vec![(fx, fy, 1.0f64, 0u32, None)];
+    while let Some((x0, y0, size, depth, parent)) = stack.pop() {
         let weight = (size * size) as f32;
         let beam = cam.beam(x0, y0, x0 + size, y0 + size);
         work.items[0] += 1;
-        let class = tracer.classify(ev, &beam, &mut work.root);
+        let class = tracer.classify(ev, &beam, parent.as_ref(), &mut work.root);
         let centre = cam.ray(x0 + 0.5 * size, y0 + 0.5 * size);
         let at_limit = depth >= max_depth;
         match class {
@@ -89,7 +89,7 @@ pub(crate) fn iaa_pixel(
                     });
                 } else {
                     work.items[6] += 1;
-                    push_quadrants(&mut stack, x0, y0, size, depth);
+                    push_quadrants(&mut stack, x0, y0, size, depth, class);
                 }
             }
             BoxClass::Undecided { t } => {
@@ -108,7 +108,7 @@ pub(crate) fn iaa_pixel(
                     out.push(Sample { weight, hit });
                 } else {
                     work.items[3] += 1;
-                    push_quadrants(&mut stack, x0, y0, size, depth);
+                    push_quadrants(&mut stack, x0, y0, size, depth, class);
                 }
             }
         }
@@ -116,9 +116,20 @@ pub(crate) fn iaa_pixel(
     out
 }
 
-fn push_quadrants(stack: &mut Vec<(f64, f64, f64, u32)>, x0: f64, y0: f64, size: f64, depth: u32) {
+/// A sub-pixel waiting for its beam: corner, size, depth, and the class of the beam it was
+/// split from.
+type Part = (f64, f64, f64, u32, Option<BoxClass>);
+
+fn push_quadrants(
+    stack: &mut Vec<Part>,
+    x0: f64,
+    y0: f64,
+    size: f64,
+    depth: u32,
+    parent: BoxClass,
+) {
     let h = 0.5 * size;
     for (dx, dy) in [(h, h), (0.0, h), (h, 0.0), (0.0, 0.0)] {
-        stack.push((x0 + dx, y0 + dy, h, depth + 1));
+        stack.push((x0 + dx, y0 + dy, h, depth + 1, Some(parent)));
     }
 }

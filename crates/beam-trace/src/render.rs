@@ -101,6 +101,24 @@ pub(crate) struct Tracer<'a> {
     pub(crate) finder: &'static dyn RootFinder,
 }
 
+/// The parameters a beam lying inside a classified parent beam needs to search: every ray
+/// of an Undecided parent is root-free before the parent's undecided range, and every ray
+/// of a Hit parent has its first root in the parent's `T_final`. A part of a beam has a
+/// subset of its rays, so the same holds for it. For an Undecided parent the window starts
+/// a few widths of its undecided range earlier (still in the rejected prefix), so that `g`
+/// has one strict sign at the window's start, which the inclusion test needs.
+pub(crate) fn child_window(parent: Option<&BoxClass>) -> Interval<f64> {
+    match parent {
+        None => forward(),
+        Some(BoxClass::Hit { t_final }) => *t_final,
+        Some(BoxClass::Undecided { t }) => {
+            let start = (t.inf() - 8.0 * t.wid()).max(0.0);
+            Interval::new_unchecked(start, f64::INFINITY)
+        }
+        Some(BoxClass::Miss) => Interval::EMPTY,
+    }
+}
+
 /// `[0, +∞]`: rays start at their origin.
 pub(crate) fn forward() -> Interval<f64> {
     Interval::new_unchecked(0.0, f64::INFINITY)
@@ -114,21 +132,37 @@ impl Tracer<'_> {
         }
     }
 
-    /// The parameter ranges a beam must search: the grid's non-empty cells, or the scene
-    /// bounds, from the origin on.
-    pub(crate) fn beam_ranges(&self, beam: &Beam) -> Vec<Interval<f64>> {
+    /// The parameter ranges a beam must search inside `window`: the grid's non-empty
+    /// cells, or the scene bounds, from the origin on.
+    pub(crate) fn beam_ranges(&self, beam: &Beam, window: Interval<f64>) -> Vec<Interval<f64>> {
+        let window = window.intersection(forward());
+        if window.is_empty() {
+            return Vec::new();
+        }
         match self.grid {
-            Some(g) => g.beam_t_ranges(beam),
+            Some(g) => g.beam_t_ranges_within(beam, window),
             None => beam
-                .t_range_within(&self.scene.geometry.bounds(), forward())
+                .t_range_within(&self.scene.geometry.bounds(), window)
                 .into_iter()
                 .collect(),
         }
     }
 
-    /// EvaluateBox of a beam against the whole scene function.
-    pub(crate) fn classify(&self, ev: &mut Evals, beam: &Beam, c: &mut RootCounters) -> BoxClass {
-        let ranges = self.beam_ranges(beam);
+    /// EvaluateBox of a beam against the whole scene function. A beam lying inside a
+    /// classified `parent` beam searches only what the parent left open (see
+    /// [`child_window`]); inside a Hit parent, exactly the parent's `T_final`, whose ends
+    /// already have one strict sign for every ray.
+    pub(crate) fn classify(
+        &self,
+        ev: &mut Evals,
+        beam: &Beam,
+        parent: Option<&BoxClass>,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        let ranges = match parent {
+            Some(BoxClass::Hit { t_final }) => vec![*t_final],
+            _ => self.beam_ranges(beam, child_window(parent)),
+        };
         if ranges.is_empty() {
             return BoxClass::Miss;
         }
@@ -292,7 +326,7 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
                 || tracer.evals(),
                 |ev, tile| {
                     let mut work = Work::default();
-                    let boxes = subdivide(*tile, plan.t_final_width, |r| {
+                    let boxes = subdivide(*tile, plan.t_final_width, |r, parent| {
                         work.items[0] += 1;
                         let beam = cam.beam(
                             f64::from(r.x0),
@@ -300,7 +334,7 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
                             f64::from(r.x1),
                             f64::from(r.y1),
                         );
-                        tracer.classify(ev, &beam, &mut work.root)
+                        tracer.classify(ev, &beam, parent, &mut work.root)
                     });
                     for b in &boxes {
                         let k = match b.class {

@@ -66,19 +66,21 @@ pub struct ScreenBox {
     pub class: BoxClass,
 }
 
-/// Subdivides `tile` into classified boxes: `classify` evaluates the beam of a rectangle.
+/// Subdivides `tile` into classified boxes: `classify` evaluates the beam of a rectangle,
+/// given the class of the box it was split from (a part's beam needs to search only what
+/// its parent's left open).
 /// Hit boxes with `T_final` wider than `t_final_width` and Undecided boxes are split until
 /// they are single pixels. The boxes come out in a fixed order (depth first, quadrants in
 /// reading order), independent of threads.
 pub fn subdivide(
     tile: PixelRect,
     t_final_width: f64,
-    mut classify: impl FnMut(&PixelRect) -> BoxClass,
+    mut classify: impl FnMut(&PixelRect, Option<&BoxClass>) -> BoxClass,
 ) -> Vec<ScreenBox> {
     let mut out = Vec::new();
-    let mut stack = vec![tile];
-    while let Some(rect) = stack.pop() {
-        let class = classify(&rect);
+    let mut stack: Vec<(PixelRect, Option<BoxClass>)> = vec![(tile, None)];
+    while let Some((rect, parent)) = stack.pop() {
+        let class = classify(&rect, parent.as_ref());
         let split = !rect.is_pixel()
             && match class {
                 BoxClass::Miss => false,
@@ -86,7 +88,7 @@ pub fn subdivide(
                 BoxClass::Undecided { .. } => true,
             };
         if split {
-            stack.extend(rect.split().into_iter().rev());
+            stack.extend(rect.split().into_iter().rev().map(|r| (r, Some(class))));
         } else {
             out.push(ScreenBox { rect, class });
         }
