@@ -670,30 +670,32 @@ fn primary_pixel(
     work: &mut Work,
 ) -> Vec<Sample> {
     let (fx, fy) = (f64::from(x), f64::from(y));
-    let trace = |ev: &mut Evals, ray: &Ray, t: Option<Interval<f64>>, work: &mut Work| {
-        work.items[0] += 1;
-        let mut r = tracer.cast(ev, ray, t.unwrap_or(forward()), &mut work.root);
-        if t.is_some() && !matches!(r, RootResult::Root { .. }) {
-            // A limit inside T_final: search the whole ray.
-            r = tracer.cast(ev, ray, forward(), &mut work.root);
-        }
-        match r {
-            RootResult::Root { t, proof } => {
-                work.items[1] += 1;
-                match proof {
-                    crate::root::Proof::Unique => work.items[2] += 1,
-                    crate::root::Proof::Possible => work.items[3] += 1,
-                    crate::root::Proof::Exists => {}
+    // `in_t_final`: the window is a Hit box's T_final, where a root is known to exist.
+    let trace =
+        |ev: &mut Evals, ray: &Ray, window: Interval<f64>, in_t_final: bool, work: &mut Work| {
+            work.items[0] += 1;
+            let mut r = tracer.cast(ev, ray, window, &mut work.root);
+            if in_t_final && !matches!(r, RootResult::Root { .. }) {
+                // A limit inside T_final: search the whole ray.
+                r = tracer.cast(ev, ray, forward(), &mut work.root);
+            }
+            match r {
+                RootResult::Root { t, proof } => {
+                    work.items[1] += 1;
+                    match proof {
+                        crate::root::Proof::Unique => work.items[2] += 1,
+                        crate::root::Proof::Possible => work.items[3] += 1,
+                        crate::root::Proof::Exists => {}
+                    }
+                    Some(tracer.hit(ev, ray, t))
                 }
-                Some(tracer.hit(ev, ray, t))
+                RootResult::Undecided { t } => {
+                    work.items[4] += 1;
+                    Some(tracer.hit(ev, ray, t))
+                }
+                RootResult::NoRoot => None,
             }
-            RootResult::Undecided { t } => {
-                work.items[4] += 1;
-                Some(tracer.hit(ev, ray, t))
-            }
-            RootResult::NoRoot => None,
-        }
-    };
+        };
     match class {
         Some(BoxClass::Miss) => vec![Sample {
             weight: 1.0,
@@ -701,10 +703,12 @@ fn primary_pixel(
         }],
         Some(BoxClass::Hit { t_final }) => {
             let ray = cam.ray(fx + 0.5, fy + 0.5);
-            let hit = trace(ev, &ray, Some(t_final), work);
+            let hit = trace(ev, &ray, t_final, true, work);
             vec![Sample { weight: 1.0, hit }]
         }
         Some(BoxClass::Undecided { .. }) | None => {
+            // The pixel's beam proved its rays root-free before its undecided range.
+            let window = child_window(class.as_ref());
             let wgt = 1.0 / offsets.len() as f32;
             offsets
                 .iter()
@@ -712,7 +716,7 @@ fn primary_pixel(
                     let ray = cam.ray(fx + ox, fy + oy);
                     Sample {
                         weight: wgt,
-                        hit: trace(ev, &ray, None, work),
+                        hit: trace(ev, &ray, window, false, work),
                     }
                 })
                 .collect()
