@@ -12,6 +12,49 @@
 //!    Undecided by the rejection and inclusion tests; [`root`] finders search single rays.
 //! 5. [`aa`], [`shading`], [`shadow`]: anti-aliasing, Phong shading, shadows.
 //! 6. [`render()`](mod@render): the passes in parallel, an image and per-pass statistics.
+//!
+//! ## A first render
+//!
+//! ```
+//! use beam_trace::{NoProgress, Scene, render};
+//!
+//! let scene = Scene::from_toml(
+//!     r#"
+//!     [camera]
+//!     eye = [0.0, 0.0, 4.0]
+//!     look_at = [0.0, 0.0, 0.0]
+//!     width = 24
+//!     height = 16
+//!
+//!     [[surfaces]]
+//!     formula = "x^2 + y^2 + z^2 - 1"
+//!     bounds = [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]
+//!
+//!     [[lights]]
+//!     type = "point"
+//!     position = [2.0, 3.0, 4.0]
+//!     "#,
+//!     "ball.toml",
+//!     None,
+//! )?;
+//! let out = render(&scene, &NoProgress)?;
+//! // The centre pixel sees the ball, a corner pixel the background.
+//! assert_ne!(out.image.get(12, 8), scene.background);
+//! assert_eq!(out.image.get(0, 0), scene.background);
+//! // The plan ran primary visibility, normals, shadows and shading, and no IAA.
+//! assert!(out.stats.pass("screen-boxes").unwrap().ran);
+//! assert!(!out.stats.pass("iaa").unwrap().ran);
+//! println!("{}", out.stats);
+//! # Ok::<(), beam_trace::Error>(())
+//! ```
+//!
+//! Scene errors name the file, the field and the problem:
+//!
+//! ```
+//! let text = "[camera]\nfov = 0.0\n[[surfaces]]\ncatalog = \"sphere\"\n";
+//! let err = beam_trace::Scene::from_toml(text, "bad.toml", None).unwrap_err();
+//! assert!(err.to_string().starts_with("bad.toml: camera.fov"), "{err}");
+//! ```
 
 pub mod aa;
 pub mod beam;
