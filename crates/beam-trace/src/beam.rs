@@ -210,7 +210,7 @@ fn look_ahead(
 /// no root before `t.inf()` and a sign change (so a root) before `t.sup()`. The lower end
 /// moves up over parts that the rejection test removes, the upper end down to parameters
 /// where the sign has already changed for every ray; each side halves its step when a move
-/// fails, `settings.refine_steps` times.
+/// fails, at most `settings.refine_steps` times and not below `settings.epsilon / 8`.
 fn t_final(
     g: &mut dyn RayFn,
     t: Interval<f64>,
@@ -220,8 +220,12 @@ fn t_final(
     let (mut lo, mut hi) = (t.inf(), t.sup());
     let start = g.g(ipoint(lo));
     counters.g_evals += 1;
+    let finest = settings.epsilon / 8.0;
     let mut step = 0.5 * (hi - lo);
     for _ in 0..settings.refine_steps {
+        if step < finest {
+            break;
+        }
         let m = lo + step;
         if m <= lo {
             break;
@@ -241,6 +245,9 @@ fn t_final(
     }
     let mut step = 0.5 * (hi - lo);
     for _ in 0..settings.refine_steps {
+        if step < finest {
+            break;
+        }
         let m = hi - step;
         if m >= hi {
             break;
