@@ -150,3 +150,37 @@ proptest! {
         }
     }
 }
+
+/// Why the inclusion test uses outer enclosures: with inner rounding (the thesis's
+/// `Inn(fR)`) a range can lose the values that contradict its sign. For `g = 3x − y` over the
+/// rays `x ∈ [0.1, 0.2]` with `y = 0.30000000000000004` (doubles), the ray `x = 0.1` has
+/// `g = 3 · 0.1 − y < 0` (the product `3 · 0.1` rounds up to `y`), yet the inner-rounded range
+/// is `[0, …]`: with an end value `≤ 0` elsewhere, the meet test would claim a sign change
+/// for a ray that has none. The outer-rounded range keeps the negative value, and
+/// [`sign_change`] refuses.
+#[test]
+fn inner_rounding_can_claim_a_wrong_sign_outer_cannot() {
+    use interval_core::{Inner, Modal, Outer};
+    let y = 0.30000000000000004f64;
+    // The real value at x = 0.1: 3·0.1 = p + e exactly, with p the rounded product.
+    let p = 3.0 * 0.1f64;
+    let e = 3.0f64.mul_add(0.1, -p);
+    assert_eq!(p, y);
+    assert!(e < 0.0, "3 · 0.1 − y = {e} is negative");
+    let x_inner = Modal::<f64, Inner>::proper(0.1, 0.2).unwrap();
+    let inner = Modal::<f64, Inner>::point(3.0).unwrap() * x_inner - Modal::point(y).unwrap();
+    assert!(
+        inner.first() >= 0.0,
+        "inner rounding claims g ≥ 0: {inner:?}"
+    );
+    let x_outer = Modal::<f64, Outer>::proper(0.1, 0.2).unwrap();
+    let outer = Modal::<f64, Outer>::point(3.0).unwrap() * x_outer - Modal::point(y).unwrap();
+    assert!(outer.first() <= e && outer.second() > 0.0, "{outer:?}");
+    let end_b = ival(-2.0, -1.0);
+    // The thesis's test on the inner value would claim a sign change ...
+    let inner_meet_claims =
+        inner.first().max(end_b.inf()) >= 0.0 && inner.second().min(end_b.sup()) <= 0.0;
+    assert!(inner_meet_claims);
+    // ... the sound test on the outer value does not.
+    assert!(!sign_change(ival(outer.first(), outer.second()), end_b));
+}
