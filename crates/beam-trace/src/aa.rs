@@ -85,7 +85,7 @@ pub(crate) fn iaa_pixel(
                     };
                     out.push(Sample {
                         weight,
-                        hit: Some(tracer.hit(ev, &centre, hit)),
+                        hit: Some(tracer.hit(ev, &centre, hit, &mut work.root)),
                     });
                 } else {
                     work.items[6] += 1;
@@ -99,11 +99,11 @@ pub(crate) fn iaa_pixel(
                     let hit: Option<Hit> = match tracer.cast(ev, &centre, forward(), &mut work.root)
                     {
                         RootResult::Root { t, .. } | RootResult::Undecided { t } => {
-                            Some(tracer.hit(ev, &centre, t))
+                            Some(tracer.hit(ev, &centre, t, &mut work.root))
                         }
                         // The central ray misses, but some ray of the beam may meet the
                         // surface in `t`: keep the feature.
-                        RootResult::NoRoot => Some(tracer.hit(ev, &centre, t)),
+                        RootResult::NoRoot => Some(tracer.hit(ev, &centre, t, &mut work.root)),
                     };
                     out.push(Sample { weight, hit });
                 } else {

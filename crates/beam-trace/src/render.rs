@@ -19,7 +19,7 @@ use crate::grid::{Grid, GridEval};
 use crate::image::Image;
 use crate::plan::{PASSES, Plan, Primary};
 use crate::ray::{Beam, Ray};
-use crate::root::{RootCounters, RootFinder, RootResult};
+use crate::root::{RayFn, RootCounters, RootFinder, RootResult};
 use crate::scene::geometry::GeometryEval;
 use crate::scene::{Light, Scene};
 use crate::screen::{PixelRect, ScreenBox, subdivide};
@@ -215,8 +215,18 @@ impl Tracer<'_> {
     }
 
     /// A hit record for the first root `t` of `ray` (or the first undecided range).
-    pub(crate) fn hit(&self, ev: &mut Evals, ray: &Ray, t: Interval<f64>) -> Hit {
-        let tm = t.mid();
+    ///
+    /// The point is placed inside `t` where the floating-point values of `g` change sign
+    /// (bisection on point values, for shading only: the proof is `t`), on the side of the
+    /// ray's origin, so that shadow segments start outside the surface they leave.
+    pub(crate) fn hit(
+        &self,
+        ev: &mut Evals,
+        ray: &Ray,
+        t: Interval<f64>,
+        c: &mut RootCounters,
+    ) -> Hit {
+        let tm = shading_parameter(&mut ev.geo.beam, ray, t, c);
         let point = ray.at(tm);
         Hit {
             t,
@@ -227,6 +237,55 @@ impl Tracer<'_> {
         }
     }
 }
+
+/// The parameter of the shading point of a hit with enclosure `t`: the end on the origin's
+/// side of a floating-point sign change of `g` inside `t`, narrowed by bisection on point
+/// values; the midpoint where `g` shows no sign change (a tangent, a possible root).
+fn shading_parameter(
+    eval: &mut crate::ray::BeamEval,
+    ray: &Ray,
+    t: Interval<f64>,
+    c: &mut RootCounters,
+) -> f64 {
+    let (mut a, mut b) = (t.inf(), t.sup());
+    if !(a.is_finite() && b.is_finite()) {
+        return t.mid();
+    }
+    eval.set_ray(ray);
+    let ga = eval.g_point(a);
+    let gb = eval.g_point(b);
+    c.point_evals += 2;
+    if ga == 0.0 {
+        return a;
+    }
+    if ga.is_nan() || gb.is_nan() || (ga > 0.0) == (gb > 0.0) && gb != 0.0 {
+        return t.mid();
+    }
+    for _ in 0..64 {
+        let m = 0.5 * (a + b);
+        if m <= a || m >= b {
+            break;
+        }
+        let gm = eval.g_point(m);
+        c.point_evals += 1;
+        if gm.is_nan() {
+            break;
+        }
+        if gm != 0.0 && (gm > 0.0) == (ga > 0.0) {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    a
+}
+
+/// Distance, as a fraction of the scene diagonal, by which a shadow segment starts off the
+/// surface along the normal. It must exceed the width of a root enclosure along the segment
+/// (`epsilon` times the segment's length) by a wide margin, or the search finds the surface
+/// the segment leaves as a possible root (shadow acne); occluders thinner than it at the
+/// very start of a segment are not seen.
+const SHADOW_OFFSET: f64 = 1e-4;
 
 /// Work counters of a pass, summed over pieces.
 #[derive(Copy, Clone, Debug, Default)]
@@ -534,7 +593,7 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
                                     v[si * nl + li] = 0.0;
                                     continue;
                                 }
-                                let from = hit.point + n * (1e-7 * diag);
+                                let from = hit.point + n * (SHADOW_OFFSET * diag);
                                 let r = tracer.segment(ev, from, *pos, &mut work.root);
                                 let (k, lit) = match r {
                                     Visibility::Lit => (1, 1.0),
@@ -687,11 +746,11 @@ fn primary_pixel(
                         crate::root::Proof::Possible => work.items[3] += 1,
                         crate::root::Proof::Exists => {}
                     }
-                    Some(tracer.hit(ev, ray, t))
+                    Some(tracer.hit(ev, ray, t, &mut work.root))
                 }
                 RootResult::Undecided { t } => {
                     work.items[4] += 1;
-                    Some(tracer.hit(ev, ray, t))
+                    Some(tracer.hit(ev, ray, t, &mut work.root))
                 }
                 RootResult::NoRoot => None,
             }
