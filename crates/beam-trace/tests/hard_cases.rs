@@ -1033,9 +1033,11 @@ fn near_zero_gradient() {
         assert!(fg > 100, "{name}: {fg} foreground pixels");
     }
 
-    // A surface whose gradient is zero everywhere inside: max(|p|² − 1, 0) = 0 on the whole
-    // ball. Hit points that fall inside get a degenerate normal; the render goes on.
-    let flat = formula_scene("max(x^2 + y^2 + z^2 - 1, 0)", 1.25, 5.0, 16, "");
+    // A function that is zero, with a zero gradient, on a whole region: min(|p|² − 1, 0)
+    // vanishes everywhere outside the ball, so every ray's first root is where it enters
+    // the scene bounds, and the shading points there get a degenerate normal; the render
+    // goes on.
+    let flat = formula_scene("min(x^2 + y^2 + z^2 - 1, 0)", 1.25, 5.0, 16, "");
     let out = run(&flat);
     assert_finite("flat", &out);
     let normals = out.stats.pass("normals").unwrap();
