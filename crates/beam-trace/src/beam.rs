@@ -21,8 +21,28 @@
 
 use interval_core::{Interval, Modal, Outer};
 
-use crate::ray::ipoint;
+use crate::ray::{Beam, IBox, ipoint};
 use crate::root::{RayFn, RootCounters};
+
+/// Where the rendered surface lives along a beam: the scene bounds, outside which rays do
+/// not search. An inclusion proof must place every ray's root inside them, so its two end
+/// parameters must put every ray of the beam inside the bounds (which are convex: the
+/// segment between, and the root on it, is inside too).
+#[derive(Copy, Clone, Debug)]
+pub struct Extent<'a> {
+    /// The beam.
+    pub beam: &'a Beam,
+    /// The bounds.
+    pub bounds: &'a IBox,
+}
+
+impl Extent<'_> {
+    /// Whether every ray of the beam is inside the bounds at parameter `t`.
+    pub fn holds(&self, t: f64) -> bool {
+        let p = self.beam.points(ipoint(t));
+        p.iter().zip(self.bounds).all(|(p, b)| p.subset(*b))
+    }
+}
 
 /// What EvaluateBox proved about a beam.
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -93,7 +113,7 @@ pub fn rejection_test(
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> bool {
-    search(g, ranges, settings, false, counters) == BoxClass::Miss
+    search(g, ranges, None, settings, false, counters) == BoxClass::Miss
 }
 
 /// The inclusion test on one range `t` (Fig. 5.9, made sound as described in the module
@@ -112,23 +132,27 @@ fn ends_change_sign(g: &mut dyn RayFn, t: Interval<f64>, counters: &mut RootCoun
 }
 
 /// EvaluateBox (Fig. 5.10): the rejection and inclusion tests in one front-to-back search
-/// over `ranges` (increasing, as the regular grid gives them).
+/// over `ranges` (increasing, as the regular grid gives them). With an `extent`, an
+/// inclusion counts only where it places every ray's root inside the extent's bounds.
 pub fn evaluate_box(
     g: &mut dyn RayFn,
     ranges: &[Interval<f64>],
+    extent: Option<&Extent<'_>>,
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> BoxClass {
-    search(g, ranges, settings, true, counters)
+    search(g, ranges, extent, settings, true, counters)
 }
 
 fn search(
     g: &mut dyn RayFn,
     ranges: &[Interval<f64>],
+    extent: Option<&Extent<'_>>,
     settings: &BeamSettings,
     inclusion: bool,
     counters: &mut RootCounters,
 ) -> BoxClass {
+    let inside = |t: f64| extent.is_none_or(|e| e.holds(t));
     // Each piece carries the end of the range it came from (how far a look-ahead may go).
     let mut stack: Vec<(Interval<f64>, f64)> = ranges.iter().rev().map(|r| (*r, r.sup())).collect();
     let mut bisections = 0u64;
@@ -138,13 +162,21 @@ fn search(
         if excludes_zero(gt) {
             continue;
         }
-        if inclusion && continuous && ends_change_sign(g, t, counters) {
+        if inclusion
+            && continuous
+            && inside(t.inf())
+            && inside(t.sup())
+            && ends_change_sign(g, t, counters)
+        {
             return BoxClass::Hit {
                 t_final: t_final(g, t, settings, counters),
             };
         }
         if t.wid() <= settings.epsilon || bisections >= settings.max_bisections {
-            if inclusion && let Some(t) = look_ahead(g, t, end, counters) {
+            if inclusion
+                && inside(t.inf())
+                && let Some(t) = look_ahead(g, t, end, &inside, counters)
+            {
                 return BoxClass::Hit {
                     t_final: t_final(g, t, settings, counters),
                 };
@@ -175,6 +207,7 @@ fn look_ahead(
     g: &mut dyn RayFn,
     t: Interval<f64>,
     end: f64,
+    inside: &dyn Fn(f64) -> bool,
     counters: &mut RootCounters,
 ) -> Option<Interval<f64>> {
     let (a, b) = (t.inf(), t.sup());
@@ -193,6 +226,9 @@ fn look_ahead(
         let rb = g.g(ipoint(bb));
         counters.g_evals += 1;
         if sign_change(ra, rb) {
+            if !inside(bb) {
+                return None;
+            }
             let span = Interval::new_unchecked(a, bb);
             let (_, continuous) = g.g_checked(span);
             counters.g_evals += 1;

@@ -12,7 +12,7 @@ use interval_core::Interval;
 use rayon::prelude::*;
 
 use crate::aa;
-use crate::beam::{BoxClass, evaluate_box};
+use crate::beam::{BoxClass, Extent, evaluate_box};
 use crate::camera::Camera;
 use crate::error::Error;
 use crate::grid::{Grid, GridEval};
@@ -167,7 +167,12 @@ impl Tracer<'_> {
             return BoxClass::Miss;
         }
         ev.geo.beam.set_beam(beam);
-        evaluate_box(&mut ev.geo.beam, &ranges, &self.plan.beam, c)
+        let bounds = self.scene.geometry.bounds();
+        let extent = Extent {
+            beam,
+            bounds: &bounds,
+        };
+        evaluate_box(&mut ev.geo.beam, &ranges, Some(&extent), &self.plan.beam, c)
     }
 
     /// The first root along `ray` for parameters in `t` (clipped to `t ≥ 0`): through the

@@ -1,6 +1,6 @@
 //! The beam tests (rejection, inclusion, EvaluateBox) against analytic answers.
 
-use beam_trace::beam::{BeamSettings, BoxClass, evaluate_box, inclusion_test, sign_change};
+use beam_trace::beam::{BeamSettings, BoxClass, Extent, evaluate_box, inclusion_test, sign_change};
 use beam_trace::ray::{Beam, BeamEval, ival, point_box};
 use beam_trace::root::RootCounters;
 use beam_trace::scene::{Csg, Geometry, Leaf, Material};
@@ -59,6 +59,7 @@ fn central_beam_on_sphere_is_a_hit_with_t_final_around_the_roots() {
     let class = evaluate_box(
         &mut ev,
         &[ival(0.0, 10.0)],
+        None,
         &BeamSettings::default(),
         &mut c,
     );
@@ -81,13 +82,13 @@ fn beam_beside_the_sphere_is_a_miss_and_a_border_beam_is_undecided() {
     let s = BeamSettings::default();
     ev.set_beam(&beam(eye, DVec3::new(0.5, 0.0, -1.0), 0.01));
     assert_eq!(
-        evaluate_box(&mut ev, &[ival(0.0, 10.0)], &s, &mut c),
+        evaluate_box(&mut ev, &[ival(0.0, 10.0)], None, &s, &mut c),
         BoxClass::Miss
     );
     // The silhouette is at direction x = 1/sqrt(15) ≈ 0.258 per unit z.
     ev.set_beam(&beam(eye, DVec3::new(0.258, 0.0, -1.0), 0.01));
     assert!(matches!(
-        evaluate_box(&mut ev, &[ival(0.0, 10.0)], &s, &mut c),
+        evaluate_box(&mut ev, &[ival(0.0, 10.0)], None, &s, &mut c),
         BoxClass::Undecided { .. }
     ));
 }
@@ -101,7 +102,13 @@ fn inclusion_needs_continuity() {
     ev.set_beam(&b);
     let mut c = RootCounters::default();
     assert!(!inclusion_test(&mut ev, ival(0.0, 2.0), &mut c));
-    let class = evaluate_box(&mut ev, &[ival(0.0, 2.0)], &BeamSettings::default(), &mut c);
+    let class = evaluate_box(
+        &mut ev,
+        &[ival(0.0, 2.0)],
+        None,
+        &BeamSettings::default(),
+        &mut c,
+    );
     assert!(!matches!(class, BoxClass::Hit { .. }), "{class:?}");
     // Nor for a step function.
     let g = geometry("floor(x)+0.5", 2.0);
@@ -125,7 +132,7 @@ proptest! {
         let b = beam(eye, DVec3::new(dx, dy, -1.0), half);
         ev.set_beam(&b);
         let mut c = RootCounters::default();
-        let class = evaluate_box(&mut ev, &[ival(0.0, 10.0)], &BeamSettings::default(), &mut c);
+        let class = evaluate_box(&mut ev, &[ival(0.0, 10.0)], None, &BeamSettings::default(), &mut c);
         for i in 0..=4 {
             for j in 0..=4 {
                 let d = DVec3::new(
@@ -183,4 +190,34 @@ fn inner_rounding_can_claim_a_wrong_sign_outer_cannot() {
     assert!(inner_meet_claims);
     // ... the sound test on the outer value does not.
     assert!(!sign_change(ival(outer.first(), outer.second()), end_b));
+}
+
+/// A Hit must place every ray's root inside the scene bounds: rays search only there. The
+/// unit sphere seen from `z = 4` has its roots near `z = 1`; with bounds `[-0.5, 0.5]³` they
+/// lie outside, and the same search that proves a hit without bounds proves none with them.
+#[test]
+fn inclusion_places_the_roots_inside_the_bounds() {
+    let g = geometry("x^2+y^2+z^2-1", 1.5);
+    let mut ev = BeamEval::new(g.ray_function());
+    let b = beam(DVec3::new(0.0, 0.0, 4.0), DVec3::new(0.0, 0.0, -1.0), 0.01);
+    ev.set_beam(&b);
+    let s = BeamSettings::default();
+    let mut c = RootCounters::default();
+    let free = evaluate_box(&mut ev, &[ival(0.0, 10.0)], None, &s, &mut c);
+    assert!(matches!(free, BoxClass::Hit { .. }), "{free:?}");
+    let small = [ival(-0.5, 0.5); 3];
+    let extent = Extent {
+        beam: &b,
+        bounds: &small,
+    };
+    let bounded = evaluate_box(&mut ev, &[ival(0.0, 10.0)], Some(&extent), &s, &mut c);
+    assert!(!matches!(bounded, BoxClass::Hit { .. }), "{bounded:?}");
+    // Bounds that hold the roots keep the hit.
+    let large = [ival(-1.5, 1.5); 3];
+    let extent = Extent {
+        beam: &b,
+        bounds: &large,
+    };
+    let kept = evaluate_box(&mut ev, &[ival(0.0, 10.0)], Some(&extent), &s, &mut c);
+    assert!(matches!(kept, BoxClass::Hit { .. }), "{kept:?}");
 }

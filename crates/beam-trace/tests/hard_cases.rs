@@ -1157,3 +1157,51 @@ fn huge_and_tiny_coefficients() {
         assert!(fg_inside.is_subset(&fg), "{name}, IAA: {fg:?}");
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// 7. Surfaces that leave their bounds.
+
+/// Unclipped formula surfaces reaching outside the scene bounds: rays search only inside
+/// the bounds, so a proven Hit box must place every ray's root there. Each ray through a
+/// Hit pixel is searched by interval bisection inside the bounds (every reliable finder
+/// agrees); it must find a root, and a Miss pixel's ray must not.
+#[test]
+fn hit_boxes_keep_their_roots_inside_the_bounds() {
+    for (formula, eye) in [
+        ("1/(x - 0.3) + y", [0.0, 0.5, 5.0]),
+        ("tan(x*2) - y - z", [0.2, 0.5, 5.0]),
+        ("abs(x)+abs(y)-abs(z)+0.2", [0.3, 0.5, 5.0]),
+    ] {
+        let scene = scene_from(&format!(
+            r#"
+[camera]
+eye = {eye:?}
+look_at = [0.0, 0.0, 0.0]
+fov = 50.0
+width = 40
+height = 30
+[[surfaces]]
+formula = "{formula}"
+bounds = [[-2.0, -2.0, -2.0], [2.0, 2.0, 2.0]]
+"#
+        ));
+        let out = run(&scene);
+        let settings = RootSettings::default();
+        let mut hits = 0;
+        check_classes(formula, &scene, &out, |ray| {
+            let r = solve(&scene, RootMethod::Bisection, ray, &settings);
+            match r {
+                RootResult::NoRoot => Some(false),
+                RootResult::Root {
+                    proof: Proof::Unique | Proof::Exists,
+                    ..
+                } => {
+                    hits += 1;
+                    Some(true)
+                }
+                _ => None,
+            }
+        });
+        assert!(hits > 0, "{formula}: no proven hit to check");
+    }
+}

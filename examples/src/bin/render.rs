@@ -147,6 +147,12 @@ fn load(args: &Args) -> Result<Scene, String> {
         s.rays_per_pixel = n;
     }
     if let Some(g) = args.grid {
+        if g > beam_trace::scene::MAX_GRID_RESOLUTION {
+            return Err(format!(
+                "--grid must be at most {}",
+                beam_trace::scene::MAX_GRID_RESOLUTION
+            ));
+        }
         s.grid_resolution = g;
     }
     Ok(scene)

@@ -23,6 +23,7 @@ use serde::Deserialize;
 use toml::Spanned;
 use toml::de::{DeTable, DeValue};
 
+use super::MAX_GRID_RESOLUTION;
 use super::transform::{Affine, Rotation};
 use super::{
     AaMode, Csg, Geometry, Leaf, Light, Material, PointLight, PrimaryMode, RenderSettings, Scene,
@@ -638,7 +639,7 @@ fn render_settings(doc: &Doc<'_>, r: &RawRender) -> Result<RenderSettings, Error
         s.t_final_width = doc.positive("render.t_final_width", v)?;
     }
     if let Some(v) = r.grid {
-        s.grid_resolution = doc.int_in("render.grid", v, 0, 1024)?;
+        s.grid_resolution = doc.int_in("render.grid", v, 0, i64::from(MAX_GRID_RESOLUTION))?;
     }
     if let Some(v) = r.shadows {
         s.shadows = v;
@@ -1509,7 +1510,7 @@ impl Scene {
     /// the unreliable baselines, `aa` (see [`AaMode`]'s [`FromStr`]), `iaa_depth` (1 to 8) and
     /// `iaa_threshold` (positive) for `aa = "iaa"`, `primary` (see [`PrimaryMode`]'s
     /// [`FromStr`]), `rays_per_undecided` and `rays_per_pixel` (square numbers 1 to 256),
-    /// `t_final_width` (positive), `grid` (0 to 1024; 0: no grid), `shadows`.
+    /// `t_final_width` (positive), `grid` (0 to 256; 0: no grid), `shadows`.
     ///
     /// # Errors
     ///

@@ -115,6 +115,10 @@ pub enum PrimaryMode {
     PerPixel,
 }
 
+/// Largest regular grid resolution (cells along the longest side): at most 256³ ≈ 16.8
+/// million cells, a few hundred megabytes.
+pub const MAX_GRID_RESOLUTION: u32 = 256;
+
 /// Render settings.
 #[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
 pub struct RenderSettings {
