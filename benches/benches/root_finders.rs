@@ -71,6 +71,7 @@ fn workload(name: &str) -> (Geometry, Vec<(Ray, Interval<f64>)>) {
         node: f,
         material: Default::default(),
         bounds,
+        clipped: false,
     };
     let geometry = Geometry::new(ctx, vec![leaf], vec![Csg::Leaf(0)]).expect("geometry");
     let lo = DVec3::new(bounds[0].inf(), bounds[1].inf(), bounds[2].inf());

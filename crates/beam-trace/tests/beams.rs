@@ -17,6 +17,7 @@ fn geometry(formula: &str, r: f64) -> Geometry {
         node: f,
         material: Material::default(),
         bounds: [ival(-r, r); 3],
+        clipped: false,
     };
     Geometry::new(ctx, vec![leaf], vec![Csg::Leaf(0)]).unwrap()
 }

@@ -83,6 +83,7 @@ fn geometry(formulas: &[&str], objects: Vec<Csg>, bounds: IBox) -> Geometry {
             node: parse(&mut ctx, f, &[]).expect("formula parses"),
             material: Material::default(),
             bounds,
+            clipped: false,
         })
         .collect();
     Geometry::new(ctx, leaves, objects).expect("geometry builds")

@@ -536,6 +536,7 @@ fn sphere() -> Geometry {
         node: f,
         material: Default::default(),
         bounds: [b; 3],
+        clipped: false,
     };
     Geometry::new(ctx, vec![leaf], vec![Csg::Leaf(0)]).unwrap()
 }

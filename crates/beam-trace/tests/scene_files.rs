@@ -134,9 +134,17 @@ fn catalog_scenes_load() {
         assert_eq!((scene.camera.width(), scene.camera.height()), (64, 48));
         assert_eq!(scene.lights.len(), 1);
         let b = s.bounding_box();
+        let leaf = &scene.geometry.leaves()[0];
         let gb = scene.geometry.bounds();
+        assert_eq!(leaf.clipped, s.is_clipped(), "{}", s.name);
         for k in 0..3 {
-            assert_eq!((gb[k].inf(), gb[k].sup()), (b[k].inf(), b[k].sup()));
+            let lb = leaf.bounds[k];
+            assert_eq!((lb.inf(), lb.sup()), (b[k].inf(), b[k].sup()));
+            // The search bounds are the box, with a margin around a clipped one.
+            assert!(lb.subset(gb[k]), "{}", s.name);
+            if !s.is_clipped() {
+                assert_eq!((gb[k].inf(), gb[k].sup()), (b[k].inf(), b[k].sup()));
+            }
         }
         // The light is above the camera and to its left.
         let Light::Point(l) = scene.lights[0];

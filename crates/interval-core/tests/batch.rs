@@ -178,6 +178,25 @@ fn elementary_batches_match_scalar() {
     }
 }
 
+/// The same set: equal bounds as numbers (a zero bound may be `+0` in one and `-0` in the
+/// other, which IEEE 1788 does not distinguish), or both empty.
+fn same_set(a: Interval<f64>, b: Interval<f64>) -> bool {
+    a.bounds() == b.bounds()
+}
+
+/// The sign-case multiplication gives the same interval as the branch-free one (zeros,
+/// infinities, subnormals, every sign class).
+#[test]
+fn sign_case_mul_equals_mul() {
+    let ivs = adversarial_intervals();
+    for &x in &ivs {
+        for &y in &ivs {
+            let (p, q) = (x.mul_sign_cases(y), x.mul(y));
+            assert!(same_set(p, q), "{x:?} · {y:?}: sign cases {p:?}, mul {q:?}");
+        }
+    }
+}
+
 #[test]
 fn all_pairs_of_adversarial_intervals() {
     let ivs = adversarial_intervals();
@@ -404,6 +423,14 @@ proptest! {
         let n = xs.len().min(ys.len());
         for (name, b, s) in BINARY {
             check_binary(name, &xs[..n], &ys[..n], b, s);
+        }
+    }
+
+    #[test]
+    fn sign_case_mul_is_bit_identical(xs in operand_vec(), ys in operand_vec()) {
+        for (x, y) in xs.iter().zip(&ys) {
+            let (p, q) = (x.mul_sign_cases(*y), x.mul(*y));
+            prop_assert!(same_set(p, q), "{:?} · {:?}: {:?} vs {:?}", x, y, p, q);
         }
     }
 

@@ -220,6 +220,7 @@ fn setup(name: &str, size: u32) -> Result<Setup, Box<dyn std::error::Error>> {
         node: f,
         material: Default::default(),
         bounds,
+        clipped: false,
     };
     let geometry = Geometry::new(ctx, vec![leaf], vec![Csg::Leaf(0)])?;
     let lo = DVec3::new(bounds[0].inf(), bounds[1].inf(), bounds[2].inf());

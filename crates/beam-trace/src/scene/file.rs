@@ -1363,6 +1363,7 @@ fn build(
             node,
             material: *m,
             bounds,
+            clipped: b.clip,
         });
     }
     let objects: Vec<Csg> = tops

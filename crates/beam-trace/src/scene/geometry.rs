@@ -20,6 +20,9 @@ pub struct Leaf {
     pub material: Material,
     /// Bounding box (in world coordinates).
     pub bounds: IBox,
+    /// Whether the function is clipped to `bounds` (positive outside it), so that its
+    /// surface lies inside the box whatever the search region.
+    pub clipped: bool,
 }
 
 /// A CSG tree over leaves (point-set operations, thesis 6.3).
@@ -75,6 +78,30 @@ impl Csg {
     }
 }
 
+/// Margin, relative to a box's largest side, by which a clipped leaf's box is enlarged in
+/// the scene bounds. A clipped surface lies inside its own box, so searching a little
+/// beyond it finds nothing new; but its box faces are part of the surface, and the margin
+/// puts them strictly inside the bounds, where an inclusion proof (whose end parameters
+/// must be inside the bounds for every ray) can reach them from outside the solid.
+const CLIP_MARGIN: f64 = 1e-3;
+
+fn search_box(leaf: &Leaf) -> IBox {
+    if !leaf.clipped {
+        return leaf.bounds;
+    }
+    let side = leaf.bounds.iter().map(|i| i.wid()).fold(0.0, f64::max);
+    let m = CLIP_MARGIN * side;
+    leaf.bounds.map(|i| {
+        let lo = i.inf() - m;
+        let hi = i.sup() + m;
+        if lo.is_finite() && hi.is_finite() {
+            Interval::new_unchecked(lo, hi)
+        } else {
+            i
+        }
+    })
+}
+
 /// The compiled geometry of a scene.
 #[derive(Clone, Debug)]
 pub struct Geometry {
@@ -124,9 +151,9 @@ impl Geometry {
             let n = o.build(&mut ctx, &nodes);
             root = ctx.min(root, n);
         }
-        let mut bounds = leaves[used[0]].bounds;
+        let mut bounds = search_box(&leaves[used[0]]);
         for &i in &used[1..] {
-            for (b, l) in bounds.iter_mut().zip(leaves[i].bounds) {
+            for (b, l) in bounds.iter_mut().zip(search_box(&leaves[i])) {
                 *b = b.convex_hull(l);
             }
         }
@@ -165,7 +192,8 @@ impl Geometry {
         &self.objects
     }
 
-    /// The scene bounds: the hull of the leaves' boxes. Rays are searched only inside it.
+    /// The scene bounds: the hull of the leaves' boxes (a clipped leaf's box with a margin of
+    /// 1e-3 of its largest side). Rays are searched only inside it.
     pub fn bounds(&self) -> IBox {
         self.bounds
     }

@@ -92,7 +92,8 @@ impl<T: Float> Number for Interval<T> {
         match op {
             BinaryOp::Add => a + b,
             BinaryOp::Sub => a - b,
-            BinaryOp::Mul => a * b,
+            // One formula along a ray repeats its sign patterns: the branching form wins.
+            BinaryOp::Mul => a.mul_sign_cases(b),
             BinaryOp::Div => a / b,
             BinaryOp::Min => a.min(b),
             BinaryOp::Max => a.max(b),

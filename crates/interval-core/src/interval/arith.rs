@@ -119,6 +119,51 @@ impl<T: Float> Interval<T> {
         )
     }
 
+    /// `x · y`, tight: the same interval as [`mul`](Self::mul) (a zero bound may carry the
+    /// other sign), by IEEE 1788's sign-case table: branches on the sign classes of `x` and `y` choose the corner
+    /// products, so a call takes two directed products (four when both straddle 0) where
+    /// `mul` takes eight. Faster than `mul` where the signs repeat from call to call (the
+    /// scalar evaluation of one formula along a ray, where the branches predict: about 12 %
+    /// off the whole default render), slower on random signs, where they mispredict (see
+    /// `docs/benchmarks.md`).
+    #[inline]
+    pub fn mul_sign_cases(self, rhs: Self) -> Self {
+        if self.is_empty() || rhs.is_empty() {
+            return Self::EMPTY;
+        }
+        let (a, b, c, d) = (self.lo, self.hi, rhs.lo, rhs.hi);
+        let zero = T::ZERO;
+        let (lo, hi) = if a >= zero {
+            if c >= zero {
+                (a.mul_down(c), b.mul_up(d))
+            } else if d <= zero {
+                (b.mul_down(c), a.mul_up(d))
+            } else {
+                (b.mul_down(c), b.mul_up(d))
+            }
+        } else if b <= zero {
+            if c >= zero {
+                (a.mul_down(d), b.mul_up(c))
+            } else if d <= zero {
+                (b.mul_down(d), a.mul_up(c))
+            } else {
+                (a.mul_down(d), a.mul_up(c))
+            }
+        } else if c >= zero {
+            (a.mul_down(d), b.mul_up(d))
+        } else if d <= zero {
+            (b.mul_down(c), a.mul_up(c))
+        } else {
+            let min = |x: T, y: T| if y < x { y } else { x };
+            let max = |x: T, y: T| if y > x { y } else { x };
+            (
+                min(a.mul_down(d), b.mul_down(c)),
+                max(a.mul_up(c), b.mul_up(d)),
+            )
+        };
+        Self::new_unchecked(lo, hi)
+    }
+
     /// `x · y + z` with one rounding per bound (IEEE 1788 `fma`), tight.
     #[inline]
     pub fn fma(self, y: Self, z: Self) -> Self {
