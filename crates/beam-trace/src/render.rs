@@ -434,47 +434,23 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
     }
 
     // Pass: primary rays (or IAA).
-    let mut cost = vec![0f32; npix];
-    let samples: Vec<Vec<Sample>> = match plan.primary {
+    let (mut samples, cost) = match plan.primary {
         Primary::Iaa {
             max_depth,
             threshold,
         } => {
             passes.push(PassStats::skipped("primary-rays"));
-            let t0 = Instant::now();
-            progress.begin("iaa", u64::from(h));
-            let rows: Vec<(Vec<Vec<Sample>>, Vec<f32>, Work)> = (0..h)
-                .into_par_iter()
-                .map_init(
-                    || tracer.evals(),
-                    |ev, y| {
-                        let mut work = Work::default();
-                        let mut costs = Vec::with_capacity(w as usize);
-                        let row = (0..w)
-                            .map(|x| {
-                                let tp = Instant::now();
-                                let s = aa::iaa_pixel(
-                                    &tracer, ev, x, y, max_depth, threshold, &mut work,
-                                );
-                                costs.push(tp.elapsed().as_secs_f32());
-                                s
-                            })
-                            .collect();
-                        progress.advance(1);
-                        (row, costs, work)
-                    },
-                )
-                .collect();
-            progress.end();
-            let mut work = Work::default();
-            let mut out = Vec::with_capacity(npix);
-            for (y, (row, costs, wk)) in rows.into_iter().enumerate() {
-                work = work.add(wk);
-                out.extend(row);
-                cost[y * w as usize..(y + 1) * w as usize].copy_from_slice(&costs);
-            }
-            passes.push(work.stats("iaa", t0.elapsed(), &aa::COUNTERS));
-            out
+            let (samples, cost, stats) = per_pixel_pass(
+                &tracer,
+                w,
+                h,
+                "iaa",
+                &aa::COUNTERS,
+                progress,
+                |ev, x, y, work| aa::iaa_pixel(&tracer, ev, x, y, max_depth, threshold, work),
+            );
+            passes.push(stats);
+            (samples, cost)
         }
         Primary::ScreenBoxes { rays_per_undecided }
         | Primary::PerPixel {
@@ -482,53 +458,27 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
         } => {
             let per_pixel = matches!(plan.primary, Primary::PerPixel { .. });
             let offsets = pixel_offsets(rays_per_undecided);
-            let t0 = Instant::now();
-            progress.begin("primary-rays", u64::from(h));
-            let rows: Vec<(Vec<Vec<Sample>>, Vec<f32>, Work)> = (0..h)
-                .into_par_iter()
-                .map_init(
-                    || tracer.evals(),
-                    |ev, y| {
-                        let mut work = Work::default();
-                        let mut costs = Vec::with_capacity(w as usize);
-                        let row = (0..w)
-                            .map(|x| {
-                                let tp = Instant::now();
-                                let class = if per_pixel {
-                                    None
-                                } else {
-                                    classes[(y * w + x) as usize].map(|c| c.0)
-                                };
-                                let s = primary_pixel(
-                                    &tracer, ev, cam, x, y, class, &offsets, &mut work,
-                                );
-                                costs.push(tp.elapsed().as_secs_f32());
-                                s
-                            })
-                            .collect();
-                        progress.advance(1);
-                        (row, costs, work)
-                    },
-                )
-                .collect();
-            progress.end();
-            let mut work = Work::default();
-            let mut out = Vec::with_capacity(npix);
-            for (y, (row, costs, wk)) in rows.into_iter().enumerate() {
-                work = work.add(wk);
-                out.extend(row);
-                cost[y * w as usize..(y + 1) * w as usize].copy_from_slice(&costs);
-            }
-            passes.push(work.stats(
+            let (samples, cost, stats) = per_pixel_pass(
+                &tracer,
+                w,
+                h,
                 "primary-rays",
-                t0.elapsed(),
                 &["rays", "hits", "proven_unique", "possible", "undecided"],
-            ));
+                progress,
+                |ev, x, y, work| {
+                    let class = if per_pixel {
+                        None
+                    } else {
+                        classes[(y * w + x) as usize].map(|c| c.0)
+                    };
+                    primary_pixel(&tracer, ev, cam, x, y, class, &offsets, work)
+                },
+            );
+            passes.push(stats);
             passes.push(PassStats::skipped("iaa"));
-            out
+            (samples, cost)
         }
     };
-    let mut samples = samples;
 
     // Pass: normals.
     if plan.shading {
@@ -700,6 +650,54 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
         },
         plan,
     })
+}
+
+/// A pass that computes the samples of every pixel with `pixel`, row by row in parallel:
+/// the samples in pixel order, the time spent per pixel (the cost map) and the pass's
+/// statistics.
+#[allow(clippy::too_many_arguments)]
+fn per_pixel_pass(
+    tracer: &Tracer<'_>,
+    w: u32,
+    h: u32,
+    name: &str,
+    labels: &[&str],
+    progress: &dyn Progress,
+    pixel: impl Fn(&mut Evals, u32, u32, &mut Work) -> Vec<Sample> + Sync,
+) -> (Vec<Vec<Sample>>, Vec<f32>, PassStats) {
+    let t0 = Instant::now();
+    progress.begin(name, u64::from(h));
+    let rows: Vec<(Vec<Vec<Sample>>, Vec<f32>, Work)> = (0..h)
+        .into_par_iter()
+        .map_init(
+            || tracer.evals(),
+            |ev, y| {
+                let mut work = Work::default();
+                let mut costs = Vec::with_capacity(w as usize);
+                let row = (0..w)
+                    .map(|x| {
+                        let tp = Instant::now();
+                        let s = pixel(ev, x, y, &mut work);
+                        costs.push(tp.elapsed().as_secs_f32());
+                        s
+                    })
+                    .collect();
+                progress.advance(1);
+                (row, costs, work)
+            },
+        )
+        .collect();
+    progress.end();
+    let mut work = Work::default();
+    let npix = w as usize * h as usize;
+    let mut samples = Vec::with_capacity(npix);
+    let mut cost = Vec::with_capacity(npix);
+    for (row, costs, wk) in rows {
+        work = work.add(wk);
+        samples.extend(row);
+        cost.extend(costs);
+    }
+    (samples, cost, work.stats(name, t0.elapsed(), labels))
 }
 
 fn diagonal(b: &crate::ray::IBox) -> f64 {
