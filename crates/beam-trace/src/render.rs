@@ -17,7 +17,7 @@ use crate::camera::Camera;
 use crate::error::Error;
 use crate::grid::{Grid, GridEval};
 use crate::image::Image;
-use crate::plan::{PASSES, Plan, Primary};
+use crate::plan::{Plan, Primary};
 use crate::ray::{Beam, Ray};
 use crate::root::{RayFn, RootCounters, RootFinder, RootResult};
 use crate::scene::geometry::GeometryEval;
@@ -348,29 +348,16 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
     let plan = Plan::for_scene(scene);
     let cam = &scene.camera;
     let (w, h) = (cam.width(), cam.height());
-    let npix = w as usize * h as usize;
     let mut passes: Vec<PassStats> = Vec::new();
 
-    // Pass: regular grid.
     let grid = plan.grid.map(|res| {
-        progress.begin("grid", 1);
-        let t0 = Instant::now();
-        let g = Grid::build(&scene.geometry, res);
-        let s = g.stats();
-        passes.push(PassStats {
-            name: "grid".into(),
-            ran: true,
-            time: t0.elapsed(),
-            counters: vec![
-                ("cells".into(), s.cells),
-                ("non_empty".into(), s.non_empty),
-                ("functions".into(), s.functions),
-                ("leaf_evals".into(), s.leaf_evals),
-            ],
-        });
-        progress.end();
+        let (g, stats) = grid_pass(scene, res, progress);
+        passes.push(stats);
         g
     });
+    if grid.is_none() {
+        passes.push(PassStats::skipped("grid"));
+    }
     let tracer = Tracer {
         scene,
         plan: &plan,
@@ -378,77 +365,25 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
         finder: plan.root_finder.finder(),
     };
 
-    // Pass: screen boxes.
-    let mut classes: Vec<Option<(BoxClass, bool)>> = vec![None; npix];
-    if let Primary::ScreenBoxes { .. } = plan.primary {
-        let t0 = Instant::now();
-        let tiles = tiles(w, h, 32);
-        progress.begin("screen-boxes", tiles.len() as u64);
-        let results: Vec<(Vec<ScreenBox>, Work)> = tiles
-            .par_iter()
-            .map_init(
-                || tracer.evals(),
-                |ev, tile| {
-                    let mut work = Work::default();
-                    let boxes = subdivide(*tile, plan.t_final_width, |r, parent| {
-                        work.items[0] += 1;
-                        let beam = cam.beam(
-                            f64::from(r.x0),
-                            f64::from(r.y0),
-                            f64::from(r.x1),
-                            f64::from(r.y1),
-                        );
-                        tracer.classify(ev, &beam, parent, &mut work.root)
-                    });
-                    for b in &boxes {
-                        let k = match b.class {
-                            BoxClass::Miss => 1,
-                            BoxClass::Hit { .. } => 2,
-                            BoxClass::Undecided { .. } => 3,
-                        };
-                        work.items[k] += b.rect.area();
-                    }
-                    progress.advance(1);
-                    (boxes, work)
-                },
-            )
-            .collect();
-        let mut work = Work::default();
-        for (boxes, wk) in results {
-            work = work.add(wk);
-            for b in boxes {
-                for (x, y) in b.rect.pixels() {
-                    let edge = x == b.rect.x0 || y == b.rect.y0;
-                    classes[(y * w + x) as usize] = Some((b.class, edge));
-                }
-            }
-        }
-        progress.end();
-        passes.push(work.stats(
-            "screen-boxes",
-            t0.elapsed(),
-            &["beams", "miss_pixels", "hit_pixels", "undecided_pixels"],
-        ));
+    let classes = if let Primary::ScreenBoxes { .. } = plan.primary {
+        let (classes, stats) = screen_box_pass(&tracer, progress);
+        passes.push(stats);
+        classes
     } else {
         passes.push(PassStats::skipped("screen-boxes"));
-    }
+        vec![None; w as usize * h as usize]
+    };
 
-    // Pass: primary rays (or IAA).
     let (mut samples, cost) = match plan.primary {
         Primary::Iaa {
             max_depth,
             threshold,
         } => {
             passes.push(PassStats::skipped("primary-rays"));
-            let (samples, cost, stats) = per_pixel_pass(
-                &tracer,
-                w,
-                h,
-                "iaa",
-                &aa::COUNTERS,
-                progress,
-                |ev, x, y, work| aa::iaa_pixel(&tracer, ev, x, y, max_depth, threshold, work),
-            );
+            let (samples, cost, stats) =
+                per_pixel_pass(&tracer, "iaa", &aa::COUNTERS, progress, |ev, x, y, work| {
+                    aa::iaa_pixel(&tracer, ev, x, y, max_depth, threshold, work)
+                });
             passes.push(stats);
             (samples, cost)
         }
@@ -460,8 +395,6 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
             let offsets = pixel_offsets(rays_per_undecided);
             let (samples, cost, stats) = per_pixel_pass(
                 &tracer,
-                w,
-                h,
                 "primary-rays",
                 &["rays", "hits", "proven_unique", "possible", "undecided"],
                 progress,
@@ -480,38 +413,12 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
         }
     };
 
-    // Pass: normals.
-    if plan.shading {
-        let t0 = Instant::now();
-        progress.begin("normals", u64::from(h));
-        let works: Vec<Work> = samples
-            .par_chunks_mut(w as usize)
-            .map_init(
-                || tracer.evals(),
-                |ev, row| {
-                    let mut work = Work::default();
-                    for s in row.iter_mut().flatten() {
-                        if let Some(hit) = s.hit.as_mut() {
-                            work.items[0] += 1;
-                            match ev.geo.normal(hit.point) {
-                                Some(n) => hit.normal = n,
-                                None => work.items[1] += 1,
-                            }
-                        }
-                    }
-                    progress.advance(1);
-                    work
-                },
-            )
-            .collect();
-        progress.end();
-        let work = works.into_iter().fold(Work::default(), Work::add);
-        passes.push(work.stats("normals", t0.elapsed(), &["normals", "degenerate"]));
+    if plan.runs("normals") {
+        passes.push(normals_pass(&tracer, &mut samples, progress));
     } else {
         passes.push(PassStats::skipped("normals"));
     }
 
-    // Pass: hard shadows. Visibility per sample and light.
     let lights: Vec<(DVec3, [f32; 3])> = scene
         .lights
         .iter()
@@ -519,64 +426,226 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
             Light::Point(p) => (p.position, p.color),
         })
         .collect();
-    let nl = lights.len();
-    let mut vis: Vec<Vec<f32>> = samples.iter().map(|s| vec![1.0; s.len() * nl]).collect();
+    // The visible fraction of each light from each sample (1 without a shadow pass).
+    let mut vis: Vec<Vec<f32>> = samples
+        .iter()
+        .map(|s| vec![1.0; s.len() * lights.len()])
+        .collect();
     if plan.runs("hard-shadows") {
-        let t0 = Instant::now();
-        progress.begin("hard-shadows", u64::from(h));
-        let diag = diagonal(&scene.geometry.bounds());
-        let works: Vec<Work> = samples
-            .par_chunks(w as usize)
-            .zip(vis.par_chunks_mut(w as usize))
-            .map_init(
-                || tracer.evals(),
-                |ev, (srow, vrow)| {
-                    let mut work = Work::default();
-                    for (px, v) in srow.iter().zip(vrow.iter_mut()) {
-                        for (si, s) in px.iter().enumerate() {
-                            let Some(hit) = s.hit else { continue };
-                            let n = if hit.normal.dot(hit.to_eye) < 0.0 {
-                                -hit.normal
-                            } else {
-                                hit.normal
-                            };
-                            for (li, (pos, _)) in lights.iter().enumerate() {
-                                work.items[0] += 1;
-                                if n.dot(*pos - hit.point) <= 0.0 {
-                                    // Facing away from the light: no direct light anyway.
-                                    work.items[4] += 1;
-                                    v[si * nl + li] = 0.0;
-                                    continue;
-                                }
-                                let from = hit.point + n * (SHADOW_OFFSET * diag);
-                                let r = tracer.segment(ev, from, *pos, &mut work.root);
-                                let (k, lit) = match r {
-                                    Visibility::Lit => (1, 1.0),
-                                    Visibility::Occluded => (2, 0.0),
-                                    Visibility::Undecided => (3, 0.0),
-                                };
-                                work.items[k] += 1;
-                                v[si * nl + li] = lit;
-                            }
-                        }
-                    }
-                    progress.advance(1);
-                    work
-                },
-            )
-            .collect();
-        progress.end();
-        let work = works.into_iter().fold(Work::default(), Work::add);
-        passes.push(work.stats(
-            "hard-shadows",
-            t0.elapsed(),
-            &["segments", "lit", "occluded", "undecided", "back_facing"],
+        passes.push(hard_shadow_pass(
+            &tracer, &samples, &lights, &mut vis, progress,
         ));
     } else {
         passes.push(PassStats::skipped("hard-shadows"));
     }
 
-    // Pass: shading (or flat colour without lights).
+    let (pixels, stats) = shading_pass(&tracer, &samples, &lights, &vis);
+    passes.push(stats);
+
+    Ok(RenderOutput {
+        classification: classification_image(w, h, &classes),
+        cost_map: cost_image(w, h, &cost),
+        image: Image {
+            width: w,
+            height: h,
+            pixels,
+        },
+        stats: RenderStats {
+            passes,
+            total: start.elapsed(),
+        },
+        plan,
+    })
+}
+
+/// The regular grid pass.
+fn grid_pass(scene: &Scene, resolution: u32, progress: &dyn Progress) -> (Grid, PassStats) {
+    progress.begin("grid", 1);
+    let t0 = Instant::now();
+    let g = Grid::build(&scene.geometry, resolution);
+    let s = g.stats();
+    progress.end();
+    let stats = PassStats {
+        name: "grid".into(),
+        ran: true,
+        time: t0.elapsed(),
+        counters: vec![
+            ("cells".into(), s.cells),
+            ("non_empty".into(), s.non_empty),
+            ("functions".into(), s.functions),
+            ("leaf_evals".into(), s.leaf_evals),
+        ],
+    };
+    (g, stats)
+}
+
+/// Each pixel's screen box class, and whether the pixel lies on its box's top or left edge.
+type PixelClasses = Vec<Option<(BoxClass, bool)>>;
+
+/// The screen box pass: tiles of 32 × 32 pixels subdivided in parallel.
+fn screen_box_pass(tracer: &Tracer<'_>, progress: &dyn Progress) -> (PixelClasses, PassStats) {
+    let cam = &tracer.scene.camera;
+    let (w, h) = (cam.width(), cam.height());
+    let t0 = Instant::now();
+    let tiles = tiles(w, h, 32);
+    progress.begin("screen-boxes", tiles.len() as u64);
+    let results: Vec<(Vec<ScreenBox>, Work)> = tiles
+        .par_iter()
+        .map_init(
+            || tracer.evals(),
+            |ev, tile| {
+                let mut work = Work::default();
+                let boxes = subdivide(*tile, tracer.plan.t_final_width, |r, parent| {
+                    work.items[0] += 1;
+                    let beam = cam.beam(
+                        f64::from(r.x0),
+                        f64::from(r.y0),
+                        f64::from(r.x1),
+                        f64::from(r.y1),
+                    );
+                    tracer.classify(ev, &beam, parent, &mut work.root)
+                });
+                for b in &boxes {
+                    let k = match b.class {
+                        BoxClass::Miss => 1,
+                        BoxClass::Hit { .. } => 2,
+                        BoxClass::Undecided { .. } => 3,
+                    };
+                    work.items[k] += b.rect.area();
+                }
+                progress.advance(1);
+                (boxes, work)
+            },
+        )
+        .collect();
+    let mut classes = vec![None; w as usize * h as usize];
+    let mut work = Work::default();
+    for (boxes, wk) in results {
+        work = work.add(wk);
+        for b in boxes {
+            for (x, y) in b.rect.pixels() {
+                let edge = x == b.rect.x0 || y == b.rect.y0;
+                classes[(y * w + x) as usize] = Some((b.class, edge));
+            }
+        }
+    }
+    progress.end();
+    let stats = work.stats(
+        "screen-boxes",
+        t0.elapsed(),
+        &["beams", "miss_pixels", "hit_pixels", "undecided_pixels"],
+    );
+    (classes, stats)
+}
+
+/// The normals pass: unit normals of the hit samples from the gradient.
+fn normals_pass(
+    tracer: &Tracer<'_>,
+    samples: &mut [Vec<Sample>],
+    progress: &dyn Progress,
+) -> PassStats {
+    let w = tracer.scene.camera.width() as usize;
+    let t0 = Instant::now();
+    progress.begin("normals", (samples.len() / w) as u64);
+    let works: Vec<Work> = samples
+        .par_chunks_mut(w)
+        .map_init(
+            || tracer.evals(),
+            |ev, row| {
+                let mut work = Work::default();
+                for s in row.iter_mut().flatten() {
+                    if let Some(hit) = s.hit.as_mut() {
+                        work.items[0] += 1;
+                        match ev.geo.normal(hit.point) {
+                            Some(n) => hit.normal = n,
+                            None => work.items[1] += 1,
+                        }
+                    }
+                }
+                progress.advance(1);
+                work
+            },
+        )
+        .collect();
+    progress.end();
+    let work = works.into_iter().fold(Work::default(), Work::add);
+    work.stats("normals", t0.elapsed(), &["normals", "degenerate"])
+}
+
+/// The hard shadow pass: for each hit sample and point light, the visible fraction (0 or 1)
+/// from a shadow segment search, written to `vis` (sample-major, light-minor per pixel).
+fn hard_shadow_pass(
+    tracer: &Tracer<'_>,
+    samples: &[Vec<Sample>],
+    lights: &[(DVec3, [f32; 3])],
+    vis: &mut [Vec<f32>],
+    progress: &dyn Progress,
+) -> PassStats {
+    let w = tracer.scene.camera.width() as usize;
+    let nl = lights.len();
+    let t0 = Instant::now();
+    progress.begin("hard-shadows", (samples.len() / w) as u64);
+    let diag = diagonal(&tracer.scene.geometry.bounds());
+    let works: Vec<Work> = samples
+        .par_chunks(w)
+        .zip(vis.par_chunks_mut(w))
+        .map_init(
+            || tracer.evals(),
+            |ev, (srow, vrow)| {
+                let mut work = Work::default();
+                for (px, v) in srow.iter().zip(vrow.iter_mut()) {
+                    for (si, s) in px.iter().enumerate() {
+                        let Some(hit) = s.hit else { continue };
+                        let n = if hit.normal.dot(hit.to_eye) < 0.0 {
+                            -hit.normal
+                        } else {
+                            hit.normal
+                        };
+                        for (li, (pos, _)) in lights.iter().enumerate() {
+                            work.items[0] += 1;
+                            if n.dot(*pos - hit.point) <= 0.0 {
+                                // Facing away from the light: no direct light anyway.
+                                work.items[4] += 1;
+                                v[si * nl + li] = 0.0;
+                                continue;
+                            }
+                            let from = hit.point + n * (SHADOW_OFFSET * diag);
+                            let r = tracer.segment(ev, from, *pos, &mut work.root);
+                            let (k, lit) = match r {
+                                Visibility::Lit => (1, 1.0),
+                                Visibility::Occluded => (2, 0.0),
+                                Visibility::Undecided => (3, 0.0),
+                            };
+                            work.items[k] += 1;
+                            v[si * nl + li] = lit;
+                        }
+                    }
+                }
+                progress.advance(1);
+                work
+            },
+        )
+        .collect();
+    progress.end();
+    let work = works.into_iter().fold(Work::default(), Work::add);
+    work.stats(
+        "hard-shadows",
+        t0.elapsed(),
+        &["segments", "lit", "occluded", "undecided", "back_facing"],
+    )
+}
+
+/// The shading pass: each pixel's colour, the weighted sum of its samples' Phong colours
+/// (the flat material colour when the scene has no lights, a pass that then does not run).
+fn shading_pass(
+    tracer: &Tracer<'_>,
+    samples: &[Vec<Sample>],
+    lights: &[(DVec3, [f32; 3])],
+    vis: &[Vec<f32>],
+) -> (Vec<[f32; 3]>, PassStats) {
+    let scene = tracer.scene;
+    let lit = tracer.plan.runs("shading");
+    let nl = lights.len();
     let t0 = Instant::now();
     let leaves = scene.geometry.leaves();
     let pixels: Vec<[f32; 3]> = samples
@@ -591,7 +660,7 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
                     None => scene.background,
                     Some(hit) => {
                         let m = &leaves[hit.leaf as usize].material;
-                        if plan.shading {
+                        if lit {
                             incoming.clear();
                             for (li, (pos, col)) in lights.iter().enumerate() {
                                 let f = v[si * nl + li];
@@ -618,53 +687,31 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
             }
         })
         .collect();
-    if plan.shading {
+    let stats = if lit {
         let shaded = samples.iter().flatten().filter(|s| s.hit.is_some()).count() as u64;
-        passes.push(PassStats {
+        PassStats {
             name: "shading".into(),
             ran: true,
             time: t0.elapsed(),
             counters: vec![("shaded_samples".into(), shaded)],
-        });
+        }
     } else {
-        passes.push(PassStats::skipped("shading"));
-    }
-
-    // Keep the pass order of PASSES.
-    passes.sort_by_key(|p| PASSES.iter().position(|n| *n == p.name));
-    if !passes.iter().any(|p| p.name == "grid") {
-        passes.insert(0, PassStats::skipped("grid"));
-    }
-    let image = Image {
-        width: w,
-        height: h,
-        pixels,
+        PassStats::skipped("shading")
     };
-    Ok(RenderOutput {
-        classification: classification_image(w, h, &classes),
-        cost_map: cost_image(w, h, &cost),
-        image,
-        stats: RenderStats {
-            passes,
-            total: start.elapsed(),
-        },
-        plan,
-    })
+    (pixels, stats)
 }
 
 /// A pass that computes the samples of every pixel with `pixel`, row by row in parallel:
 /// the samples in pixel order, the time spent per pixel (the cost map) and the pass's
 /// statistics.
-#[allow(clippy::too_many_arguments)]
 fn per_pixel_pass(
     tracer: &Tracer<'_>,
-    w: u32,
-    h: u32,
     name: &str,
     labels: &[&str],
     progress: &dyn Progress,
     pixel: impl Fn(&mut Evals, u32, u32, &mut Work) -> Vec<Sample> + Sync,
 ) -> (Vec<Vec<Sample>>, Vec<f32>, PassStats) {
+    let (w, h) = (tracer.scene.camera.width(), tracer.scene.camera.height());
     let t0 = Instant::now();
     progress.begin(name, u64::from(h));
     let rows: Vec<(Vec<Vec<Sample>>, Vec<f32>, Work)> = (0..h)
