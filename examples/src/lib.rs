@@ -1,6 +1,9 @@
 //! Shared helpers of the example programs.
 //!
+//! * [`catalog_view`]: a catalog surface set up for ray casting (the root finder
+//!   comparisons of the `root-finders` example and the benchmarks).
 //! * [`render2d`]: the quadtree interval renderer of planar implicit regions behind the
 //!   `render2d` example (also timed by the benchmarks).
 
+pub mod catalog_view;
 pub mod render2d;

@@ -24,27 +24,12 @@ use std::fmt::Write as _;
 use std::process::ExitCode;
 use std::time::Instant;
 
-use beam_trace::Camera;
-use beam_trace::ray::{BeamEval, IBox, Ray};
+use beam_trace::ray::BeamEval;
 use beam_trace::root::{Proof, RootCounters, RootMethod, RootResult, RootSettings};
-use beam_trace::scene::{Csg, Geometry, Leaf};
 use clap::Parser;
-use glam::DVec3;
-use implicit_expr::{Context, catalog};
-use interval_core::Interval;
+use examples::catalog_view::{CatalogView, TABLE_4_1};
+use implicit_expr::catalog;
 use rayon::prelude::*;
-
-/// The surfaces of thesis Table 4.1, in its order.
-const TABLE_4_1: [&str; 8] = [
-    "sphere",
-    "drop",
-    "chubs",
-    "crosscap",
-    "gumdrop-torus",
-    "horned-cube",
-    "mcmullen-k3",
-    "kusner-schmitt",
-];
 
 /// Times the root finders on catalog surfaces and checks that the reliable ones agree.
 #[derive(Parser, Debug)]
@@ -74,14 +59,6 @@ struct Args {
     /// Most disagreements listed (default: every one).
     #[arg(long, default_value_t = u64::MAX)]
     max_listed: u64,
-}
-
-/// One surface, ready to cast rays at.
-struct Setup {
-    name: &'static str,
-    geometry: Geometry,
-    camera: Camera,
-    bounds: IBox,
 }
 
 /// The answers of one method on one surface.
@@ -132,9 +109,9 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         sampling_step: args.sampling_step,
         lipschitz: args.lipschitz,
     };
-    let setups: Vec<Setup> = names
+    let setups: Vec<CatalogView> = names
         .iter()
-        .map(|n| setup(n, args.size))
+        .map(|n| CatalogView::new(n, args.size))
         .collect::<Result<_, _>>()?;
 
     // runs[s][m]: surface s, method m.
@@ -197,71 +174,9 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
     Ok(())
 }
 
-/// Builds the geometry and camera of a catalog surface, its parameters bound to their
-/// default values.
-fn setup(name: &str, size: u32) -> Result<Setup, Box<dyn std::error::Error>> {
-    let s = catalog::get(name)?;
-    let mut ctx = Context::new();
-    let f = s.build(&mut ctx)?;
-    let mut map = Vec::new();
-    for &(p, v) in s.params {
-        let var = ctx
-            .find_var(p)
-            .ok_or_else(|| format!("{name}: parameter {p} not declared"))?;
-        map.push((var, ctx.constant(v)?));
-    }
-    let f = ctx.substitute(f, &map);
-    // The bound parameters' slots are still declared in `ctx`; a fresh context holds only
-    // x, y, z and what f uses.
-    let (ctx, f) = ctx.extract(f);
-    let bounds = s.bounding_box();
-    let leaf = Leaf {
-        name: s.name.to_string(),
-        node: f,
-        material: Default::default(),
-        bounds,
-        clipped: false,
-    };
-    let geometry = Geometry::new(ctx, vec![leaf], vec![Csg::Leaf(0)])?;
-    let lo = DVec3::new(bounds[0].inf(), bounds[1].inf(), bounds[2].inf());
-    let hi = DVec3::new(bounds[0].sup(), bounds[1].sup(), bounds[2].sup());
-    let center = (lo + hi) * 0.5;
-    let radius = (hi - lo).length() * 0.5;
-    let fov: f64 = 40.0;
-    let distance = radius / (fov.to_radians() * 0.5).sin();
-    let eye = center + DVec3::new(1.0, 0.8, 2.2).normalize() * distance;
-    let camera = Camera::new(eye, center, DVec3::Y, fov, size, size)?;
-    Ok(Setup {
-        name: s.name,
-        geometry,
-        camera,
-        bounds,
-    })
-}
-
-/// The parameter range of `ray` inside the box `b` (slab test), from `t = 0` on; `None`
-/// when the ray misses the box.
-fn clip(ray: &Ray, b: &IBox) -> Option<Interval<f64>> {
-    let (o, d) = (ray.origin.to_array(), ray.dir.to_array());
-    let (mut t0, mut t1) = (0.0f64, f64::INFINITY);
-    for i in 0..3 {
-        let (lo, hi) = (b[i].inf(), b[i].sup());
-        if d[i] == 0.0 {
-            if o[i] < lo || o[i] > hi {
-                return None;
-            }
-            continue;
-        }
-        let (a, c) = ((lo - o[i]) / d[i], (hi - o[i]) / d[i]);
-        t0 = t0.max(a.min(c));
-        t1 = t1.min(a.max(c));
-    }
-    (t0 <= t1).then(|| Interval::new(t0, t1).expect("ordered finite range"))
-}
-
 /// Casts one ray per pixel of `s` with method `m`: the answers in row-major order, the
 /// summed counters and the wall time.
-fn cast(s: &Setup, m: RootMethod, settings: &RootSettings) -> Run {
+fn cast(s: &CatalogView, m: RootMethod, settings: &RootSettings) -> Run {
     let finder = m.finder();
     let (w, h) = (s.camera.width(), s.camera.height());
     let start = Instant::now();
@@ -273,8 +188,8 @@ fn cast(s: &Setup, m: RootMethod, settings: &RootSettings) -> Run {
                 let mut counters = RootCounters::default();
                 let row = (0..w)
                     .map(|i| {
-                        let ray = s.camera.ray(f64::from(i) + 0.5, f64::from(j) + 0.5);
-                        match clip(&ray, &s.bounds) {
+                        let (ray, t) = s.ray(i, j);
+                        match t {
                             None => RootResult::NoRoot,
                             Some(t) => {
                                 ev.set_ray(&ray);
@@ -400,7 +315,7 @@ fn agree(a: &RootResult, b: &RootResult, eps: f64) -> bool {
 /// is the odd one out (disagreeing with most of the others), and compares the baselines
 /// with the reliable methods' common answer.
 fn agreement(
-    setups: &[Setup],
+    setups: &[CatalogView],
     methods: &[RootMethod],
     runs: &[Vec<Run>],
     settings: &RootSettings,
