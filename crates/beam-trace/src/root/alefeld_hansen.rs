@@ -23,10 +23,6 @@ impl RootFinder for NewtonAlefeldHansen {
         "newton-alefeld-hansen"
     }
 
-    fn is_reliable(&self) -> bool {
-        true
-    }
-
     fn first_root(
         &self,
         g: &mut dyn RayFn,

@@ -31,10 +31,6 @@ impl RootFinder for Bisection {
         "bisection"
     }
 
-    fn is_reliable(&self) -> bool {
-        true
-    }
-
     fn first_root(
         &self,
         g: &mut dyn RayFn,

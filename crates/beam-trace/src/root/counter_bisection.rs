@@ -81,10 +81,6 @@ impl RootFinder for CounterBisection {
         "counter-bisection"
     }
 
-    fn is_reliable(&self) -> bool {
-        true
-    }
-
     fn first_root(
         &self,
         g: &mut dyn RayFn,

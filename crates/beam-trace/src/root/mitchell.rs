@@ -38,10 +38,6 @@ impl RootFinder for Mitchell {
         "mitchell"
     }
 
-    fn is_reliable(&self) -> bool {
-        true
-    }
-
     fn first_root(
         &self,
         g: &mut dyn RayFn,

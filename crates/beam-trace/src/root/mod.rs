@@ -143,8 +143,11 @@ pub trait RootFinder: Send + Sync + fmt::Debug {
     /// The method's name, as accepted by [`RootMethod::from_str`].
     fn name(&self) -> &'static str;
 
-    /// Whether "no root" and root enclosures are proofs. `false` for the baselines.
-    fn is_reliable(&self) -> bool;
+    /// Whether "no root" and root enclosures are proofs: `true` unless the method says
+    /// otherwise (the baselines do).
+    fn is_reliable(&self) -> bool {
+        true
+    }
 
     /// The first root of `g` in `t`, counting work in `counters`.
     fn first_root(

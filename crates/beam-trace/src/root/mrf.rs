@@ -60,10 +60,6 @@ impl RootFinder for Mrf {
         "mrf"
     }
 
-    fn is_reliable(&self) -> bool {
-        true
-    }
-
     fn first_root(
         &self,
         g: &mut dyn RayFn,
@@ -110,10 +106,6 @@ impl RootFinder for Mrf {
 impl RootFinder for Mrfro {
     fn name(&self) -> &'static str {
         "mrfro"
-    }
-
-    fn is_reliable(&self) -> bool {
-        true
     }
 
     fn first_root(

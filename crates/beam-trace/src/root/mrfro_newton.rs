@@ -23,10 +23,6 @@ impl RootFinder for MrfroNewton {
         "mrfro-newton"
     }
 
-    fn is_reliable(&self) -> bool {
-        true
-    }
-
     fn first_root(
         &self,
         g: &mut dyn RayFn,

@@ -34,10 +34,6 @@ impl RootFinder for Newton {
         "newton"
     }
 
-    fn is_reliable(&self) -> bool {
-        true
-    }
-
     fn first_root(
         &self,
         g: &mut dyn RayFn,
