@@ -19,9 +19,10 @@
 //! adds the continuity check the intermediate value theorem needs (a formula with a pole
 //! or a step changes sign without a root).
 
-use interval_core::{Interval, Modal, Outer};
+use interval_core::Interval;
 
 use crate::ray::{Beam, IBox, ipoint};
+use crate::root::search::may_vanish;
 use crate::root::{RayFn, RootCounters};
 
 /// Where the rendered surface lives along a beam: the scene bounds, outside which rays do
@@ -84,25 +85,18 @@ impl Default for BeamSettings {
     }
 }
 
-#[inline]
-fn excludes_zero(g: Interval<f64>) -> bool {
-    g.is_empty() || g.inf() > 0.0 || g.sup() < 0.0
-}
-
 /// The meet test of eq. 5.6 on outer enclosures `ra`, `rb` of `g` at two parameters: `true`
-/// when `ra ∧ rb ⊆ [0, 0]` as modal intervals, i.e. one is `≥ 0` and the other `≤ 0` for
-/// every ray (then, for a continuous `g`, every ray has a root between the two parameters).
+/// when `ra ∧ rb ⊆ [0, 0]` as modal intervals, i.e. `max(inf) ≥ 0 ≥ min(sup)`: one is `≥ 0`
+/// and the other `≤ 0` for every ray (then, for a continuous `g`, every ray has a root
+/// between the two parameters). Equivalently `g(a) · g(b) ≤ 0` for every value of the two
+/// enclosures; `false` if either is empty. The root finders use the same test.
 pub fn sign_change(ra: Interval<f64>, rb: Interval<f64>) -> bool {
     let (Some((a0, a1)), Some((b0, b1))) = (ra.bounds(), rb.bounds()) else {
         return false;
     };
-    let (Ok(a), Ok(b)) = (Modal::<f64, Outer>::proper(a0, a1), Modal::proper(b0, b1)) else {
-        return false;
-    };
-    let zero = Modal::<f64, Outer>::point(0.0).expect("0 is finite");
-    // A meet of two intervals that share no point is improper; it lies inside [0, 0]
-    // (modal inclusion) exactly when 0 separates them.
-    a.meet(b).subset(zero) && !(a.subset(zero) && b.subset(zero))
+    // The bounds of the (improper where they are disjoint) modal meet [max(a0, b0),
+    // min(a1, b1)], and its inclusion in [0, 0].
+    a0.max(b0) >= 0.0 && a1.min(b1) <= 0.0
 }
 
 /// The rejection test (Fig. 5.6): `true` when every range of `ranges` is proven free of
@@ -159,7 +153,7 @@ fn search(
     while let Some((t, end)) = stack.pop() {
         let (gt, continuous) = g.g_checked(t);
         counters.g_evals += 1;
-        if excludes_zero(gt) {
+        if !may_vanish(gt) {
             continue;
         }
         if inclusion
@@ -214,7 +208,7 @@ fn look_ahead(
     let w = t.wid();
     let ra = g.g(ipoint(a));
     counters.g_evals += 1;
-    if !excludes_zero(ra) || w.is_nan() || w <= 0.0 || !end.is_finite() {
+    if may_vanish(ra) || w.is_nan() || w <= 0.0 || !end.is_finite() {
         return None;
     }
     let mut step = w;
@@ -272,7 +266,7 @@ fn t_final(
         }
         let left = g.g(Interval::new_unchecked(lo, m));
         counters.g_evals += 1;
-        if excludes_zero(left) {
+        if !may_vanish(left) {
             // No ray has a root in [lo, m]; the sign at m is the sign at lo.
             lo = m;
         } else {

@@ -267,5 +267,5 @@ pub mod mrf;
 pub mod mrfro_newton;
 pub mod newton;
 pub mod point_sampling;
-mod search;
+pub(crate) mod search;
 pub mod sphere_tracing;

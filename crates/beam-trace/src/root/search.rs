@@ -173,11 +173,8 @@ pub(crate) fn excludes_zero(v: Interval<f64>) -> bool {
 }
 
 /// `g(a) · g(b) ≤ 0` for every value of the enclosures `ga`, `gb`: with `g` continuous on
-/// `[a, b]` a root lies in `[a, b]` (ends included).
-#[inline]
-pub(crate) fn sign_change(ga: Interval<f64>, gb: Interval<f64>) -> bool {
-    !ga.is_empty() && !gb.is_empty() && (ga * gb).sup() <= 0.0
-}
+/// `[a, b]` a root lies in `[a, b]` (ends included). The beams' meet test.
+pub(crate) use crate::beam::sign_change;
 
 /// `ga` and `gb` are both `> 0` or both `< 0`.
 #[inline]
