@@ -22,7 +22,7 @@
 use interval_core::Interval;
 
 use crate::ray::{Beam, IBox, ipoint};
-use crate::root::search::may_vanish;
+use crate::root::search::{Eval, may_vanish, sign_change_ahead};
 use crate::root::{RayFn, RootCounters};
 
 /// Where the rendered surface lives along a beam: the scene bounds, outside which rays do
@@ -194,9 +194,9 @@ const LOOK_AHEAD: u32 = 8;
 /// piece ever holds them with a margin and the test on single pieces never succeeds; the
 /// thesis's search avoids this by accumulating the meet over every evaluated end. Here the
 /// final piece `[a, b]` (everything before `a` rejected, so `g(a)` usually has one strict
-/// sign for all rays) is paired with ends `b' = b + w·2^k` further on: a sign change between
-/// `a` and `b'` with `g` continuous on `[a, b']` proves that every ray's first root lies in
-/// `[a, b']`.
+/// sign for all rays) is paired with ends `b' = b + w·2^k` further on (the root finders'
+/// probe, [`sign_change_ahead`]): a sign change between `a` and `b'` with `g` continuous on
+/// `[a, b']` proves that every ray's first root lies in `[a, b']`.
 fn look_ahead(
     g: &mut dyn RayFn,
     t: Interval<f64>,
@@ -204,36 +204,9 @@ fn look_ahead(
     inside: &dyn Fn(f64) -> bool,
     counters: &mut RootCounters,
 ) -> Option<Interval<f64>> {
-    let (a, b) = (t.inf(), t.sup());
-    let w = t.wid();
-    let ra = g.g(ipoint(a));
-    counters.g_evals += 1;
-    if may_vanish(ra) || w.is_nan() || w <= 0.0 || !end.is_finite() {
-        return None;
-    }
-    let mut step = w;
-    for _ in 0..=LOOK_AHEAD {
-        let bb = (b + step).min(end);
-        if bb <= b {
-            return None;
-        }
-        let rb = g.g(ipoint(bb));
-        counters.g_evals += 1;
-        if sign_change(ra, rb) {
-            if !inside(bb) {
-                return None;
-            }
-            let span = Interval::new_unchecked(a, bb);
-            let (_, continuous) = g.g_checked(span);
-            counters.g_evals += 1;
-            return continuous.then_some(span);
-        }
-        if bb >= end {
-            return None;
-        }
-        step *= 2.0;
-    }
-    None
+    let mut ev = Eval::new(g, counters);
+    let ra = ev.at(t.inf());
+    sign_change_ahead(&mut ev, t, ra, end, LOOK_AHEAD, inside)
 }
 
 /// Tightens the range `t` of an inclusion into `T_final` (thesis Fig. 5.11): every ray has

@@ -261,38 +261,56 @@ const LOOK_AHEAD: u32 = 10;
 /// The final piece `x = [a, b]` of a search holds 0 in `G(x)` but `g` has one strict sign
 /// at both ends: the natural interval extension overestimates `g` near a root, so such
 /// pieces occur a few widths *before* a simple root, where no rejection test of the piece
-/// alone can remove them. Nothing before `a` is a root. If `G([p])` has the opposite
-/// strict sign at some `p = b + w·2^k` (`w` the width of `x`, `k ≤ LOOK_AHEAD`, `p ≤ T.sup()`)
-/// and `g` is proven continuous on `[a, p]`, a root lies in `[a, p]`, so the first root of
-/// `T` does too: `[a, p]` is returned with [`Proof::Exists`]. Its width may exceed `ε`;
-/// it is proven. Costs at most `LOOK_AHEAD + 2` evaluations; `None` when nothing is found.
+/// alone can remove them. Nothing before `a` is a root. A sign change found by
+/// [`sign_change_ahead`] proves a root in `[a, p]`, so the first root of `T` lies there
+/// too: `[a, p]` is returned with [`Proof::Exists`]. Its width may exceed `ε`; it is
+/// proven. `None` when nothing is found.
 fn look_ahead(
     ev: &mut Eval<'_>,
     x: Interval<f64>,
     gb: Interval<f64>,
     end: f64,
 ) -> Option<RootResult> {
+    sign_change_ahead(ev, x, gb, end, LOOK_AHEAD, &|_| true).map(|h| RootResult::Root {
+        t: h,
+        proof: Proof::Exists,
+    })
+}
+
+/// The shared probe of [`look_ahead`] and of the beams' inclusion test: for the piece
+/// `x = [a, b]` and `reference`, a strictly signed enclosure of `g` at `a` or `b` (with
+/// `g` of that sign at both ends), the first `p = b + w·2^k` (`w` the width of `x`,
+/// `k ≤ steps`, `p ≤ end`) where `G([p])` has the opposite sign ([`sign_change`]); `[a, p]`
+/// when `accept(p)` and `g` is proven continuous on it (then `g` changes sign on it),
+/// `None` otherwise or when no such `p` is found. At most `steps + 2` evaluations.
+pub(crate) fn sign_change_ahead(
+    ev: &mut Eval<'_>,
+    x: Interval<f64>,
+    reference: Interval<f64>,
+    end: f64,
+    steps: u32,
+    accept: &dyn Fn(f64) -> bool,
+) -> Option<Interval<f64>> {
     let (a, b) = (x.inf(), x.sup());
     let w = x.wid();
-    let s = sign(gb);
-    if w.is_nan() || w <= 0.0 || s == 0 {
+    if w.is_nan() || w <= 0.0 || sign(reference) == 0 {
         return None;
     }
     let mut step = w;
-    for _ in 0..=LOOK_AHEAD {
+    for _ in 0..=steps {
         let p = (b + step).min(end);
         if p <= b {
             return None;
         }
-        if sign(ev.at(p)) == -s {
+        if sign_change(reference, ev.at(p)) {
+            if !accept(p) {
+                return None;
+            }
             let h = ival(a, p);
             let (_, cont) = ev.checked(h);
-            return cont.then_some(RootResult::Root {
-                t: h,
-                proof: Proof::Exists,
-            });
+            return cont.then_some(h);
         }
-        if p == end {
+        if p >= end {
             return None;
         }
         step *= 2.0;
