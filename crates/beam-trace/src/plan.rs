@@ -89,8 +89,7 @@ impl Plan {
                 },
             },
         };
-        let b = scene.geometry.bounds();
-        let diagonal = b.iter().map(|i| i.wid() * i.wid()).sum::<f64>().sqrt();
+        let diagonal = scene.geometry.diagonal();
         let shading = !scene.lights.is_empty();
         let hard_shadow_lights = if s.shadows {
             scene

@@ -585,7 +585,7 @@ fn hard_shadow_pass(
     let nl = lights.len();
     let t0 = Instant::now();
     progress.begin("hard-shadows", (samples.len() / w) as u64);
-    let diag = diagonal(&tracer.scene.geometry.bounds());
+    let diag = tracer.scene.geometry.diagonal();
     let works: Vec<Work> = samples
         .par_chunks(w)
         .zip(vis.par_chunks_mut(w))
@@ -745,10 +745,6 @@ fn per_pixel_pass(
         cost.extend(costs);
     }
     (samples, cost, work.stats(name, t0.elapsed(), labels))
-}
-
-fn diagonal(b: &crate::ray::IBox) -> f64 {
-    b.iter().map(|i| i.wid() * i.wid()).sum::<f64>().sqrt()
 }
 
 fn tiles(w: u32, h: u32, size: u32) -> Vec<PixelRect> {

@@ -198,6 +198,16 @@ impl Geometry {
         self.bounds
     }
 
+    /// The length of the diagonal of [`bounds`](Self::bounds): the scene's scale, which
+    /// tolerances are relative to.
+    pub fn diagonal(&self) -> f64 {
+        self.bounds
+            .iter()
+            .map(|i| i.wid() * i.wid())
+            .sum::<f64>()
+            .sqrt()
+    }
+
     /// `g` and `g'` of the scene function.
     pub fn ray_function(&self) -> &RayFunction {
         &self.ray
