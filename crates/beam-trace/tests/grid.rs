@@ -301,9 +301,6 @@ impl RootFinder for TestBisection {
     fn name(&self) -> &'static str {
         "test-bisection"
     }
-    fn is_reliable(&self) -> bool {
-        true
-    }
     fn first_root(
         &self,
         g: &mut dyn RayFn,
