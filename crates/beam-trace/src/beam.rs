@@ -69,6 +69,11 @@ pub enum BoxClass {
 pub struct BeamSettings {
     /// Width of `T` below which the subdivision stops (thesis `ε_T`).
     pub epsilon: f64,
+    /// Width of `T`, relative to its start `inf T`, below which the subdivision stops too
+    /// (0: only the absolute `epsilon`). Shadow beams, whose cross-section grows with `t`,
+    /// stop where the piece is small against the cross-section: thinner pieces would not
+    /// narrow the enclosure further.
+    pub rel_epsilon: f64,
     /// Largest number of bisections per beam.
     pub max_bisections: u64,
     /// Bisection steps spent tightening `T_final` after an inclusion.
@@ -79,6 +84,7 @@ impl Default for BeamSettings {
     fn default() -> Self {
         Self {
             epsilon: 1e-4,
+            rel_epsilon: 0.0,
             max_bisections: 1024,
             refine_steps: 12,
         }
@@ -125,6 +131,18 @@ fn ends_change_sign(g: &mut dyn RayFn, t: Interval<f64>, counters: &mut RootCoun
     sign_change(ra, rb)
 }
 
+/// The rejection test that also says where it failed: [`BoxClass::Miss`], or
+/// [`BoxClass::Undecided`] with the first piece that could not be rejected (every ray of
+/// the beam is proven root-free before it).
+pub fn rejection_search(
+    g: &mut dyn RayFn,
+    ranges: &[Interval<f64>],
+    settings: &BeamSettings,
+    counters: &mut RootCounters,
+) -> BoxClass {
+    search(g, ranges, None, settings, false, counters)
+}
+
 /// EvaluateBox (Fig. 5.10): the rejection and inclusion tests in one front-to-back search
 /// over `ranges` (increasing, as the regular grid gives them). With an `extent`, an
 /// inclusion counts only where it places every ray's root inside the extent's bounds.
@@ -166,7 +184,9 @@ fn search(
                 t_final: t_final(g, t, settings, counters),
             };
         }
-        if t.wid() <= settings.epsilon || bisections >= settings.max_bisections {
+        if t.wid() <= settings.epsilon.max(settings.rel_epsilon * t.inf())
+            || bisections >= settings.max_bisections
+        {
             if inclusion
                 && inside(t.inf())
                 && let Some(t) = look_ahead(g, t, end, &inside, counters)

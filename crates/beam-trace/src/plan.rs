@@ -1,7 +1,8 @@
 //! The effect plan: which passes a scene calls for, and with which settings.
 //!
 //! Primary visibility always runs; normals and shading only when the scene has lights;
-//! hard shadow rays only for point lights with shadows on; anti-aliasing only when asked.
+//! hard shadow rays only for point lights and soft-shadow beams only for area lights, with
+//! shadows on; anti-aliasing only when asked.
 //! A pass that is not planned costs nothing: its statistics stay zero.
 
 use std::fmt;
@@ -9,6 +10,7 @@ use std::fmt;
 use crate::beam::BeamSettings;
 use crate::root::{RootMethod, RootSettings};
 use crate::scene::{AaMode, Light, PrimaryMode, Scene};
+use crate::shadow::ShadowSpec;
 
 /// How primary visibility is computed.
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -44,6 +46,10 @@ pub struct Plan {
     pub shading: bool,
     /// Number of point lights that cast hard shadows (0: no shadow pass).
     pub hard_shadow_lights: usize,
+    /// Number of area lights that cast soft shadows (0: no soft-shadow pass).
+    pub soft_shadow_lights: usize,
+    /// The soft-shadow method.
+    pub shadow_method: ShadowSpec,
     /// Root finder of ray searches.
     pub root_finder: RootMethod,
     /// Its settings.
@@ -55,13 +61,14 @@ pub struct Plan {
 }
 
 /// Names of the passes, in the order they run.
-pub const PASSES: [&str; 7] = [
+pub const PASSES: [&str; 8] = [
     "grid",
     "screen-boxes",
     "primary-rays",
     "iaa",
     "normals",
     "hard-shadows",
+    "soft-shadows",
     "shading",
 ];
 
@@ -91,20 +98,22 @@ impl Plan {
         };
         let diagonal = scene.geometry.diagonal();
         let shading = !scene.lights.is_empty();
-        let hard_shadow_lights = if s.shadows {
-            scene
-                .lights
-                .iter()
-                .filter(|l| matches!(l, Light::Point(_)))
-                .count()
-        } else {
-            0
+        let count = |f: fn(&Light) -> bool| {
+            if s.shadows {
+                scene.lights.iter().filter(|l| f(l)).count()
+            } else {
+                0
+            }
         };
+        let hard_shadow_lights = count(|l| l.as_point().is_some());
+        let soft_shadow_lights = count(|l| l.as_area().is_some());
         Plan {
             grid: (s.grid_resolution > 0).then_some(s.grid_resolution),
             primary,
             shading,
             hard_shadow_lights,
+            soft_shadow_lights,
+            shadow_method: s.shadow_method,
             root_finder: s.root_finder,
             root: s.root,
             beam: BeamSettings {
@@ -124,6 +133,7 @@ impl Plan {
             "iaa" => matches!(self.primary, Primary::Iaa { .. }),
             "normals" | "shading" => self.shading,
             "hard-shadows" => self.shading && self.hard_shadow_lights > 0,
+            "soft-shadows" => self.shading && self.soft_shadow_lights > 0,
             _ => false,
         }
     }
@@ -160,6 +170,10 @@ impl fmt::Display for Plan {
                     "hard-shadows" => format!(
                         "shadow segments to {} point light(s), searched through the grid: a reliable \"no root\" proves the point lit",
                         self.hard_shadow_lights
+                    ),
+                    "soft-shadows" => format!(
+                        "visible fraction of {} area light(s) by {}",
+                        self.soft_shadow_lights, self.shadow_method
                     ),
                     "shading" => "Phong (ambient, diffuse, specular)".to_string(),
                     _ => String::new(),

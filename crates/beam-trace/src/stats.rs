@@ -52,6 +52,9 @@ pub type PassWork = (String, bool, Vec<(String, u64)>);
 pub struct RenderStats {
     /// Passes, in the order they ran.
     pub passes: Vec<PassStats>,
+    /// Per area light, the soft-shadow pass's time and counters (the soft-shadow paper's
+    /// Table 1: pixels in shadow, initial beams occluded, sub-beams or rays traced).
+    pub lights: Vec<PassStats>,
     /// Total wall-clock time.
     #[serde(serialize_with = "seconds")]
     pub total: Duration,
@@ -67,6 +70,7 @@ impl RenderStats {
     pub fn work(&self) -> Vec<PassWork> {
         self.passes
             .iter()
+            .chain(&self.lights)
             .map(|p| (p.name.clone(), p.ran, p.counters.clone()))
             .collect()
     }
@@ -90,6 +94,21 @@ impl fmt::Display for RenderStats {
             "{:<16} {:>10.1}",
             "total",
             self.total.as_secs_f64() * 1e3
-        )
+        )?;
+        if !self.lights.is_empty() {
+            write!(f, "\nsoft shadows per area light:")?;
+            for l in &self.lights {
+                let counters: Vec<String> =
+                    l.counters.iter().map(|(n, v)| format!("{n}={v}")).collect();
+                write!(
+                    f,
+                    "\n  {}: {:.1} ms  {}",
+                    l.name,
+                    l.time.as_secs_f64() * 1e3,
+                    counters.join(" ")
+                )?;
+            }
+        }
+        Ok(())
     }
 }

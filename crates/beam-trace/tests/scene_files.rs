@@ -147,7 +147,9 @@ fn catalog_scenes_load() {
             }
         }
         // The light is above the camera and to its left.
-        let Light::Point(l) = scene.lights[0];
+        let Light::Point(l) = scene.lights[0] else {
+            panic!("a point light")
+        };
         let eye = scene.camera.eye();
         assert!(l.position.y > eye.y, "{}", s.name);
         let left = scene.camera.ray(0.0, 24.0).dir - scene.camera.ray(64.0, 24.0).dir;
@@ -417,10 +419,14 @@ shadows = false
         (m.color, m.specular, m.shininess),
         ([0.1, 0.2, 0.3], 0.0, 2.0)
     );
-    let Light::Point(l) = s.lights[0];
+    let Light::Point(l) = s.lights[0] else {
+        panic!("a point light")
+    };
     assert_eq!(l.position, DVec3::new(1.0, 2.0, 3.0));
     assert_eq!(l.color, [1.0, 2.0, 0.5]);
-    let Light::Point(l) = s.lights[1];
+    let Light::Point(l) = s.lights[1] else {
+        panic!("a point light")
+    };
     assert_eq!(l.color, [0.0; 3], "zero intensity is allowed");
     let r = s.settings;
     assert_eq!(r.root_finder, RootMethod::Mitchell);

@@ -5,6 +5,8 @@
 //! render [SCENE] [--out FILE.png] [--width W --height H] [--root-finder NAME]
 //!        [--epsilon E] [--aa none|iaa|ss:N] [--threads N] [--stats FILE.json]
 //!        [--classification FILE.png] [--cost-map FILE.png]
+//!        [--shadows stochastic:N|beam:n|beam-all:n|beam-quadtree:n|
+//!                   minkowski:stochastic:N|minkowski:beam:n] [--shadow-classes FILE.png]
 //! ```
 //!
 //! `SCENE` is a TOML scene file or the name of a catalog surface.
@@ -16,6 +18,7 @@ use std::sync::Mutex;
 use beam_trace::image::{check_writable, write_atomic};
 use beam_trace::root::RootMethod;
 use beam_trace::scene::{AaMode, PrimaryMode};
+use beam_trace::shadow::ShadowSpec;
 use beam_trace::{Progress, Scene, render};
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
@@ -51,6 +54,14 @@ struct Args {
     /// Rays per pixel in per-pixel mode (a square number).
     #[arg(long)]
     rays_per_pixel: Option<u32>,
+    /// Soft-shadow method of area lights: stochastic:N (stochastic:N:cache), beam:n,
+    /// beam-all:n, beam-quadtree:n, minkowski:stochastic:N or minkowski:beam:n.
+    #[arg(long)]
+    shadows: Option<ShadowSpec>,
+    /// Write the soft-shadow classification image (proven lit green, proven umbra blue,
+    /// penumbra orange).
+    #[arg(long)]
+    shadow_classes: Option<PathBuf>,
     /// Regular grid resolution (0: no grid).
     #[arg(long)]
     grid: Option<u32>,
@@ -146,6 +157,9 @@ fn load(args: &Args) -> Result<Scene, String> {
         }
         s.rays_per_pixel = n;
     }
+    if let Some(m) = args.shadows {
+        s.shadow_method = m;
+    }
     if let Some(g) = args.grid {
         if g > beam_trace::scene::MAX_GRID_RESOLUTION {
             return Err(format!(
@@ -175,6 +189,7 @@ fn run(args: Args) -> Result<(), String> {
         args.stats.as_ref(),
         args.classification.as_ref(),
         args.cost_map.as_ref(),
+        args.shadow_classes.as_ref(),
     ]
     .into_iter()
     .flatten()
@@ -205,6 +220,15 @@ fn run(args: Args) -> Result<(), String> {
     }
     if let Some(p) = &args.cost_map {
         out.cost_map.write_png(p).map_err(|e| e.to_string())?;
+        println!("wrote {}", p.display());
+    }
+    if let Some(p) = &args.shadow_classes {
+        let img = out.shadow_classes.as_ref().ok_or_else(|| {
+            "--shadow-classes: the scene has no area light with shadows on, so no soft-shadow \
+             pass ran"
+                .to_string()
+        })?;
+        img.write_png(p).map_err(|e| e.to_string())?;
         println!("wrote {}", p.display());
     }
     if let Some(p) = &args.stats {

@@ -26,11 +26,13 @@ use toml::de::{DeTable, DeValue};
 use super::MAX_GRID_RESOLUTION;
 use super::transform::{Affine, Rotation};
 use super::{
-    AaMode, Csg, Geometry, Leaf, Light, Material, PointLight, PrimaryMode, RenderSettings, Scene,
+    AaMode, AreaLight, Csg, Geometry, Leaf, Light, Material, PointLight, PrimaryMode,
+    RenderSettings, Scene,
 };
 use crate::camera::Camera;
 use crate::error::Error;
 use crate::ray::{IBox, ival};
+use crate::shadow::Patch;
 
 /// The built-in default scene (TOML): the catalog's chubs, a sphere and a cube with a
 /// spherical hole (a CSG difference) on a floor slab, one point light, shadows on.
@@ -211,6 +213,18 @@ enum RawLight {
         color: Option<[f64; 3]>,
         intensity: Option<f64>,
     },
+    /// An axis-aligned square (`center`, `size`, `normal` axis) or a parallelogram
+    /// (`corner`, `edge_u`, `edge_v`).
+    Area {
+        center: Option<[f64; 3]>,
+        size: Option<f64>,
+        normal: Option<String>,
+        corner: Option<[f64; 3]>,
+        edge_u: Option<[f64; 3]>,
+        edge_v: Option<[f64; 3]>,
+        color: Option<[f64; 3]>,
+        intensity: Option<f64>,
+    },
 }
 
 #[derive(Deserialize, Default)]
@@ -230,6 +244,7 @@ struct RawRender {
     t_final_width: Option<f64>,
     grid: Option<i64>,
     shadows: Option<bool>,
+    shadow_method: Option<String>,
 }
 
 // ---------------------------------------------------------------------------------------
@@ -643,6 +658,9 @@ fn render_settings(doc: &Doc<'_>, r: &RawRender) -> Result<RenderSettings, Error
     }
     if let Some(v) = r.shadows {
         s.shadows = v;
+    }
+    if let Some(m) = &r.shadow_method {
+        s.shadow_method = m.parse().map_err(|m| doc.err("render.shadow_method", m))?;
     }
     Ok(s)
 }
@@ -1217,28 +1235,123 @@ fn camera(doc: &Doc<'_>, c: &RawCamera, bounds: &IBox) -> Result<(Camera, Option
 fn lights(doc: &Doc<'_>, raw: &[RawLight]) -> Result<Vec<Light>, Error> {
     let mut out = Vec::with_capacity(raw.len());
     for (i, l) in raw.iter().enumerate() {
+        let at = |field: &str| format!("lights[{i}].{field}");
+        let light_color = |color: &Option<[f64; 3]>, intensity: Option<f64>| {
+            let color = doc.color(&at("color"), color.unwrap_or([1.0; 3]))?;
+            let k = doc.finite(&at("intensity"), intensity.unwrap_or(1.0))?;
+            if k < 0.0 {
+                return Err(doc.err(&at("intensity"), format!("must not be negative, got {k}")));
+            }
+            let color = color.map(|c| c * k as f32);
+            if !color.iter().all(|c| c.is_finite()) {
+                return Err(doc.err(&at("intensity"), format!("is too large, got {k}")));
+            }
+            Ok(color)
+        };
         match l {
             RawLight::Point {
                 position,
                 color,
                 intensity,
             } => {
-                let position = doc.vec3(&format!("lights[{i}].position"), *position)?;
-                let color = doc.color(&format!("lights[{i}].color"), color.unwrap_or([1.0; 3]))?;
-                let ip = format!("lights[{i}].intensity");
-                let k = doc.finite(&ip, intensity.unwrap_or(1.0))?;
-                if k < 0.0 {
-                    return Err(doc.err(&ip, format!("must not be negative, got {k}")));
-                }
-                let color = color.map(|c| c * k as f32);
-                if !color.iter().all(|c| c.is_finite()) {
-                    return Err(doc.err(&ip, format!("is too large, got {k}")));
-                }
+                let position = doc.vec3(&at("position"), *position)?;
+                let color = light_color(color, *intensity)?;
                 out.push(Light::Point(PointLight { position, color }));
+            }
+            RawLight::Area {
+                center,
+                size,
+                normal,
+                corner,
+                edge_u,
+                edge_v,
+                color,
+                intensity,
+            } => {
+                let color = light_color(color, *intensity)?;
+                let patch = area_patch(
+                    doc,
+                    i,
+                    *center,
+                    *size,
+                    normal.as_deref(),
+                    *corner,
+                    *edge_u,
+                    *edge_v,
+                )?;
+                out.push(Light::Area(AreaLight { patch, color }));
             }
         }
     }
     Ok(out)
+}
+
+/// The shape of area light `i`: a square (`center`, `size`, `normal`) or a parallelogram
+/// (`corner`, `edge_u`, `edge_v`), never a mix.
+#[allow(clippy::too_many_arguments)]
+fn area_patch(
+    doc: &Doc<'_>,
+    i: usize,
+    center: Option<[f64; 3]>,
+    size: Option<f64>,
+    normal: Option<&str>,
+    corner: Option<[f64; 3]>,
+    edge_u: Option<[f64; 3]>,
+    edge_v: Option<[f64; 3]>,
+) -> Result<Patch, Error> {
+    let at = |field: &str| format!("lights[{i}].{field}");
+    let square = center.is_some() || size.is_some() || normal.is_some();
+    let parallelogram = corner.is_some() || edge_u.is_some() || edge_v.is_some();
+    let forms = "an area light is a square (center, size, normal) or a parallelogram \
+                 (corner, edge_u, edge_v)";
+    match (square, parallelogram) {
+        (true, true) => Err(doc.err(
+            &at("corner"),
+            format!("{forms}, not both: remove center/size/normal or corner/edge_u/edge_v"),
+        )),
+        (false, false) => Err(doc.err(&format!("lights[{i}]"), format!("{forms}; none given"))),
+        (true, false) => {
+            let missing = |f: &str| {
+                doc.err(
+                    &format!("lights[{i}]"),
+                    format!("missing field '{f}' ({forms})"),
+                )
+            };
+            let c = doc.vec3(&at("center"), center.ok_or_else(|| missing("center"))?)?;
+            let s = doc.finite(&at("size"), size.ok_or_else(|| missing("size"))?)?;
+            if s < 0.0 {
+                return Err(doc.err(&at("size"), format!("must not be negative, got {s}")));
+            }
+            let axis = match normal.ok_or_else(|| missing("normal"))? {
+                "x" => 0,
+                "y" => 1,
+                "z" => 2,
+                other => {
+                    return Err(doc.err(
+                        &at("normal"),
+                        format!("must be the axis \"x\", \"y\" or \"z\", got \"{other}\""),
+                    ));
+                }
+            };
+            Ok(Patch::square(c, s, axis))
+        }
+        (false, true) => {
+            let missing = |f: &str| {
+                doc.err(
+                    &format!("lights[{i}]"),
+                    format!("missing field '{f}' ({forms})"),
+                )
+            };
+            let corner = doc.vec3(&at("corner"), corner.ok_or_else(|| missing("corner"))?)?;
+            let edge_u = doc.vec3(&at("edge_u"), edge_u.ok_or_else(|| missing("edge_u"))?)?;
+            let edge_v = doc.vec3(&at("edge_v"), edge_v.ok_or_else(|| missing("edge_v"))?)?;
+            Ok(Patch {
+                corner,
+                edge_u,
+                edge_v,
+            })
+        }
+    }
 }
 
 /// Builds and checks the whole scene. Also returns the automatic light position when the
@@ -1504,14 +1617,18 @@ impl Scene {
     /// its own material. Names of surfaces and csg nodes share one namespace and are unique.
     ///
     /// **`[[lights]]`**: `type = "point"` with `position`, `color` and `intensity` (`≥ 0`);
-    /// the light's colour is `color · intensity`.
+    /// the light's colour is `color · intensity`. `type = "area"` with the same `color` and
+    /// `intensity` is a uniform parallelogram: an axis-aligned square `center`, `size`
+    /// (`≥ 0`), `normal` (`"x"`, `"y"` or `"z"`), or `corner`, `edge_u`, `edge_v`. An area
+    /// light of size zero is a point light.
     ///
     /// **`[render]`**: `root_finder` (a [`RootMethod`] name), `epsilon` (positive),
     /// `max_steps` (at least 1), `sampling_step` (in `(0, 1]`) and `lipschitz` (positive) for
     /// the unreliable baselines, `aa` (see [`AaMode`]'s [`FromStr`]), `iaa_depth` (1 to 8) and
     /// `iaa_threshold` (positive) for `aa = "iaa"`, `primary` (see [`PrimaryMode`]'s
     /// [`FromStr`]), `rays_per_undecided` and `rays_per_pixel` (square numbers 1 to 256),
-    /// `t_final_width` (positive), `grid` (0 to 256; 0: no grid), `shadows`.
+    /// `t_final_width` (positive), `grid` (0 to 256; 0: no grid), `shadows`,
+    /// `shadow_method` (see [`ShadowSpec`](crate::shadow::ShadowSpec); default `beam:7`).
     ///
     /// # Errors
     ///

@@ -113,6 +113,8 @@ pub struct Geometry {
     ray: RayFunction,
     f_tape: Tape,
     leaf_tape: Tape,
+    object_rays: Vec<RayFunction>,
+    object_tape: Tape,
 }
 
 impl Geometry {
@@ -146,9 +148,9 @@ impl Geometry {
             )));
         }
         let nodes: Vec<NodeId> = leaves.iter().map(|l| l.node).collect();
-        let mut root = objects[0].build(&mut ctx, &nodes);
-        for o in &objects[1..] {
-            let n = o.build(&mut ctx, &nodes);
+        let object_roots: Vec<NodeId> = objects.iter().map(|o| o.build(&mut ctx, &nodes)).collect();
+        let mut root = object_roots[0];
+        for &n in &object_roots[1..] {
             root = ctx.min(root, n);
         }
         let mut bounds = search_box(&leaves[used[0]]);
@@ -160,6 +162,11 @@ impl Geometry {
         let ray = RayFunction::new(&ctx, root)?;
         let f_tape = Tape::new(&ctx, &[root])?;
         let leaf_tape = Tape::new(&ctx, &nodes)?;
+        let object_rays = object_roots
+            .iter()
+            .map(|&n| RayFunction::new(&ctx, n))
+            .collect::<Result<Vec<_>, _>>()?;
+        let object_tape = Tape::new(&ctx, &object_roots)?;
         Ok(Self {
             ctx,
             leaves,
@@ -169,6 +176,8 @@ impl Geometry {
             ray,
             f_tape,
             leaf_tape,
+            object_rays,
+            object_tape,
         })
     }
 
@@ -227,6 +236,9 @@ impl Geometry {
             interval: Evaluator::new(&self.f_tape),
             leaves: Evaluator::new(&self.leaf_tape),
             leaf_values: vec![0.0; self.leaves.len()],
+            objects: self.object_rays.iter().map(BeamEval::new).collect(),
+            object_values_eval: Evaluator::new(&self.object_tape),
+            object_values: vec![0.0; self.objects.len()],
         }
     }
 }
@@ -242,6 +254,10 @@ pub struct GeometryEval {
     interval: Evaluator<Interval<f64>>,
     leaves: Evaluator<f64>,
     leaf_values: Vec<f64>,
+    /// `g` and `g'` of each top-level object alone.
+    pub objects: Vec<BeamEval>,
+    object_values_eval: Evaluator<f64>,
+    object_values: Vec<f64>,
 }
 
 impl GeometryEval {
@@ -279,13 +295,26 @@ impl GeometryEval {
         self.leaves
             .eval_outputs(&[p.x, p.y, p.z], &mut self.leaf_values)
             .expect("tape in x y z");
-        let mut best = (f64::INFINITY, 0);
-        for (i, v) in self.leaf_values.iter().enumerate() {
-            let a = v.abs();
-            if a < best.0 {
-                best = (a, i);
-            }
-        }
-        best.1
+        nearest_zero(&self.leaf_values)
     }
+
+    /// The top-level object whose surface passes nearest `p` (smallest `|f_object(p)|`).
+    pub fn object_at(&mut self, p: DVec3) -> usize {
+        self.object_values_eval
+            .eval_outputs(&[p.x, p.y, p.z], &mut self.object_values)
+            .expect("tape in x y z");
+        nearest_zero(&self.object_values)
+    }
+}
+
+/// The index of the value of smallest magnitude (0 when all are NaN).
+fn nearest_zero(values: &[f64]) -> usize {
+    let mut best = (f64::INFINITY, 0);
+    for (i, v) in values.iter().enumerate() {
+        let a = v.abs();
+        if a < best.0 {
+            best = (a, i);
+        }
+    }
+    best.1
 }

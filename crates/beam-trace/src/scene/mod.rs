@@ -19,6 +19,7 @@ use glam::DVec3;
 
 use crate::camera::Camera;
 use crate::root::{RootMethod, RootSettings};
+use crate::shadow::{Patch, ShadowSpec};
 
 /// Phong material (thesis eq. 2.6).
 #[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
@@ -50,11 +51,61 @@ pub struct PointLight {
     pub color: [f32; 3],
 }
 
+/// An area light: a parallelogram of uniform emission (soft shadows).
+#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
+pub struct AreaLight {
+    /// Its shape.
+    pub patch: Patch,
+    /// Colour times intensity (`c_l` per channel), for the whole light.
+    pub color: [f32; 3],
+}
+
 /// A light source.
 #[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
 pub enum Light {
     /// A point light: hard shadows.
     Point(PointLight),
+    /// An area light: soft shadows.
+    Area(AreaLight),
+}
+
+impl Light {
+    /// The light as a point light: a point light, or an area light of size zero (which
+    /// behaves exactly as a point light at its corner).
+    pub fn as_point(&self) -> Option<PointLight> {
+        match self {
+            Light::Point(p) => Some(*p),
+            Light::Area(a) if a.patch.is_point() => Some(PointLight {
+                position: a.patch.corner,
+                color: a.color,
+            }),
+            Light::Area(_) => None,
+        }
+    }
+
+    /// The light as an area light of non-zero size.
+    pub fn as_area(&self) -> Option<AreaLight> {
+        match self {
+            Light::Area(a) if !a.patch.is_point() => Some(*a),
+            _ => None,
+        }
+    }
+
+    /// The point shading takes the light's direction from (an area light's centre).
+    pub fn center(&self) -> DVec3 {
+        match self {
+            Light::Point(p) => p.position,
+            Light::Area(a) => a.patch.center(),
+        }
+    }
+
+    /// Colour times intensity.
+    pub fn color(&self) -> [f32; 3] {
+        match self {
+            Light::Point(p) => p.color,
+            Light::Area(a) => a.color,
+        }
+    }
 }
 
 /// Anti-aliasing mode.
@@ -143,6 +194,13 @@ pub struct RenderSettings {
     pub grid_resolution: u32,
     /// Whether lights cast shadows.
     pub shadows: bool,
+    /// How area lights' soft shadows are computed.
+    #[serde(serialize_with = "serialize_shadow")]
+    pub shadow_method: ShadowSpec,
+}
+
+fn serialize_shadow<S: serde::Serializer>(m: &ShadowSpec, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&m.to_string())
 }
 
 fn serialize_display<S: serde::Serializer>(m: &RootMethod, s: S) -> Result<S::Ok, S::Error> {
@@ -161,6 +219,7 @@ impl Default for RenderSettings {
             t_final_width: 0.05,
             grid_resolution: 16,
             shadows: true,
+            shadow_method: ShadowSpec::default(),
         }
     }
 }

@@ -11,6 +11,8 @@ use glam::DVec3;
 use interval_core::Interval;
 use rayon::prelude::*;
 
+mod soft_shadows;
+
 use crate::aa;
 use crate::beam::{BoxClass, Extent, evaluate_box};
 use crate::camera::Camera;
@@ -21,7 +23,7 @@ use crate::plan::{Plan, Primary};
 use crate::ray::{Beam, Ray};
 use crate::root::{RayFn, RootCounters, RootFinder, RootResult};
 use crate::scene::geometry::GeometryEval;
-use crate::scene::{Light, Scene};
+use crate::scene::{AreaLight, Scene};
 use crate::screen::{PixelRect, ScreenBox, subdivide};
 use crate::shading::{Incoming, phong};
 use crate::shadow::hard::{Visibility, segment_visibility};
@@ -59,6 +61,10 @@ pub struct RenderOutput {
     pub classification: Image,
     /// Time spent per pixel by primary visibility, as a heat map (thesis fig. 5.8).
     pub cost_map: Image,
+    /// The proven soft-shadow class of each pixel over every area light (the soft-shadow
+    /// paper's Fig. 7): proven lit (green), proven umbra (blue), penumbra (orange), no
+    /// shaded surface (dark grey); `None` without a soft-shadow pass.
+    pub shadow_classes: Option<Image>,
     /// The plan that ran.
     pub plan: Plan,
 }
@@ -419,24 +425,43 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
         passes.push(PassStats::skipped("normals"));
     }
 
+    // Shading takes each light's direction from its centre.
     let lights: Vec<(DVec3, [f32; 3])> = scene
         .lights
         .iter()
-        .map(|l| match l {
-            Light::Point(p) => (p.position, p.color),
-        })
+        .map(|l| (l.center(), l.color()))
         .collect();
+    let nl = lights.len();
     // The visible fraction of each light from each sample (1 without a shadow pass).
-    let mut vis: Vec<Vec<f32>> = samples
-        .iter()
-        .map(|s| vec![1.0; s.len() * lights.len()])
-        .collect();
+    let mut vis: Vec<Vec<f32>> = samples.iter().map(|s| vec![1.0; s.len() * nl]).collect();
     if plan.runs("hard-shadows") {
+        let points: Vec<Option<DVec3>> = scene
+            .lights
+            .iter()
+            .map(|l| l.as_point().map(|p| p.position))
+            .collect();
         passes.push(hard_shadow_pass(
-            &tracer, &samples, &lights, &mut vis, progress,
+            &tracer, &samples, &points, &mut vis, progress,
         ));
     } else {
         passes.push(PassStats::skipped("hard-shadows"));
+    }
+    let mut light_stats = Vec::new();
+    let mut shadow_classes = None;
+    if plan.runs("soft-shadows") {
+        let areas: Vec<(usize, AreaLight)> = scene
+            .lights
+            .iter()
+            .enumerate()
+            .filter_map(|(i, l)| l.as_area().map(|a| (i, a)))
+            .collect();
+        let soft =
+            soft_shadows::soft_shadow_pass(&tracer, &samples, &areas, nl, &mut vis, progress);
+        passes.push(soft.pass);
+        light_stats = soft.lights;
+        shadow_classes = Some(soft_shadows::shadow_class_image(w, h, &soft.classes));
+    } else {
+        passes.push(PassStats::skipped("soft-shadows"));
     }
 
     let (pixels, stats) = shading_pass(&tracer, &samples, &lights, &vis);
@@ -445,6 +470,7 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
     Ok(RenderOutput {
         classification: classification_image(w, h, &classes),
         cost_map: cost_image(w, h, &cost),
+        shadow_classes,
         image: Image {
             width: w,
             height: h,
@@ -452,6 +478,7 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
         },
         stats: RenderStats {
             passes,
+            lights: light_stats,
             total: start.elapsed(),
         },
         plan,
@@ -572,12 +599,13 @@ fn normals_pass(
     work.stats("normals", t0.elapsed(), &["normals", "degenerate"])
 }
 
-/// The hard shadow pass: for each hit sample and point light, the visible fraction (0 or 1)
-/// from a shadow segment search, written to `vis` (sample-major, light-minor per pixel).
+/// The hard shadow pass: for each hit sample and point light (`Some` position; area lights
+/// are `None`), the visible fraction (0 or 1) from a shadow segment search, written to
+/// `vis` (sample-major, light-minor per pixel).
 fn hard_shadow_pass(
     tracer: &Tracer<'_>,
     samples: &[Vec<Sample>],
-    lights: &[(DVec3, [f32; 3])],
+    lights: &[Option<DVec3>],
     vis: &mut [Vec<f32>],
     progress: &dyn Progress,
 ) -> PassStats {
@@ -601,7 +629,8 @@ fn hard_shadow_pass(
                         } else {
                             hit.normal
                         };
-                        for (li, (pos, _)) in lights.iter().enumerate() {
+                        for (li, pos) in lights.iter().enumerate() {
+                            let Some(pos) = pos else { continue };
                             work.items[0] += 1;
                             if n.dot(*pos - hit.point) <= 0.0 {
                                 // Facing away from the light: no direct light anyway.

@@ -1,0 +1,352 @@
+//! The soft-shadow pass: the visible fraction of each area light from each shaded sample,
+//! by the scene's [`ShadowMethod`], with per-light counters and the proven shadow class of
+//! every pixel.
+
+use std::time::Instant;
+
+use glam::DVec3;
+use interval_core::Interval;
+use rayon::prelude::*;
+
+use super::{Evals, SHADOW_OFFSET, Sample, Tracer};
+use crate::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
+use crate::image::Image;
+use crate::ray::{Beam, Ray, point_box};
+use crate::render::Progress;
+use crate::root::{RootCounters, RootResult};
+use crate::scene::AreaLight;
+use crate::shadow::hard::segment_visibility;
+use crate::shadow::{
+    LightVisibility, Occluders, Occlusion, Patch, ShadowClass, ShadowMethod, ShadowQuery,
+    ShadowWork, stochastic,
+};
+use crate::stats::PassStats;
+
+/// The scene's occluders as the shadow methods see them: the tracer and one thread's
+/// evaluators.
+pub(crate) struct SceneOccluders<'t, 'e> {
+    pub(crate) tracer: &'t Tracer<'t>,
+    pub(crate) ev: &'e mut Evals,
+}
+
+impl Occluders for SceneOccluders<'_, '_> {
+    fn segment(&mut self, from: DVec3, to: DVec3, start: f64, c: &mut RootCounters) -> Occlusion {
+        let ray = Ray {
+            origin: from,
+            dir: to - from,
+        };
+        let r = self
+            .tracer
+            .cast(self.ev, &ray, Interval::new_unchecked(start, 1.0), c);
+        let object = match r {
+            RootResult::Root { t, .. } | RootResult::Undecided { t } if t.mid().is_finite() => {
+                Some(self.ev.geo.object_at(ray.at(t.mid())) as u32)
+            }
+            _ => None,
+        };
+        Occlusion {
+            visibility: segment_visibility(r, self.tracer.finder.is_reliable()),
+            object,
+        }
+    }
+
+    fn segment_meets_object(
+        &mut self,
+        object: u32,
+        from: DVec3,
+        to: DVec3,
+        c: &mut RootCounters,
+    ) -> bool {
+        let ray = Ray {
+            origin: from,
+            dir: to - from,
+        };
+        let Some(t) = ray.beam().t_range_within(
+            &self.tracer.scene.geometry.bounds(),
+            Interval::new_unchecked(0.0, 1.0),
+        ) else {
+            return false;
+        };
+        let Some(eval) = self.ev.geo.objects.get_mut(object as usize) else {
+            return false;
+        };
+        eval.set_ray(&ray);
+        matches!(
+            self.tracer.finder.first_root(eval, t, &self.tracer.plan.root, c),
+            RootResult::Root { proof, .. } if proof != crate::root::Proof::Possible
+        )
+    }
+
+    fn beam(
+        &mut self,
+        from: DVec3,
+        light: &Patch,
+        start: f64,
+        inclusion: bool,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        let beam = Beam {
+            origin: point_box(from),
+            dir: light.directions_from(from),
+        };
+        let ranges = self
+            .tracer
+            .beam_ranges(&beam, Interval::new_unchecked(start, 1.0));
+        if ranges.is_empty() {
+            return BoxClass::Miss;
+        }
+        let settings = self.tracer.shadow_beam_settings(from, light);
+        self.ev.geo.beam.set_beam(&beam);
+        if !inclusion {
+            return rejection_search(&mut self.ev.geo.beam, &ranges, &settings, c);
+        }
+        let bounds = self.tracer.scene.geometry.bounds();
+        let extent = Extent {
+            beam: &beam,
+            bounds: &bounds,
+        };
+        evaluate_box(&mut self.ev.geo.beam, &ranges, Some(&extent), &settings, c)
+    }
+}
+
+impl Tracer<'_> {
+    /// The beam tolerances of a shadow beam from `from` over `light` (`t ∈ [0, 1]`): pieces
+    /// down to a tenth of the shadow offset in length, so that the first piece can be
+    /// cleared of the surface the beam leaves; no `T_final` refinement.
+    fn shadow_beam_settings(&self, from: DVec3, light: &Patch) -> BeamSettings {
+        let reach = light
+            .corners()
+            .iter()
+            .map(|c| c.distance(from))
+            .fold(0.0, f64::max)
+            .max(f64::MIN_POSITIVE);
+        let offset = SHADOW_OFFSET * self.scene.geometry.diagonal();
+        BeamSettings {
+            epsilon: 0.1 * offset / reach,
+            rel_epsilon: SHADOW_REL_EPSILON,
+            refine_steps: 0,
+            ..self.plan.beam
+        }
+    }
+}
+
+/// Width of a shadow beam's final pieces relative to their parameter (see
+/// [`BeamSettings::rel_epsilon`]).
+const SHADOW_REL_EPSILON: f64 = 1.0 / 16.0;
+
+/// What the soft-shadow pass produces.
+pub(crate) struct SoftShadows {
+    /// The pass's summed statistics.
+    pub(crate) pass: PassStats,
+    /// Per area light: its statistics.
+    pub(crate) lights: Vec<PassStats>,
+    /// Per pixel, the proven class over every area light (`None`: no shaded sample).
+    pub(crate) classes: Vec<Option<ShadowClass>>,
+}
+
+/// Counters of one light, in the order they are reported.
+const LABELS: [&str; 12] = [
+    "pixels_in_shadow",
+    "lit_pixels",
+    "umbra_pixels",
+    "penumbra_pixels",
+    "queries",
+    "back_facing",
+    "initial_beams",
+    "initial_beams_occluded",
+    "umbra_proofs",
+    "sub_beams",
+    "rays",
+    "cache_hits",
+];
+
+/// The soft-shadow pass: for each area light in turn (so that each has its own time), the
+/// visible fraction from every hit sample, written to `vis` at the light's index `li` of
+/// the `nl` lights (sample-major, light-minor per pixel).
+pub(crate) fn soft_shadow_pass(
+    tracer: &Tracer<'_>,
+    samples: &[Vec<Sample>],
+    lights: &[(usize, AreaLight)],
+    nl: usize,
+    vis: &mut [Vec<f32>],
+    progress: &dyn Progress,
+) -> SoftShadows {
+    let w = tracer.scene.camera.width() as usize;
+    let t0 = Instant::now();
+    let method = tracer.plan.shadow_method.method();
+    let mut classes: Vec<Option<ShadowClass>> = vec![None; samples.len()];
+    let mut per_light = Vec::with_capacity(lights.len());
+    let mut total = [0u64; LABELS.len()];
+    let mut total_root = RootCounters::default();
+    for &(li, light) in lights {
+        let tl = Instant::now();
+        progress.begin(
+            &format!("soft-shadows light {li}"),
+            (samples.len() / w.max(1)) as u64,
+        );
+        let rows: Vec<([u64; LABELS.len()], ShadowWork, Vec<Option<ShadowClass>>)> = samples
+            .par_chunks(w)
+            .zip(vis.par_chunks_mut(w))
+            .enumerate()
+            .map_init(
+                || tracer.evals(),
+                |ev, (y, (srow, vrow))| {
+                    let mut items = [0u64; LABELS.len()];
+                    let mut work = ShadowWork::default();
+                    let mut row_classes = Vec::with_capacity(srow.len());
+                    for (x, (px, v)) in srow.iter().zip(vrow.iter_mut()).enumerate() {
+                        let pixel = (y * w + x) as u64;
+                        let mut class: Option<ShadowClass> = None;
+                        let mut shadowed = false;
+                        for (si, s) in px.iter().enumerate() {
+                            let Some(hit) = s.hit else { continue };
+                            let seed = stochastic::seed(pixel, si as u32, li as u32);
+                            let lv = sample_visibility(
+                                tracer, ev, &*method, &hit, &light, seed, &mut items, &mut work,
+                            );
+                            v[si * nl + li] = lv.fraction;
+                            shadowed |= lv.fraction < 1.0;
+                            class = Some(match (class, lv.class()) {
+                                (None, c) => c,
+                                (Some(a), b) if a == b => a,
+                                _ => ShadowClass::Penumbra,
+                            });
+                        }
+                        items[0] += u64::from(shadowed);
+                        match class {
+                            Some(ShadowClass::Lit) => items[1] += 1,
+                            Some(ShadowClass::Umbra) => items[2] += 1,
+                            Some(ShadowClass::Penumbra) => items[3] += 1,
+                            None => {}
+                        }
+                        row_classes.push(class);
+                    }
+                    progress.advance(1);
+                    (items, work, row_classes)
+                },
+            )
+            .collect();
+        progress.end();
+        let mut items = [0u64; LABELS.len()];
+        let mut work = ShadowWork::default();
+        for (i, (it, wk, row_classes)) in rows.into_iter().enumerate() {
+            for (a, b) in items.iter_mut().zip(it) {
+                *a += b;
+            }
+            work.add(&wk);
+            for (k, c) in row_classes.into_iter().enumerate() {
+                let slot = &mut classes[i * w + k];
+                *slot = match (*slot, c) {
+                    (s, None) => s,
+                    (None, c) => c,
+                    (Some(a), Some(b)) if a == b => Some(a),
+                    _ => Some(ShadowClass::Penumbra),
+                };
+            }
+        }
+        items[4] = work.queries;
+        items[6] = work.initial_beams;
+        items[7] = work.initial_occluded;
+        items[8] = work.umbra_proofs;
+        items[9] = work.sub_beams;
+        items[10] = work.rays;
+        items[11] = work.cache_hits;
+        for (a, b) in total.iter_mut().zip(items) {
+            *a += b;
+        }
+        total_root.add(&work.root);
+        per_light.push(stats(
+            &format!("light {li} ({})", method.name()),
+            tl.elapsed(),
+            &items,
+            &work.root,
+        ));
+    }
+    SoftShadows {
+        pass: stats("soft-shadows", t0.elapsed(), &total, &total_root),
+        lights: per_light,
+        classes,
+    }
+}
+
+/// The visible fraction of `light` from one hit: the whole light behind the tangent plane
+/// is proven hidden (the surface itself blocks it); otherwise the method answers from the
+/// point moved off the surface.
+#[allow(clippy::too_many_arguments)]
+fn sample_visibility(
+    tracer: &Tracer<'_>,
+    ev: &mut Evals,
+    method: &dyn ShadowMethod,
+    hit: &super::Hit,
+    light: &AreaLight,
+    seed: u64,
+    items: &mut [u64; LABELS.len()],
+    work: &mut ShadowWork,
+) -> LightVisibility {
+    let n = if hit.normal.dot(hit.to_eye) < 0.0 {
+        -hit.normal
+    } else {
+        hit.normal
+    };
+    if light
+        .patch
+        .corners()
+        .iter()
+        .all(|c| n.dot(*c - hit.point) <= 0.0)
+    {
+        items[5] += 1;
+        return LightVisibility::UMBRA;
+    }
+    let origin = hit.point + n * (SHADOW_OFFSET * tracer.scene.geometry.diagonal());
+    let q = ShadowQuery {
+        origin,
+        light: light.patch,
+        seed,
+    };
+    let mut occluders = SceneOccluders { tracer, ev };
+    method.visibility(&mut occluders, &q, work)
+}
+
+fn stats(
+    name: &str,
+    time: std::time::Duration,
+    items: &[u64; LABELS.len()],
+    root: &RootCounters,
+) -> PassStats {
+    let mut counters: Vec<(String, u64)> = LABELS
+        .iter()
+        .zip(items)
+        .map(|(l, v)| (l.to_string(), *v))
+        .collect();
+    counters.extend([
+        ("g_evals".to_string(), root.g_evals),
+        ("dg_evals".to_string(), root.dg_evals),
+        ("point_evals".to_string(), root.point_evals),
+        ("bisections".to_string(), root.bisections),
+    ]);
+    PassStats {
+        name: name.into(),
+        ran: true,
+        time,
+        counters,
+    }
+}
+
+/// The shadow classification image (the soft-shadow paper's Fig. 7): proven lit (green),
+/// proven umbra (blue), penumbra (orange), no shaded surface (dark grey).
+pub(crate) fn shadow_class_image(w: u32, h: u32, classes: &[Option<ShadowClass>]) -> Image {
+    let pixels = classes
+        .iter()
+        .map(|c| match c {
+            None => [0.15, 0.15, 0.15],
+            Some(ShadowClass::Lit) => [0.35, 0.8, 0.3],
+            Some(ShadowClass::Umbra) => [0.15, 0.25, 0.75],
+            Some(ShadowClass::Penumbra) => [0.95, 0.55, 0.1],
+        })
+        .collect();
+    Image {
+        width: w,
+        height: h,
+        pixels,
+    }
+}
