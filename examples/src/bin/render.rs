@@ -223,12 +223,12 @@ fn run(args: Args) -> Result<(), String> {
         println!("wrote {}", p.display());
     }
     if let Some(p) = &args.shadow_classes {
-        let img = out.shadow_classes.as_ref().ok_or_else(|| {
+        let maps = out.shadows.as_ref().ok_or_else(|| {
             "--shadow-classes: the scene has no area light with shadows on, so no soft-shadow \
              pass ran"
                 .to_string()
         })?;
-        img.write_png(p).map_err(|e| e.to_string())?;
+        maps.image.write_png(p).map_err(|e| e.to_string())?;
         println!("wrote {}", p.display());
     }
     if let Some(p) = &args.stats {

@@ -26,6 +26,7 @@ use crate::scene::geometry::GeometryEval;
 use crate::scene::{AreaLight, Scene};
 use crate::screen::{PixelRect, ScreenBox, subdivide};
 use crate::shading::{Incoming, phong};
+use crate::shadow::ShadowClass;
 use crate::shadow::hard::{Visibility, segment_visibility};
 use crate::stats::{PassStats, RenderStats};
 
@@ -61,12 +62,25 @@ pub struct RenderOutput {
     pub classification: Image,
     /// Time spent per pixel by primary visibility, as a heat map (thesis fig. 5.8).
     pub cost_map: Image,
-    /// The proven soft-shadow class of each pixel over every area light (the soft-shadow
-    /// paper's Fig. 7): proven lit (green), proven umbra (blue), penumbra (orange), no
-    /// shaded surface (dark grey); `None` without a soft-shadow pass.
-    pub shadow_classes: Option<Image>,
+    /// Soft shadows per pixel; `None` without a soft-shadow pass.
+    pub shadows: Option<ShadowMaps>,
     /// The plan that ran.
     pub plan: Plan,
+}
+
+/// What the soft-shadow pass found, per pixel (row-major).
+#[derive(Clone, Debug)]
+pub struct ShadowMaps {
+    /// The proven class over every area light: `Lit` or `Umbra` when every shaded sample of
+    /// the pixel is proven so for every area light, else `Penumbra`; `None` where no sample
+    /// is shaded.
+    pub classes: Vec<Option<ShadowClass>>,
+    /// Per area light (in the scene's order of area lights), the visible fraction averaged
+    /// over the pixel's shaded samples; NaN where none is shaded.
+    pub fractions: Vec<Vec<f32>>,
+    /// The classes as an image (the soft-shadow paper's Fig. 7): proven lit green, proven
+    /// umbra blue, penumbra orange, no shaded surface dark grey.
+    pub image: Image,
 }
 
 /// A surface point seen by a primary sample.
@@ -447,7 +461,7 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
         passes.push(PassStats::skipped("hard-shadows"));
     }
     let mut light_stats = Vec::new();
-    let mut shadow_classes = None;
+    let mut shadows = None;
     if plan.runs("soft-shadows") {
         let areas: Vec<(usize, AreaLight)> = scene
             .lights
@@ -459,7 +473,11 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
             soft_shadows::soft_shadow_pass(&tracer, &samples, &areas, nl, &mut vis, progress);
         passes.push(soft.pass);
         light_stats = soft.lights;
-        shadow_classes = Some(soft_shadows::shadow_class_image(w, h, &soft.classes));
+        shadows = Some(ShadowMaps {
+            image: soft_shadows::shadow_class_image(w, h, &soft.classes),
+            classes: soft.classes,
+            fractions: soft.fractions,
+        });
     } else {
         passes.push(PassStats::skipped("soft-shadows"));
     }
@@ -470,7 +488,7 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
     Ok(RenderOutput {
         classification: classification_image(w, h, &classes),
         cost_map: cost_image(w, h, &cost),
-        shadow_classes,
+        shadows,
         image: Image {
             width: w,
             height: h,

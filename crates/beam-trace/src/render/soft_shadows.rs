@@ -142,6 +142,9 @@ pub(crate) struct SoftShadows {
     pub(crate) lights: Vec<PassStats>,
     /// Per pixel, the proven class over every area light (`None`: no shaded sample).
     pub(crate) classes: Vec<Option<ShadowClass>>,
+    /// Per area light, per pixel: the visible fraction averaged over the pixel's shaded
+    /// samples (NaN where there is none).
+    pub(crate) fractions: Vec<Vec<f32>>,
 }
 
 /// Counters of one light, in the order they are reported.
@@ -176,6 +179,7 @@ pub(crate) fn soft_shadow_pass(
     let method = tracer.plan.shadow_method.method();
     let mut classes: Vec<Option<ShadowClass>> = vec![None; samples.len()];
     let mut per_light = Vec::with_capacity(lights.len());
+    let mut fractions = Vec::with_capacity(lights.len());
     let mut total = [0u64; LABELS.len()];
     let mut total_root = RootCounters::default();
     for &(li, light) in lights {
@@ -184,7 +188,13 @@ pub(crate) fn soft_shadow_pass(
             &format!("soft-shadows light {li}"),
             (samples.len() / w.max(1)) as u64,
         );
-        let rows: Vec<([u64; LABELS.len()], ShadowWork, Vec<Option<ShadowClass>>)> = samples
+        type Row = (
+            [u64; LABELS.len()],
+            ShadowWork,
+            Vec<Option<ShadowClass>>,
+            Vec<f32>,
+        );
+        let rows: Vec<Row> = samples
             .par_chunks(w)
             .zip(vis.par_chunks_mut(w))
             .enumerate()
@@ -194,10 +204,12 @@ pub(crate) fn soft_shadow_pass(
                     let mut items = [0u64; LABELS.len()];
                     let mut work = ShadowWork::default();
                     let mut row_classes = Vec::with_capacity(srow.len());
+                    let mut row_fractions = Vec::with_capacity(srow.len());
                     for (x, (px, v)) in srow.iter().zip(vrow.iter_mut()).enumerate() {
                         let pixel = (y * w + x) as u64;
                         let mut class: Option<ShadowClass> = None;
                         let mut shadowed = false;
+                        let (mut sum, mut weight) = (0f32, 0f32);
                         for (si, s) in px.iter().enumerate() {
                             let Some(hit) = s.hit else { continue };
                             let seed = stochastic::seed(pixel, si as u32, li as u32);
@@ -205,6 +217,8 @@ pub(crate) fn soft_shadow_pass(
                                 tracer, ev, &*method, &hit, &light, seed, &mut items, &mut work,
                             );
                             v[si * nl + li] = lv.fraction;
+                            sum += s.weight * lv.fraction;
+                            weight += s.weight;
                             shadowed |= lv.fraction < 1.0;
                             class = Some(match (class, lv.class()) {
                                 (None, c) => c,
@@ -220,16 +234,19 @@ pub(crate) fn soft_shadow_pass(
                             None => {}
                         }
                         row_classes.push(class);
+                        row_fractions.push(if weight > 0.0 { sum / weight } else { f32::NAN });
                     }
                     progress.advance(1);
-                    (items, work, row_classes)
+                    (items, work, row_classes, row_fractions)
                 },
             )
             .collect();
         progress.end();
         let mut items = [0u64; LABELS.len()];
         let mut work = ShadowWork::default();
-        for (i, (it, wk, row_classes)) in rows.into_iter().enumerate() {
+        let mut light_fractions = Vec::with_capacity(samples.len());
+        for (i, (it, wk, row_classes, row_fractions)) in rows.into_iter().enumerate() {
+            light_fractions.extend(row_fractions);
             for (a, b) in items.iter_mut().zip(it) {
                 *a += b;
             }
@@ -255,6 +272,7 @@ pub(crate) fn soft_shadow_pass(
             *a += b;
         }
         total_root.add(&work.root);
+        fractions.push(light_fractions);
         per_light.push(stats(
             &format!("light {li} ({})", method.name()),
             tl.elapsed(),
@@ -266,6 +284,7 @@ pub(crate) fn soft_shadow_pass(
         pass: stats("soft-shadows", t0.elapsed(), &total, &total_root),
         lights: per_light,
         classes,
+        fractions,
     }
 }
 
