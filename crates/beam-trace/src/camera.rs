@@ -94,6 +94,22 @@ impl Camera {
         self.eye
     }
 
+    /// The point looked at.
+    pub fn look_at(&self) -> DVec3 {
+        self.look_at
+    }
+
+    /// The vertical field of view in degrees.
+    pub fn fov_deg(&self) -> f64 {
+        self.fov_deg
+    }
+
+    /// The width and height, in scene units, of the view at distance `d` from the eye.
+    pub fn view_size_at(&self, d: f64) -> (f64, f64) {
+        let h = 2.0 * d * (0.5 * self.fov_deg.to_radians()).tan();
+        (h * f64::from(self.width) / f64::from(self.height), h)
+    }
+
     /// The same camera with another image size (same field of view).
     pub fn resized(&self, width: u32, height: u32) -> Result<Self, Error> {
         Camera::new(self.eye, self.look_at, self.up, self.fov_deg, width, height)
