@@ -213,14 +213,14 @@ pub(crate) fn soft_shadow_pass(
                         for (si, s) in px.iter().enumerate() {
                             let Some(hit) = s.hit else { continue };
                             let seed = stochastic::seed(pixel, si as u32, li as u32);
-                            let lv = sample_visibility(
+                            let (lv, sample_class) = sample_visibility(
                                 tracer, ev, &*method, &hit, &light, seed, &mut items, &mut work,
                             );
                             v[si * nl + li] = lv.fraction;
                             sum += s.weight * lv.fraction;
                             weight += s.weight;
                             shadowed |= lv.fraction < 1.0;
-                            class = Some(match (class, lv.class()) {
+                            class = Some(match (class, sample_class) {
                                 (None, c) => c,
                                 (Some(a), b) if a == b => a,
                                 _ => ShadowClass::Penumbra,
@@ -231,7 +231,7 @@ pub(crate) fn soft_shadow_pass(
                             Some(ShadowClass::Lit) => items[1] += 1,
                             Some(ShadowClass::Umbra) => items[2] += 1,
                             Some(ShadowClass::Penumbra) => items[3] += 1,
-                            None => {}
+                            Some(ShadowClass::BackFacing) | None => {}
                         }
                         row_classes.push(class);
                         row_fractions.push(if weight > 0.0 { sum / weight } else { f32::NAN });
@@ -288,9 +288,10 @@ pub(crate) fn soft_shadow_pass(
     }
 }
 
-/// The visible fraction of `light` from one hit: the whole light behind the tangent plane
-/// is proven hidden (the surface itself blocks it); otherwise the method answers from the
-/// point moved off the surface.
+/// The visible fraction of `light` from one hit and its class: with the whole light behind
+/// the tangent plane the point gets no direct light (fraction 0, class
+/// [`ShadowClass::BackFacing`], no test); otherwise the method answers from the point moved
+/// off the surface.
 #[allow(clippy::too_many_arguments)]
 fn sample_visibility(
     tracer: &Tracer<'_>,
@@ -301,7 +302,7 @@ fn sample_visibility(
     seed: u64,
     items: &mut [u64; LABELS.len()],
     work: &mut ShadowWork,
-) -> LightVisibility {
+) -> (LightVisibility, ShadowClass) {
     let n = if hit.normal.dot(hit.to_eye) < 0.0 {
         -hit.normal
     } else {
@@ -314,7 +315,7 @@ fn sample_visibility(
         .all(|c| n.dot(*c - hit.point) <= 0.0)
     {
         items[5] += 1;
-        return LightVisibility::UMBRA;
+        return (LightVisibility::estimate(0.0), ShadowClass::BackFacing);
     }
     let origin = hit.point + n * (SHADOW_OFFSET * tracer.scene.geometry.diagonal());
     let q = ShadowQuery {
@@ -323,7 +324,8 @@ fn sample_visibility(
         seed,
     };
     let mut occluders = SceneOccluders { tracer, ev };
-    method.visibility(&mut occluders, &q, work)
+    let lv = method.visibility(&mut occluders, &q, work);
+    (lv, lv.class())
 }
 
 fn stats(
@@ -352,7 +354,8 @@ fn stats(
 }
 
 /// The shadow classification image (the soft-shadow paper's Fig. 7): proven lit (green),
-/// proven umbra (blue), penumbra (orange), no shaded surface (dark grey).
+/// proven umbra (blue), penumbra (orange), facing away from the light (dark blue-grey), no
+/// shaded surface (dark grey).
 pub(crate) fn shadow_class_image(w: u32, h: u32, classes: &[Option<ShadowClass>]) -> Image {
     let pixels = classes
         .iter()
@@ -361,6 +364,7 @@ pub(crate) fn shadow_class_image(w: u32, h: u32, classes: &[Option<ShadowClass>]
             Some(ShadowClass::Lit) => [0.35, 0.8, 0.3],
             Some(ShadowClass::Umbra) => [0.15, 0.25, 0.75],
             Some(ShadowClass::Penumbra) => [0.95, 0.55, 0.1],
+            Some(ShadowClass::BackFacing) => [0.25, 0.27, 0.35],
         })
         .collect();
     Image {

@@ -45,6 +45,10 @@ pub enum ShadowClass {
     Umbra,
     /// Neither was proven; the visible fraction is an estimate.
     Penumbra,
+    /// The whole light is behind the surface's tangent plane: the point gets no direct
+    /// light from it whatever the occluders (no shadow test runs, and nothing is claimed
+    /// about occlusion).
+    BackFacing,
 }
 
 /// The visible fraction of a light from a point, with proven bounds.
