@@ -96,7 +96,7 @@ use implicit_expr::{Context, Evaluator, Node, NodeId, Number, RayFunction, Tape}
 use interval_core::Interval;
 use rayon::prelude::*;
 
-use crate::ray::{Beam, BeamEval, IBox, Ray};
+use crate::ray::{Beam, BeamEval, IBox, Precision, Ray};
 use crate::root::{RootCounters, RootFinder, RootResult, RootSettings};
 use crate::scene::{Csg, Geometry};
 
@@ -161,6 +161,7 @@ pub struct Grid {
 #[derive(Clone, Debug, Default)]
 pub struct GridEval {
     evals: Vec<Option<BeamEval>>,
+    precision: Precision,
 }
 
 impl GridEval {
@@ -173,7 +174,22 @@ impl GridEval {
         if self.evals.len() < grid.functions.len() {
             self.evals.resize(grid.functions.len(), None);
         }
-        self.evals[i].get_or_insert_with(|| BeamEval::new(&grid.functions[i]))
+        let precision = self.precision;
+        self.evals[i].get_or_insert_with(|| BeamEval::with_precision(&grid.functions[i], precision))
+    }
+
+    /// Sets the precision of the interval evaluations of every evaluator, those already
+    /// created and those created later.
+    pub fn set_precision(&mut self, precision: Precision) {
+        self.precision = precision;
+        for e in self.evals.iter_mut().flatten() {
+            e.set_precision(precision);
+        }
+    }
+
+    /// The precision of the interval evaluations.
+    pub fn precision(&self) -> Precision {
+        self.precision
     }
 }
 
@@ -704,10 +720,17 @@ impl Grid {
         })
     }
 
-    /// Per-thread evaluators of the grid's functions.
+    /// Per-thread evaluators of the grid's functions, in [`Precision::F64`].
     pub fn evaluator(&self) -> GridEval {
+        self.evaluator_with(Precision::F64)
+    }
+
+    /// Per-thread evaluators of the grid's functions whose interval evaluations run in
+    /// `precision`.
+    pub fn evaluator_with(&self, precision: Precision) -> GridEval {
         GridEval {
             evals: vec![None; self.functions.len()],
+            precision,
         }
     }
 

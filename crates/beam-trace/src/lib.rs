@@ -76,7 +76,7 @@ pub use camera::Camera;
 pub use error::Error;
 pub use image::Image;
 pub use plan::Plan;
-pub use ray::{Beam, BeamEval, IBox, Ray};
+pub use ray::{Beam, BeamEval, IBox, Precision, Ray};
 pub use render::{NoProgress, Progress, RenderOutput, ShadowMaps, render};
 pub use root::{Proof, RayFn, RootCounters, RootFinder, RootMethod, RootResult, RootSettings};
 pub use scene::{Geometry, Light, Material, Scene};

@@ -8,6 +8,7 @@
 use std::fmt;
 
 use crate::beam::BeamSettings;
+use crate::ray::Precision;
 use crate::root::{RootMethod, RootSettings};
 use crate::scene::{AaMode, Light, PrimaryMode, Scene};
 use crate::shadow::ShadowSpec;
@@ -58,6 +59,8 @@ pub struct Plan {
     pub beam: BeamSettings,
     /// Largest width of `T_final`, absolute, for a Hit box not to be split (aliasing).
     pub t_final_width: f64,
+    /// Floating-point format of the interval evaluations of `g` and `g'` on rays and beams.
+    pub precision: Precision,
 }
 
 /// Names of the passes, in the order they run.
@@ -121,6 +124,7 @@ impl Plan {
                 ..BeamSettings::default()
             },
             t_final_width: s.t_final_width * diagonal,
+            precision: s.precision,
         }
     }
 
@@ -181,6 +185,11 @@ impl fmt::Display for Plan {
             };
             writeln!(f, "  {name:<13} {what}")?;
         }
+        writeln!(
+            f,
+            "  {:<13} {} intervals for g and g' on rays and beams (root searches, beam tests)",
+            "precision", self.precision
+        )?;
         Ok(())
     }
 }

@@ -5,6 +5,9 @@
 //! primary beam, a surface patch and a light for a shadow beam). Points on a ray are
 //! `origin + t · dir`; for a beam, `origin + T · dir` encloses the points of every ray.
 
+use std::fmt;
+use std::str::FromStr;
+
 use glam::DVec3;
 use implicit_expr::{RayEvaluator, RayFunction};
 use interval_core::Interval;
@@ -120,34 +123,129 @@ impl Beam {
     }
 }
 
+/// The floating-point format the interval evaluations of `g` and `g'` run in.
+///
+/// [`Precision::F32`] evaluates the scene function in single precision, as a GPU does: the
+/// beam's boxes and the parameter interval are rounded outward to `f32` intervals, the
+/// enclosure is computed with `Interval<f32>` (outward rounding in `f32`), and the result is
+/// converted back to `f64` exactly. The enclosures stay sound, only wider.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Default, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Precision {
+    /// Double precision (`Interval<f64>`), the default.
+    #[default]
+    F64,
+    /// Single precision (`Interval<f32>`).
+    F32,
+}
+
+impl Precision {
+    /// Every precision, in the order of [`Precision::name`]'s accepted names.
+    pub const ALL: [Precision; 2] = [Precision::F64, Precision::F32];
+
+    /// The name `FromStr` accepts: `"f64"` or `"f32"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Precision::F64 => "f64",
+            Precision::F32 => "f32",
+        }
+    }
+}
+
+impl fmt::Display for Precision {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+impl FromStr for Precision {
+    type Err = String;
+
+    fn from_str(s: &str) -> Result<Self, String> {
+        Precision::ALL
+            .into_iter()
+            .find(|p| p.name() == s)
+            .ok_or_else(|| format!("unknown precision '{s}' (one of: f64, f32)"))
+    }
+}
+
 /// Evaluates `g` and `g'` of a [`RayFunction`] on one ray or beam at a time: the
 /// renderer's [`RayFn`]. Owns its scratch space; make one per thread.
+///
+/// The interval evaluations ([`RayFn::g`], [`RayFn::g_dg`], [`RayFn::g_checked`]) run in
+/// the [`Precision`] set by [`BeamEval::set_precision`] (default [`Precision::F64`]). The
+/// point evaluation [`RayFn::g_point`] (unreliable baselines and shading searches) is always
+/// rounded to nearest in `f64`, whatever the precision.
 #[derive(Clone, Debug)]
 pub struct BeamEval {
+    precision: Precision,
+    /// The beam last set (to set it again when the precision changes).
+    origin: IBox,
+    dir: IBox,
     interval: RayEvaluator<Interval<f64>>,
+    interval32: RayEvaluator<Interval<f32>>,
     point: RayEvaluator<f64>,
 }
 
+/// A box rounded outward to `f32` (each `f32` interval contains the `f64` one).
+#[inline]
+fn box32(b: &IBox) -> [Interval<f32>; 3] {
+    [b[0].cast(), b[1].cast(), b[2].cast()]
+}
+
 impl BeamEval {
-    /// An evaluator for `f` (a function without free parameters).
+    /// An evaluator for `f` (a function without free parameters), in [`Precision::F64`].
     pub fn new(f: &RayFunction) -> Self {
         Self {
+            precision: Precision::F64,
+            origin: point_box(DVec3::ZERO),
+            dir: point_box(DVec3::ZERO),
             interval: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
+            interval32: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
             point: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
+        }
+    }
+
+    /// An evaluator for `f` whose interval evaluations run in `precision`.
+    pub fn with_precision(f: &RayFunction, precision: Precision) -> Self {
+        let mut e = Self::new(f);
+        e.set_precision(precision);
+        e
+    }
+
+    /// Sets the precision of the interval evaluations. The ray or beam set before stays set.
+    pub fn set_precision(&mut self, precision: Precision) {
+        self.precision = precision;
+        let (origin, dir) = (self.origin, self.dir);
+        self.set_interval_ray(origin, dir);
+    }
+
+    /// The precision of the interval evaluations.
+    pub fn precision(&self) -> Precision {
+        self.precision
+    }
+
+    /// Sets the boxes of the interval evaluator of the current precision.
+    #[inline]
+    fn set_interval_ray(&mut self, origin: IBox, dir: IBox) {
+        self.origin = origin;
+        self.dir = dir;
+        match self.precision {
+            Precision::F64 => self.interval.set_ray(origin, dir),
+            Precision::F32 => self.interval32.set_ray(box32(&origin), box32(&dir)),
         }
     }
 
     /// Sets the beam the following evaluations are about.
     pub fn set_beam(&mut self, beam: &Beam) {
-        self.interval.set_ray(beam.origin, beam.dir);
+        self.set_interval_ray(beam.origin, beam.dir);
         let c = beam.central_ray();
         self.point.set_ray(c.origin.to_array(), c.dir.to_array());
     }
 
     /// Sets a single ray.
     pub fn set_ray(&mut self, ray: &Ray) {
-        self.interval
-            .set_ray(point_box(ray.origin), point_box(ray.dir));
+        self.set_interval_ray(point_box(ray.origin), point_box(ray.dir));
         self.point
             .set_ray(ray.origin.to_array(), ray.dir.to_array());
     }
@@ -156,17 +254,32 @@ impl BeamEval {
 impl RayFn for BeamEval {
     #[inline]
     fn g(&mut self, t: Interval<f64>) -> Interval<f64> {
-        self.interval.g(t)
+        match self.precision {
+            Precision::F64 => self.interval.g(t),
+            Precision::F32 => self.interval32.g(t.cast()).cast(),
+        }
     }
 
     #[inline]
     fn g_dg(&mut self, t: Interval<f64>) -> (Interval<f64>, Interval<f64>) {
-        self.interval.g_dg(t)
+        match self.precision {
+            Precision::F64 => self.interval.g_dg(t),
+            Precision::F32 => {
+                let (g, dg) = self.interval32.g_dg(t.cast());
+                (g.cast(), dg.cast())
+            }
+        }
     }
 
     #[inline]
     fn g_checked(&mut self, t: Interval<f64>) -> (Interval<f64>, bool) {
-        self.interval.g_checked(t)
+        match self.precision {
+            Precision::F64 => self.interval.g_checked(t),
+            Precision::F32 => {
+                let (g, ok) = self.interval32.g_checked(t.cast());
+                (g.cast(), ok)
+            }
+        }
     }
 
     #[inline]

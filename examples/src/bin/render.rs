@@ -7,6 +7,7 @@
 //!        [--classification FILE.png] [--cost-map FILE.png]
 //!        [--shadows stochastic:N|beam:n|beam-all:n|beam-quadtree:n|
 //!                   minkowski:stochastic:N|minkowski:beam:n] [--shadow-classes FILE.png]
+//!        [--precision f64|f32]
 //! ```
 //!
 //! `SCENE` is a TOML scene file or the name of a catalog surface.
@@ -19,7 +20,7 @@ use beam_trace::image::{check_writable, write_atomic};
 use beam_trace::root::RootMethod;
 use beam_trace::scene::{AaMode, PrimaryMode};
 use beam_trace::shadow::ShadowSpec;
-use beam_trace::{Progress, Scene, render};
+use beam_trace::{Precision, Progress, Scene, render};
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -62,6 +63,10 @@ struct Args {
     /// penumbra orange).
     #[arg(long)]
     shadow_classes: Option<PathBuf>,
+    /// Floating-point format of the interval evaluations of g and g' on rays and beams:
+    /// f64 (default) or f32 (as a GPU evaluates; sound, wider enclosures).
+    #[arg(long)]
+    precision: Option<Precision>,
     /// Regular grid resolution (0: no grid).
     #[arg(long)]
     grid: Option<u32>,
@@ -159,6 +164,9 @@ fn load(args: &Args) -> Result<Scene, String> {
     }
     if let Some(m) = args.shadows {
         s.shadow_method = m;
+    }
+    if let Some(p) = args.precision {
+        s.precision = p;
     }
     if let Some(g) = args.grid {
         if g > beam_trace::scene::MAX_GRID_RESOLUTION {

@@ -71,15 +71,16 @@ pub struct RenderOutput {
 /// What the soft-shadow pass found, per pixel (row-major).
 #[derive(Clone, Debug)]
 pub struct ShadowMaps {
-    /// The proven class over every area light: `Lit` or `Umbra` when every shaded sample of
-    /// the pixel is proven so for every area light, else `Penumbra`; `None` where no sample
-    /// is shaded.
+    /// The class over every area light: `Lit` or `Umbra` when every shaded sample of the
+    /// pixel is proven so for every area light, `BackFacing` when every one faces away from
+    /// every area light, else `Penumbra`; `None` where no sample is shaded.
     pub classes: Vec<Option<ShadowClass>>,
     /// Per area light (in the scene's order of area lights), the visible fraction averaged
     /// over the pixel's shaded samples; NaN where none is shaded.
     pub fractions: Vec<Vec<f32>>,
     /// The classes as an image (the soft-shadow paper's Fig. 7): proven lit green, proven
-    /// umbra blue, penumbra orange, no shaded surface dark grey.
+    /// umbra blue, penumbra orange, facing away from every area light blue-grey, no shaded
+    /// surface dark grey.
     pub image: Image,
 }
 
@@ -145,10 +146,17 @@ pub(crate) fn forward() -> Interval<f64> {
 }
 
 impl Tracer<'_> {
+    /// Per-thread evaluators; every evaluator of `g` and `g'` runs in the plan's precision.
     pub(crate) fn evals(&self) -> Evals {
+        let precision = self.plan.precision;
+        let mut geo = self.scene.geometry.evaluator();
+        geo.beam.set_precision(precision);
+        for e in &mut geo.objects {
+            e.set_precision(precision);
+        }
         Evals {
-            geo: self.scene.geometry.evaluator(),
-            grid: self.grid.map(Grid::evaluator),
+            geo,
+            grid: self.grid.map(|g| g.evaluator_with(precision)),
         }
     }
 

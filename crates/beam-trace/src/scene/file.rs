@@ -245,6 +245,7 @@ struct RawRender {
     grid: Option<i64>,
     shadows: Option<bool>,
     shadow_method: Option<String>,
+    precision: Option<String>,
 }
 
 // ---------------------------------------------------------------------------------------
@@ -661,6 +662,9 @@ fn render_settings(doc: &Doc<'_>, r: &RawRender) -> Result<RenderSettings, Error
     }
     if let Some(m) = &r.shadow_method {
         s.shadow_method = m.parse().map_err(|m| doc.err("render.shadow_method", m))?;
+    }
+    if let Some(p) = &r.precision {
+        s.precision = p.parse().map_err(|m| doc.err("render.precision", m))?;
     }
     Ok(s)
 }
@@ -1567,6 +1571,7 @@ impl Scene {
     /// t_final_width = 0.05
     /// grid = 16
     /// shadows = true
+    /// precision = "f64"                 # f64 | f32 (interval evaluation of the scene function)
     /// ```
     ///
     /// # Reference
@@ -1628,7 +1633,9 @@ impl Scene {
     /// `iaa_threshold` (positive) for `aa = "iaa"`, `primary` (see [`PrimaryMode`]'s
     /// [`FromStr`]), `rays_per_undecided` and `rays_per_pixel` (square numbers 1 to 256),
     /// `t_final_width` (positive), `grid` (0 to 256; 0: no grid), `shadows`,
-    /// `shadow_method` (see [`ShadowSpec`](crate::shadow::ShadowSpec); default `beam:7`).
+    /// `shadow_method` (see [`ShadowSpec`](crate::shadow::ShadowSpec); default `beam:7`),
+    /// `precision` (`"f64"` or `"f32"`, see [`Precision`](crate::ray::Precision); default
+    /// `"f64"`).
     ///
     /// # Errors
     ///

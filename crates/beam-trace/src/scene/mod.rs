@@ -18,6 +18,7 @@ pub use geometry::{Csg, Geometry, Leaf};
 use glam::DVec3;
 
 use crate::camera::Camera;
+use crate::ray::Precision;
 use crate::root::{RootMethod, RootSettings};
 use crate::shadow::{Patch, ShadowSpec};
 
@@ -197,6 +198,9 @@ pub struct RenderSettings {
     /// How area lights' soft shadows are computed.
     #[serde(serialize_with = "serialize_shadow")]
     pub shadow_method: ShadowSpec,
+    /// Floating-point format of the interval evaluations of `g` and `g'` on rays and beams
+    /// (root searches and beam tests; serialized as `"f64"` or `"f32"`).
+    pub precision: Precision,
 }
 
 fn serialize_shadow<S: serde::Serializer>(m: &ShadowSpec, s: S) -> Result<S::Ok, S::Error> {
@@ -220,6 +224,7 @@ impl Default for RenderSettings {
             grid_resolution: 16,
             shadows: true,
             shadow_method: ShadowSpec::default(),
+            precision: Precision::F64,
         }
     }
 }
