@@ -10,7 +10,9 @@
 //! 3. [`grid`]: a regular grid of cells classified by `0 ∈ F(cell)` limits every search.
 //! 4. [`beam`] and [`screen`]: beams over screen boxes are classified Miss / Hit /
 //!    Undecided by the rejection and inclusion tests; [`root`] finders search single rays.
-//! 5. [`aa`], [`shading`], [`shadow`]: anti-aliasing, Phong shading, shadows.
+//! 5. [`aa`], [`shading`], [`shadow`]: anti-aliasing, Phong shading, hard shadows from
+//!    point lights and soft shadows from area lights (stochastic, beam and Minkowski
+//!    methods behind one [`shadow::ShadowMethod`] trait).
 //! 6. [`render()`](mod@render): the passes in parallel, an image and per-pass statistics.
 //!
 //! ## A first render

@@ -10,9 +10,13 @@
 //!   sub-beams (a proven lower bound of the true fraction).
 //! * [`Strategy::All`]: the `n × n` sub-beams for every point, the paper's baseline.
 //! * [`Strategy::Quadtree`]: the cells are visited as a quadtree from the whole light down;
-//!   a rejected beam clears all the cells under it. It gives the same fraction as the other
-//!   two (sub-beams of a rejected beam are rejected: interval evaluation is inclusion
-//!   monotone) at a different cost.
+//!   a rejected beam clears all the cells under it (sub-beams of a rejected beam would be
+//!   rejected too: interval evaluation is inclusion monotone), at a different cost.
+//!
+//! A beam that is not rejected clears every one of its rays up to its first undecided piece,
+//! and the beams under it start there. The three strategies therefore cut the parameter
+//! range differently and can differ on a few grazing cells; each fraction is a proven lower
+//! bound of the true one.
 
 pub use super::spec::Strategy;
 use super::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowSpec, ShadowWork};
