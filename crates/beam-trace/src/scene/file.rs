@@ -1308,6 +1308,12 @@ fn area_patch(
     let parallelogram = corner.is_some() || edge_u.is_some() || edge_v.is_some();
     let forms = "an area light is a square (center, size, normal) or a parallelogram \
                  (corner, edge_u, edge_v)";
+    let missing = |f: &str| {
+        doc.err(
+            &format!("lights[{i}]"),
+            format!("missing field '{f}' ({forms})"),
+        )
+    };
     match (square, parallelogram) {
         (true, true) => Err(doc.err(
             &at("corner"),
@@ -1315,12 +1321,6 @@ fn area_patch(
         )),
         (false, false) => Err(doc.err(&format!("lights[{i}]"), format!("{forms}; none given"))),
         (true, false) => {
-            let missing = |f: &str| {
-                doc.err(
-                    &format!("lights[{i}]"),
-                    format!("missing field '{f}' ({forms})"),
-                )
-            };
             let c = doc.vec3(&at("center"), center.ok_or_else(|| missing("center"))?)?;
             let s = doc.finite(&at("size"), size.ok_or_else(|| missing("size"))?)?;
             if s < 0.0 {
@@ -1340,12 +1340,6 @@ fn area_patch(
             Ok(Patch::square(c, s, axis))
         }
         (false, true) => {
-            let missing = |f: &str| {
-                doc.err(
-                    &format!("lights[{i}]"),
-                    format!("missing field '{f}' ({forms})"),
-                )
-            };
             let corner = doc.vec3(&at("corner"), corner.ok_or_else(|| missing("corner"))?)?;
             let edge_u = doc.vec3(&at("edge_u"), edge_u.ok_or_else(|| missing("edge_u"))?)?;
             let edge_v = doc.vec3(&at("edge_v"), edge_v.ok_or_else(|| missing("edge_v"))?)?;
