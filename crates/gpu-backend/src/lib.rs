@@ -1,6 +1,38 @@
 //! # gpu-backend
 //!
-//! A wgpu compute backend for reliable interval rendering of implicit surfaces, with outward rounding emulated in WGSL.
+//! A wgpu compute backend for reliable interval rendering of implicit surfaces, with
+//! outward rounding emulated in WGSL.
 //!
-//! This crate is a placeholder in the workspace layout: it holds no functionality yet.
-//! See its README for what it will provide.
+//! * [`Gpu`]: a headless device on whatever adapter wgpu finds (Vulkan, Metal, DX12, GL),
+//!   software drivers included; set-up failures are [`GpuError`]s with a hint, never panics.
+//! * [`library`]: the WGSL interval library over `f32`. WGSL has no rounding modes, so
+//!   each operation widens its result outward by the error bound the WGSL specification
+//!   guarantees, stepping the bit pattern; no bound is ever NaN, infinite or subnormal, so
+//!   the library stays sound on GPUs that flush subnormals or assume finite math.
+//!   [`library::OpRunner`] runs any library function on many inputs, which is how the
+//!   tests check every operation against exact results computed on the CPU.
+//!
+//! ```no_run
+//! use gpu_backend::Gpu;
+//! use gpu_backend::library::{LibraryOp, OpRunner};
+//!
+//! let gpu = Gpu::new()?;
+//! println!("adapter: {}", gpu.name());
+//! let runner = OpRunner::new(&gpu, false)?;
+//! // [1, 2] + [0.1, 0.1] as bit patterns.
+//! let input = [1f32.to_bits(), 2f32.to_bits(), 0.1f32.to_bits(), 0.1f32.to_bits()];
+//! let [lo, hi] = runner.run(&gpu, LibraryOp::Add, &[input])?[0];
+//! assert!(lo <= 1.1 && 2.1 <= hi);
+//! # Ok::<(), gpu_backend::GpuError>(())
+//! ```
+//!
+//! Status: the device, the library's arithmetic (`+ − × ÷`, `min`, `max`, integer powers,
+//! `abs`, `sqr`, `sqrt`, `recip`, `floor`, `ceil`) and its soundness tests. The elementary
+//! functions, the render kernels and the `--backend gpu` path are not written yet.
+
+mod device;
+mod error;
+pub mod library;
+
+pub use device::Gpu;
+pub use error::GpuError;

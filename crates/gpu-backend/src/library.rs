@@ -1,0 +1,287 @@
+//! The WGSL interval library, and a kernel that runs its functions on many inputs (the
+//! soundness tests read its results back and check them on the CPU).
+//!
+//! [`INTERVAL_LIBRARY`] defines `struct Interval { lo: f32, hi: f32 }` and the functions
+//! that implicit-expr's WGSL generator calls (`i_add`, `i_mul`, ...). WGSL has no rounding
+//! modes, so every result is widened outward by the error bound the WGSL specification
+//! guarantees for the operation (its "Floating Point Accuracy" tables), by stepping the bit
+//! pattern; the representation avoids infinities, NaNs and subnormal bounds, which the
+//! specification lets an implementation assume absent or flush. `docs/numerics.md` of the
+//! repository lists the bound used for each operation.
+
+use bytemuck::{Pod, Zeroable};
+use wgpu::util::DeviceExt;
+
+use crate::device::Gpu;
+use crate::error::GpuError;
+
+/// The WGSL source of the interval library.
+pub const INTERVAL_LIBRARY: &str = include_str!("wgsl/interval.wgsl");
+
+/// The kernel that applies one library function to an array of inputs.
+const OPS_KERNEL: &str = include_str!("wgsl/ops.wgsl");
+
+/// The largest finite `f32`: as a bound, it stands for infinity.
+pub const BIG: f32 = f32::MAX;
+
+/// The library functions the op kernel runs.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum LibraryOp {
+    /// `i_add(a, b)`.
+    Add,
+    /// `i_sub(a, b)`.
+    Sub,
+    /// `i_mul(a, b)`.
+    Mul,
+    /// `i_div(a, b)`.
+    Div,
+    /// `i_min(a, b)`.
+    Min,
+    /// `i_max(a, b)`.
+    Max,
+    /// `i_pown(a, n)`, `n` in the bits of the second input's lower bound.
+    Pown,
+    /// `i_neg(a)`.
+    Neg,
+    /// `i_abs(a)`.
+    Abs,
+    /// `i_sqr(a)`.
+    Sqr,
+    /// `i_sqrt(a)`.
+    Sqrt,
+    /// `i_recip(a)`.
+    Recip,
+    /// `i_floor(a)`.
+    Floor,
+    /// `i_ceil(a)`.
+    Ceil,
+}
+
+impl LibraryOp {
+    /// Every operation, in the kernel's order.
+    pub const ALL: [LibraryOp; 14] = [
+        LibraryOp::Add,
+        LibraryOp::Sub,
+        LibraryOp::Mul,
+        LibraryOp::Div,
+        LibraryOp::Min,
+        LibraryOp::Max,
+        LibraryOp::Pown,
+        LibraryOp::Neg,
+        LibraryOp::Abs,
+        LibraryOp::Sqr,
+        LibraryOp::Sqrt,
+        LibraryOp::Recip,
+        LibraryOp::Floor,
+        LibraryOp::Ceil,
+    ];
+
+    /// The WGSL function's name.
+    pub fn name(self) -> &'static str {
+        match self {
+            LibraryOp::Add => "i_add",
+            LibraryOp::Sub => "i_sub",
+            LibraryOp::Mul => "i_mul",
+            LibraryOp::Div => "i_div",
+            LibraryOp::Min => "i_min",
+            LibraryOp::Max => "i_max",
+            LibraryOp::Pown => "i_pown",
+            LibraryOp::Neg => "i_neg",
+            LibraryOp::Abs => "i_abs",
+            LibraryOp::Sqr => "i_sqr",
+            LibraryOp::Sqrt => "i_sqrt",
+            LibraryOp::Recip => "i_recip",
+            LibraryOp::Floor => "i_floor",
+            LibraryOp::Ceil => "i_ceil",
+        }
+    }
+
+    /// Whether it takes a second interval.
+    pub fn is_binary(self) -> bool {
+        matches!(
+            self,
+            LibraryOp::Add
+                | LibraryOp::Sub
+                | LibraryOp::Mul
+                | LibraryOp::Div
+                | LibraryOp::Min
+                | LibraryOp::Max
+        )
+    }
+
+    fn index(self) -> u32 {
+        LibraryOp::ALL
+            .iter()
+            .position(|&o| o == self)
+            .expect("every op is in ALL") as u32
+    }
+}
+
+/// One input of the op kernel: the bit patterns of `a.lo, a.hi, b.lo, b.hi` (for
+/// [`LibraryOp::Pown`], `b.lo` holds the exponent as `i32` bits).
+pub type OpInput = [u32; 4];
+
+#[repr(C)]
+#[derive(Copy, Clone, Pod, Zeroable)]
+struct Params {
+    op: u32,
+    count: u32,
+}
+
+/// Inputs per dispatch (65 535 workgroups of 64 invocations would allow more; this keeps
+/// buffers small).
+const CHUNK: usize = 1 << 20;
+
+/// The op kernel, compiled for one subnormal mode.
+#[derive(Debug)]
+pub struct OpRunner {
+    pipeline: wgpu::ComputePipeline,
+    layout: wgpu::BindGroupLayout,
+}
+
+impl OpRunner {
+    /// Compiles the kernel. With `flush_subnormals`, every raw floating-point operation of
+    /// the library flushes its operands and result to zero as a GPU without subnormals may,
+    /// so that path is tested on any adapter.
+    ///
+    /// # Errors
+    ///
+    /// [`GpuError::Validation`] if the adapter rejects the shader.
+    pub fn new(gpu: &Gpu, flush_subnormals: bool) -> Result<OpRunner, GpuError> {
+        let source = format!("{INTERVAL_LIBRARY}\n{OPS_KERNEL}");
+        let module = gpu.checked("interval library op kernel", || {
+            gpu.device
+                .create_shader_module(wgpu::ShaderModuleDescriptor {
+                    label: Some("interval ops"),
+                    source: wgpu::ShaderSource::Wgsl(source.into()),
+                })
+        })?;
+        let flush = [("FLUSH_SUBNORMALS", if flush_subnormals { 1.0 } else { 0.0 })];
+        let pipeline = gpu.checked("interval library op pipeline", || {
+            gpu.device
+                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
+                    label: Some("interval ops"),
+                    layout: None,
+                    module: &module,
+                    entry_point: Some("main"),
+                    compilation_options: wgpu::PipelineCompilationOptions {
+                        constants: &flush,
+                        ..Default::default()
+                    },
+                    cache: None,
+                })
+        })?;
+        let layout = pipeline.get_bind_group_layout(0);
+        Ok(OpRunner { pipeline, layout })
+    }
+
+    /// `op` on every input: the `(lo, hi)` of each result.
+    ///
+    /// # Errors
+    ///
+    /// [`GpuError`] if the GPU rejects the work or the results cannot be read back.
+    pub fn run(
+        &self,
+        gpu: &Gpu,
+        op: LibraryOp,
+        inputs: &[OpInput],
+    ) -> Result<Vec<[f32; 2]>, GpuError> {
+        let mut out = Vec::with_capacity(inputs.len());
+        for chunk in inputs.chunks(CHUNK) {
+            out.extend(self.run_chunk(gpu, op, chunk)?);
+        }
+        Ok(out)
+    }
+
+    fn run_chunk(
+        &self,
+        gpu: &Gpu,
+        op: LibraryOp,
+        inputs: &[OpInput],
+    ) -> Result<Vec<[f32; 2]>, GpuError> {
+        if inputs.is_empty() {
+            return Ok(Vec::new());
+        }
+        let device = &gpu.device;
+        let params = Params {
+            op: op.index(),
+            count: inputs.len() as u32,
+        };
+        let out_size = (inputs.len() * std::mem::size_of::<[f32; 2]>()) as u64;
+        let (encoder, readback) = gpu.checked("interval library op dispatch", || {
+            let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("op params"),
+                contents: bytemuck::bytes_of(&params),
+                usage: wgpu::BufferUsages::UNIFORM,
+            });
+            let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
+                label: Some("op inputs"),
+                contents: bytemuck::cast_slice(inputs),
+                usage: wgpu::BufferUsages::STORAGE,
+            });
+            let output = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("op outputs"),
+                size: out_size,
+                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
+                mapped_at_creation: false,
+            });
+            let readback = device.create_buffer(&wgpu::BufferDescriptor {
+                label: Some("op readback"),
+                size: out_size,
+                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
+                mapped_at_creation: false,
+            });
+            let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
+                label: Some("op bindings"),
+                layout: &self.layout,
+                entries: &[
+                    wgpu::BindGroupEntry {
+                        binding: 0,
+                        resource: uniform.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 1,
+                        resource: input.as_entire_binding(),
+                    },
+                    wgpu::BindGroupEntry {
+                        binding: 2,
+                        resource: output.as_entire_binding(),
+                    },
+                ],
+            });
+            let mut encoder = device.create_command_encoder(&Default::default());
+            {
+                let mut pass = encoder.begin_compute_pass(&Default::default());
+                pass.set_pipeline(&self.pipeline);
+                pass.set_bind_group(0, &bind, &[]);
+                pass.dispatch_workgroups((inputs.len() as u32).div_ceil(64), 1, 1);
+            }
+            encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, out_size);
+            (encoder, readback)
+        })?;
+        gpu.queue.submit([encoder.finish()]);
+        read_buffer(gpu, &readback)
+    }
+}
+
+/// Maps `buffer` and copies it out as `[f32; 2]` pairs.
+fn read_buffer(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<[f32; 2]>, GpuError> {
+    let slice = buffer.slice(..);
+    let (tx, rx) = std::sync::mpsc::channel();
+    slice.map_async(wgpu::MapMode::Read, move |r| {
+        let _ = tx.send(r);
+    });
+    gpu.device
+        .poll(wgpu::PollType::wait_indefinitely())
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    rx.recv()
+        .map_err(|e| GpuError::Readback(e.to_string()))?
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    let data = slice
+        .get_mapped_range()
+        .map_err(|e| GpuError::Readback(e.to_string()))?;
+    let out = bytemuck::cast_slice::<u8, [f32; 2]>(&data).to_vec();
+    drop(data);
+    buffer.unmap();
+    Ok(out)
+}
