@@ -26,9 +26,10 @@
 //! # Ok::<(), gpu_backend::GpuError>(())
 //! ```
 //!
-//! Status: the device, the library's arithmetic (`+ − × ÷`, `min`, `max`, integer powers,
-//! `abs`, `sqr`, `sqrt`, `recip`, `floor`, `ceil`) and its soundness tests. The elementary
-//! functions, the render kernels and the `--backend gpu` path are not written yet.
+//! Status: the device, the whole library (every function implicit-expr's WGSL output calls:
+//! arithmetic, powers, `sqrt`, `exp`, `ln`, `log10`, trigonometric and inverse functions,
+//! `pow`, rounding, `not` and the slopes) and its soundness tests. The render kernels and the
+//! `--backend gpu` path are not written yet.
 
 mod device;
 mod error;

@@ -15,8 +15,13 @@ use wgpu::util::DeviceExt;
 use crate::device::Gpu;
 use crate::error::GpuError;
 
-/// The WGSL source of the interval library.
-pub const INTERVAL_LIBRARY: &str = include_str!("wgsl/interval.wgsl");
+/// The WGSL source of the interval library: the representation, the arithmetic and the
+/// elementary functions.
+pub const INTERVAL_LIBRARY: &str = concat!(
+    include_str!("wgsl/interval.wgsl"),
+    "\n",
+    include_str!("wgsl/elementary.wgsl")
+);
 
 /// The kernel that applies one library function to an array of inputs.
 const OPS_KERNEL: &str = include_str!("wgsl/ops.wgsl");
@@ -55,11 +60,41 @@ pub enum LibraryOp {
     Floor,
     /// `i_ceil(a)`.
     Ceil,
+    /// `i_exp(a)`.
+    Exp,
+    /// `i_ln(a)`.
+    Ln,
+    /// `i_log10(a)`.
+    Log10,
+    /// `i_sin(a)`.
+    Sin,
+    /// `i_cos(a)`.
+    Cos,
+    /// `i_tan(a)`.
+    Tan,
+    /// `i_asin(a)`.
+    Asin,
+    /// `i_acos(a)`.
+    Acos,
+    /// `i_atan(a)`.
+    Atan,
+    /// `i_pow(a, b)`.
+    Pow,
+    /// `i_round(a)`.
+    Round,
+    /// `i_not(a)`.
+    Not,
+    /// `i_slope_floor(a)`.
+    SlopeFloor,
+    /// `i_slope_round(a)`.
+    SlopeRound,
+    /// `i_slope_not(a)`.
+    SlopeNot,
 }
 
 impl LibraryOp {
     /// Every operation, in the kernel's order.
-    pub const ALL: [LibraryOp; 14] = [
+    pub const ALL: [LibraryOp; 29] = [
         LibraryOp::Add,
         LibraryOp::Sub,
         LibraryOp::Mul,
@@ -74,6 +109,21 @@ impl LibraryOp {
         LibraryOp::Recip,
         LibraryOp::Floor,
         LibraryOp::Ceil,
+        LibraryOp::Exp,
+        LibraryOp::Ln,
+        LibraryOp::Log10,
+        LibraryOp::Sin,
+        LibraryOp::Cos,
+        LibraryOp::Tan,
+        LibraryOp::Asin,
+        LibraryOp::Acos,
+        LibraryOp::Atan,
+        LibraryOp::Pow,
+        LibraryOp::Round,
+        LibraryOp::Not,
+        LibraryOp::SlopeFloor,
+        LibraryOp::SlopeRound,
+        LibraryOp::SlopeNot,
     ];
 
     /// The WGSL function's name.
@@ -93,6 +143,21 @@ impl LibraryOp {
             LibraryOp::Recip => "i_recip",
             LibraryOp::Floor => "i_floor",
             LibraryOp::Ceil => "i_ceil",
+            LibraryOp::Exp => "i_exp",
+            LibraryOp::Ln => "i_ln",
+            LibraryOp::Log10 => "i_log10",
+            LibraryOp::Sin => "i_sin",
+            LibraryOp::Cos => "i_cos",
+            LibraryOp::Tan => "i_tan",
+            LibraryOp::Asin => "i_asin",
+            LibraryOp::Acos => "i_acos",
+            LibraryOp::Atan => "i_atan",
+            LibraryOp::Pow => "i_pow",
+            LibraryOp::Round => "i_round",
+            LibraryOp::Not => "i_not",
+            LibraryOp::SlopeFloor => "i_slope_floor",
+            LibraryOp::SlopeRound => "i_slope_round",
+            LibraryOp::SlopeNot => "i_slope_not",
         }
     }
 
@@ -106,6 +171,7 @@ impl LibraryOp {
                 | LibraryOp::Div
                 | LibraryOp::Min
                 | LibraryOp::Max
+                | LibraryOp::Pow
         )
     }
 

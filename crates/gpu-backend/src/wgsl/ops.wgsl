@@ -37,6 +37,21 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         case 11u: { r = i_recip(a); }
         case 12u: { r = i_floor(a); }
         case 13u: { r = i_ceil(a); }
+        case 14u: { r = i_exp(a); }
+        case 15u: { r = i_ln(a); }
+        case 16u: { r = i_log10(a); }
+        case 17u: { r = i_sin(a); }
+        case 18u: { r = i_cos(a); }
+        case 19u: { r = i_tan(a); }
+        case 20u: { r = i_asin(a); }
+        case 21u: { r = i_acos(a); }
+        case 22u: { r = i_atan(a); }
+        case 23u: { r = i_pow(a, b); }
+        case 24u: { r = i_round(a); }
+        case 25u: { r = i_not(a); }
+        case 26u: { r = i_slope_floor(a); }
+        case 27u: { r = i_slope_round(a); }
+        case 28u: { r = i_slope_not(a); }
         default: {}
     }
     outputs[i] = vec2<f32>(r.lo, r.hi);
