@@ -25,6 +25,9 @@ pub enum GpuError {
     /// Reading results back from the GPU failed.
     #[error("reading results back from the GPU failed: {0}")]
     Readback(String),
+    /// A formula could not be written as WGSL.
+    #[error("the surface cannot run on the GPU: {0}")]
+    Expr(#[from] implicit_expr::Error),
     /// The input is too large for one dispatch or buffer.
     #[error("{0}")]
     TooLarge(String),

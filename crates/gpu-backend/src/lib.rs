@@ -32,8 +32,10 @@
 //! `--backend gpu` path are not written yet.
 
 mod device;
+mod dispatch;
 mod error;
 pub mod library;
+pub mod surface;
 
 pub use device::Gpu;
 pub use error::GpuError;

@@ -10,9 +10,9 @@
 //! repository lists the bound used for each operation.
 
 use bytemuck::{Pod, Zeroable};
-use wgpu::util::DeviceExt;
 
 use crate::device::Gpu;
+use crate::dispatch::{Kernel, MAX_ELEMENTS};
 use crate::error::GpuError;
 
 /// The WGSL source of the interval library: the representation, the arithmetic and the
@@ -194,15 +194,10 @@ struct Params {
     count: u32,
 }
 
-/// Inputs per dispatch (65 535 workgroups of 64 invocations would allow more; this keeps
-/// buffers small).
-const CHUNK: usize = 1 << 20;
-
 /// The op kernel, compiled for one subnormal mode.
 #[derive(Debug)]
 pub struct OpRunner {
-    pipeline: wgpu::ComputePipeline,
-    layout: wgpu::BindGroupLayout,
+    kernel: Kernel,
 }
 
 impl OpRunner {
@@ -215,30 +210,10 @@ impl OpRunner {
     /// [`GpuError::Validation`] if the adapter rejects the shader.
     pub fn new(gpu: &Gpu, flush_subnormals: bool) -> Result<OpRunner, GpuError> {
         let source = format!("{INTERVAL_LIBRARY}\n{OPS_KERNEL}");
-        let module = gpu.checked("interval library op kernel", || {
-            gpu.device
-                .create_shader_module(wgpu::ShaderModuleDescriptor {
-                    label: Some("interval ops"),
-                    source: wgpu::ShaderSource::Wgsl(source.into()),
-                })
-        })?;
         let flush = [("FLUSH_SUBNORMALS", if flush_subnormals { 1.0 } else { 0.0 })];
-        let pipeline = gpu.checked("interval library op pipeline", || {
-            gpu.device
-                .create_compute_pipeline(&wgpu::ComputePipelineDescriptor {
-                    label: Some("interval ops"),
-                    layout: None,
-                    module: &module,
-                    entry_point: Some("main"),
-                    compilation_options: wgpu::PipelineCompilationOptions {
-                        constants: &flush,
-                        ..Default::default()
-                    },
-                    cache: None,
-                })
-        })?;
-        let layout = pipeline.get_bind_group_layout(0);
-        Ok(OpRunner { pipeline, layout })
+        Ok(OpRunner {
+            kernel: Kernel::new(gpu, "interval library op kernel", source, &flush)?,
+        })
     }
 
     /// `op` on every input: the `(lo, hi)` of each result.
@@ -253,101 +228,20 @@ impl OpRunner {
         inputs: &[OpInput],
     ) -> Result<Vec<[f32; 2]>, GpuError> {
         let mut out = Vec::with_capacity(inputs.len());
-        for chunk in inputs.chunks(CHUNK) {
-            out.extend(self.run_chunk(gpu, op, chunk)?);
+        for chunk in inputs.chunks(MAX_ELEMENTS) {
+            let params = Params {
+                op: op.index(),
+                count: chunk.len() as u32,
+            };
+            let bytes = self.kernel.run(
+                gpu,
+                bytemuck::bytes_of(&params),
+                bytemuck::cast_slice(chunk),
+                chunk.len(),
+                std::mem::size_of::<[f32; 2]>(),
+            )?;
+            out.extend(bytemuck::pod_collect_to_vec::<u8, [f32; 2]>(&bytes));
         }
         Ok(out)
     }
-
-    fn run_chunk(
-        &self,
-        gpu: &Gpu,
-        op: LibraryOp,
-        inputs: &[OpInput],
-    ) -> Result<Vec<[f32; 2]>, GpuError> {
-        if inputs.is_empty() {
-            return Ok(Vec::new());
-        }
-        let device = &gpu.device;
-        let params = Params {
-            op: op.index(),
-            count: inputs.len() as u32,
-        };
-        let out_size = (inputs.len() * std::mem::size_of::<[f32; 2]>()) as u64;
-        let (encoder, readback) = gpu.checked("interval library op dispatch", || {
-            let uniform = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("op params"),
-                contents: bytemuck::bytes_of(&params),
-                usage: wgpu::BufferUsages::UNIFORM,
-            });
-            let input = device.create_buffer_init(&wgpu::util::BufferInitDescriptor {
-                label: Some("op inputs"),
-                contents: bytemuck::cast_slice(inputs),
-                usage: wgpu::BufferUsages::STORAGE,
-            });
-            let output = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("op outputs"),
-                size: out_size,
-                usage: wgpu::BufferUsages::STORAGE | wgpu::BufferUsages::COPY_SRC,
-                mapped_at_creation: false,
-            });
-            let readback = device.create_buffer(&wgpu::BufferDescriptor {
-                label: Some("op readback"),
-                size: out_size,
-                usage: wgpu::BufferUsages::MAP_READ | wgpu::BufferUsages::COPY_DST,
-                mapped_at_creation: false,
-            });
-            let bind = device.create_bind_group(&wgpu::BindGroupDescriptor {
-                label: Some("op bindings"),
-                layout: &self.layout,
-                entries: &[
-                    wgpu::BindGroupEntry {
-                        binding: 0,
-                        resource: uniform.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 1,
-                        resource: input.as_entire_binding(),
-                    },
-                    wgpu::BindGroupEntry {
-                        binding: 2,
-                        resource: output.as_entire_binding(),
-                    },
-                ],
-            });
-            let mut encoder = device.create_command_encoder(&Default::default());
-            {
-                let mut pass = encoder.begin_compute_pass(&Default::default());
-                pass.set_pipeline(&self.pipeline);
-                pass.set_bind_group(0, &bind, &[]);
-                pass.dispatch_workgroups((inputs.len() as u32).div_ceil(64), 1, 1);
-            }
-            encoder.copy_buffer_to_buffer(&output, 0, &readback, 0, out_size);
-            (encoder, readback)
-        })?;
-        gpu.queue.submit([encoder.finish()]);
-        read_buffer(gpu, &readback)
-    }
-}
-
-/// Maps `buffer` and copies it out as `[f32; 2]` pairs.
-fn read_buffer(gpu: &Gpu, buffer: &wgpu::Buffer) -> Result<Vec<[f32; 2]>, GpuError> {
-    let slice = buffer.slice(..);
-    let (tx, rx) = std::sync::mpsc::channel();
-    slice.map_async(wgpu::MapMode::Read, move |r| {
-        let _ = tx.send(r);
-    });
-    gpu.device
-        .poll(wgpu::PollType::wait_indefinitely())
-        .map_err(|e| GpuError::Readback(e.to_string()))?;
-    rx.recv()
-        .map_err(|e| GpuError::Readback(e.to_string()))?
-        .map_err(|e| GpuError::Readback(e.to_string()))?;
-    let data = slice
-        .get_mapped_range()
-        .map_err(|e| GpuError::Readback(e.to_string()))?;
-    let out = bytemuck::cast_slice::<u8, [f32; 2]>(&data).to_vec();
-    drop(data);
-    buffer.unmap();
-    Ok(out)
 }
