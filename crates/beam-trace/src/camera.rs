@@ -110,6 +110,13 @@ impl Camera {
         (h * f64::from(self.width) / f64::from(self.height), h)
     }
 
+    /// The image plane: `(corner, du, dv)`, where the ray through the continuous pixel
+    /// position `(px, py)` has the direction `corner + px · du + py · dv` (a GPU kernel
+    /// builds its beams from these).
+    pub fn frame(&self) -> (DVec3, DVec3, DVec3) {
+        (self.corner, self.du, self.dv)
+    }
+
     /// The same camera with another image size (same field of view).
     pub fn resized(&self, width: u32, height: u32) -> Result<Self, Error> {
         Camera::new(self.eye, self.look_at, self.up, self.fov_deg, width, height)

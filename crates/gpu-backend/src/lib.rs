@@ -35,6 +35,7 @@ mod device;
 mod dispatch;
 mod error;
 pub mod library;
+pub mod primary;
 pub mod surface;
 
 pub use device::Gpu;
