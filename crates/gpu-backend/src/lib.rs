@@ -31,11 +31,11 @@
 //! `pow`, rounding, `not` and the slopes) and its soundness tests. The render kernels and the
 //! `--backend gpu` path are not written yet.
 
+pub mod beams;
 mod device;
 mod dispatch;
 mod error;
 pub mod library;
-pub mod primary;
 pub mod surface;
 
 pub use device::Gpu;

@@ -8,7 +8,8 @@ use beam_trace::root::{Proof, RootCounters, RootMethod, RootResult, RootSettings
 use beam_trace::screen::PixelRect;
 use beam_trace::{BeamEval, Scene};
 use gpu_backend::Gpu;
-use gpu_backend::primary::{GpuClass, PrimaryKernel, PrimarySettings};
+use gpu_backend::beams::{BeamKernel, BeamQuery, BeamSettings, GpuClass};
+use interval_core::Interval;
 
 fn gpu() -> Option<Gpu> {
     match Gpu::new() {
@@ -42,7 +43,7 @@ fn gpu_classes_never_contradict_cpu_roots() {
         let scene = Scene::catalog(name, SIZE, SIZE).expect("a catalog scene");
         let geometry = &scene.geometry;
         let bounds = geometry.bounds();
-        let kernel = PrimaryKernel::new(&gpu, geometry.tape()).expect("the kernel compiles");
+        let kernel = BeamKernel::new(&gpu, geometry.tape(), bounds).expect("the kernel compiles");
         let rects: Vec<PixelRect> = (0..SIZE * SIZE)
             .map(|i| PixelRect {
                 x0: i % SIZE,
@@ -52,12 +53,27 @@ fn gpu_classes_never_contradict_cpu_roots() {
             })
             .collect();
         // The CPU plan's beam tolerance: 10^-3 of the scene diagonal.
-        let gpu_settings = PrimarySettings {
+        let gpu_settings = BeamSettings {
             epsilon: (1e-3 * geometry.diagonal()) as f32,
-            ..PrimarySettings::default()
+            ..BeamSettings::default()
         };
+        let queries: Vec<BeamQuery> = rects
+            .iter()
+            .map(|r| {
+                let beam = scene.camera.beam(
+                    f64::from(r.x0),
+                    f64::from(r.y0),
+                    f64::from(r.x1),
+                    f64::from(r.y1),
+                );
+                let t = beam.t_range(&bounds).map_or(Interval::EMPTY, |t| {
+                    t.intersection(Interval::new(0.0, f64::MAX).unwrap())
+                });
+                BeamQuery { beam, t }
+            })
+            .collect();
         let gpu_pixels = kernel
-            .classify(&gpu, &scene.camera, &bounds, &rects, &gpu_settings)
+            .classify(&gpu, &queries, &gpu_settings)
             .expect("the GPU classifies");
         let mut eval = BeamEval::new(geometry.ray_function());
         let (mut miss, mut hit, mut undecided, mut agree) = (0, 0, 0, 0);

@@ -1,15 +1,15 @@
-//! Primary visibility on the GPU: for each screen rectangle (a pixel or a screen box), the
-//! beam from the eye through it, searched with the counter-based non-recursive bisection
-//! and classified by the rejection and inclusion tests, as the CPU renderer's beams are.
+//! Beams on the GPU: any set of rays `origin + t · dir` whose origin and direction lie in
+//! boxes (a primary beam through a pixel or a screen box, a single ray, a shadow segment, a
+//! shadow beam over a light or one of its sub-beams), searched over a parameter range with
+//! the counter-based non-recursive bisection and classified by the rejection and inclusion
+//! tests, as the CPU renderer's beams are ([`beam_trace::beam`]).
 //!
 //! The inclusion test needs `g` continuous and defined along every ray; the kernel has no
 //! definedness tracking, so it runs only for surfaces built from total continuous
-//! operations ([`is_total_and_continuous`]); for the others every non-rejected beam is
-//! reported undecided, which is sound.
+//! operations ([`is_total_and_continuous`]); for the others every beam that is not rejected
+//! is reported undecided, which is sound.
 
-use beam_trace::camera::Camera;
-use beam_trace::ray::IBox;
-use beam_trace::screen::PixelRect;
+use beam_trace::ray::{Beam, IBox};
 use bytemuck::{Pod, Zeroable};
 use implicit_expr::tape::Opcode;
 use implicit_expr::{BinaryOp, Tape, UnaryOp, wgsl};
@@ -20,12 +20,12 @@ use crate::dispatch::{Kernel, MAX_ELEMENTS};
 use crate::error::GpuError;
 use crate::library::INTERVAL_LIBRARY;
 
-const PRIMARY_KERNEL: &str = include_str!("wgsl/primary.wgsl");
+const BEAMS_KERNEL: &str = include_str!("wgsl/beams.wgsl");
 
-/// What the GPU proved about one rectangle's beam.
+/// What the GPU proved about one beam.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub enum GpuClass {
-    /// No ray of the beam meets the surface inside the scene bounds.
+    /// No ray of the beam meets the surface in its parameter range.
     Miss,
     /// Every ray of the beam has its first root in `t`.
     Hit {
@@ -40,29 +40,45 @@ pub enum GpuClass {
     },
 }
 
-/// One rectangle's result.
+/// One beam's result.
 #[derive(Copy, Clone, Debug, PartialEq)]
-pub struct GpuPixel {
+pub struct GpuBeam {
     /// The class.
     pub class: GpuClass,
     /// Sections evaluated.
     pub steps: u32,
 }
 
-/// Settings of the GPU search.
+/// A beam and the parameter range to search.
 #[derive(Copy, Clone, Debug, PartialEq)]
-pub struct PrimarySettings {
-    /// Width of a final section (absolute, in the ray parameter).
-    pub epsilon: f32,
-    /// Largest number of descents per beam.
-    pub max_steps: u32,
+pub struct BeamQuery {
+    /// The beam.
+    pub beam: Beam,
+    /// The range of `t` (finite; empty: nothing to search).
+    pub t: Interval<f64>,
 }
 
-impl Default for PrimarySettings {
+/// Settings of the GPU search.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct BeamSettings {
+    /// Width of a final section (absolute, in the ray parameter).
+    pub epsilon: f32,
+    /// Width of a final section relative to its start `t` (0: only `epsilon`).
+    pub rel_epsilon: f32,
+    /// Largest number of descents per beam.
+    pub max_steps: u32,
+    /// Whether to try the inclusion test (proving hits); it runs only when the surface is
+    /// total and continuous.
+    pub inclusion: bool,
+}
+
+impl Default for BeamSettings {
     fn default() -> Self {
         Self {
             epsilon: 1e-4,
+            rel_epsilon: 0.0,
             max_steps: 4096,
+            inclusion: true,
         }
     }
 }
@@ -70,10 +86,6 @@ impl Default for PrimarySettings {
 #[repr(C)]
 #[derive(Copy, Clone, Pod, Zeroable)]
 struct SceneParams {
-    eye: [[f32; 4]; 2],
-    corner: [[f32; 4]; 2],
-    du: [[f32; 4]; 2],
-    dv: [[f32; 4]; 2],
     bounds: [[f32; 4]; 2],
     tol: [f32; 4],
     ints: [u32; 4],
@@ -103,38 +115,41 @@ pub fn is_total_and_continuous(tape: &Tape) -> bool {
     })
 }
 
-/// The primary-visibility kernel of one surface.
+/// The beam kernel of one scene function.
 #[derive(Debug)]
-pub struct PrimaryKernel {
+pub struct BeamKernel {
     kernel: Kernel,
-    inclusion: bool,
+    continuous: bool,
+    bounds: IBox,
 }
 
-impl PrimaryKernel {
-    /// Compiles the kernel for the scene function `tape` (a function of `x y z`).
+impl BeamKernel {
+    /// Compiles the kernel for the scene function `tape` (a function of `x y z`) whose
+    /// surface lives inside `bounds` (inclusion proofs must place roots there).
     ///
     /// # Errors
     ///
     /// [`GpuError::Expr`] if the tape cannot be written as WGSL, [`GpuError::Validation`]
     /// if the adapter rejects the shader.
-    pub fn new(gpu: &Gpu, tape: &Tape) -> Result<PrimaryKernel, GpuError> {
+    pub fn new(gpu: &Gpu, tape: &Tape, bounds: IBox) -> Result<BeamKernel, GpuError> {
         let generator = wgsl::Generator::new(tape, "surface")?;
         let source = format!(
-            "{INTERVAL_LIBRARY}\n{}\n{PRIMARY_KERNEL}",
+            "{INTERVAL_LIBRARY}\n{}\n{BEAMS_KERNEL}",
             generator.interval_source()
         );
-        Ok(PrimaryKernel {
-            kernel: Kernel::new(gpu, "primary visibility kernel", source, &[])?,
-            inclusion: is_total_and_continuous(tape),
+        Ok(BeamKernel {
+            kernel: Kernel::new(gpu, "beam kernel", source, &[])?,
+            continuous: is_total_and_continuous(tape),
+            bounds,
         })
     }
 
-    /// Whether the kernel runs the inclusion test (the surface is total and continuous).
+    /// Whether the kernel can prove hits (the surface is total and continuous).
     pub fn proves_hits(&self) -> bool {
-        self.inclusion
+        self.continuous
     }
 
-    /// Classifies the beam of each rectangle of `camera`'s image inside `bounds`.
+    /// Classifies every query.
     ///
     /// # Errors
     ///
@@ -142,34 +157,23 @@ impl PrimaryKernel {
     pub fn classify(
         &self,
         gpu: &Gpu,
-        camera: &Camera,
-        bounds: &IBox,
-        rects: &[PixelRect],
-        settings: &PrimarySettings,
-    ) -> Result<Vec<GpuPixel>, GpuError> {
-        let (corner, du, dv) = camera.frame();
-        let vec = |v: glam::DVec3| point_bounds([v.x, v.y, v.z]);
-        let b = bounds.map(|i| wgsl::enclose_f32(i.inf(), i.sup()));
-        let mut out = Vec::with_capacity(rects.len());
-        for chunk in rects.chunks(MAX_ELEMENTS) {
+        queries: &[BeamQuery],
+        settings: &BeamSettings,
+    ) -> Result<Vec<GpuBeam>, GpuError> {
+        let b = self.bounds.map(|i| wgsl::enclose_f32(i.inf(), i.sup()));
+        let mut out = Vec::with_capacity(queries.len());
+        for chunk in queries.chunks(MAX_ELEMENTS) {
             let params = SceneParams {
-                eye: vec(camera.eye()),
-                corner: vec(corner),
-                du: vec(du),
-                dv: vec(dv),
                 bounds: [[b[0].0, b[1].0, b[2].0, 0.0], [b[0].1, b[1].1, b[2].1, 0.0]],
-                tol: [settings.epsilon, 0.0, 0.0, 0.0],
+                tol: [settings.epsilon, settings.rel_epsilon, 0.0, 0.0],
                 ints: [
                     chunk.len() as u32,
                     settings.max_steps,
-                    u32::from(self.inclusion),
+                    u32::from(settings.inclusion && self.continuous),
                     0,
                 ],
             };
-            let input: Vec<[u32; 6]> = chunk
-                .iter()
-                .map(|r| rect_input(camera, bounds, r))
-                .collect();
+            let input: Vec<[u32; 16]> = chunk.iter().map(encode).collect();
             let bytes = self.kernel.run(
                 gpu,
                 bytemuck::bytes_of(&params),
@@ -187,34 +191,26 @@ impl PrimaryKernel {
     }
 }
 
-/// The f32 enclosures of a point's coordinates, as (lower, upper) rows.
-fn point_bounds(p: [f64; 3]) -> [[f32; 4]; 2] {
-    let e = p.map(|x| wgsl::enclose_f32(x, x));
-    [[e[0].0, e[1].0, e[2].0, 0.0], [e[0].1, e[1].1, e[2].1, 0.0]]
-}
-
-/// The kernel input of a rectangle: its pixel ranges and the beam's parameter range
-/// inside the bounds (as f32 bits, outward; an empty range as `t1 < t0`).
-fn rect_input(camera: &Camera, bounds: &IBox, r: &PixelRect) -> [u32; 6] {
-    let (x0, x1) = (f64::from(r.x0), f64::from(r.x1));
-    let (y0, y1) = (f64::from(r.y0), f64::from(r.y1));
-    let beam = camera.beam(x0, y0, x1, y1);
-    let (t0, t1) = match beam.t_range(bounds) {
-        Some(t) => wgsl::enclose_f32(t.inf().max(0.0), t.sup()),
-        None => (1.0, 0.0),
+/// The kernel input of a query: the beam's boxes and its range, rounded outward to `f32`
+/// bit patterns; an empty or unbounded range is sent as `t1 < t0` (nothing to search, which
+/// the caller must not ask for an unbounded range).
+fn encode(q: &BeamQuery) -> [u32; 16] {
+    let mut out = [0u32; 16];
+    for (k, axis) in q.beam.origin.iter().chain(&q.beam.dir).enumerate() {
+        let (lo, hi) = wgsl::enclose_f32(axis.inf(), axis.sup());
+        out[2 * k] = lo.to_bits();
+        out[2 * k + 1] = hi.to_bits();
+    }
+    let (t0, t1) = match q.t.bounds() {
+        Some((lo, hi)) if lo.is_finite() && hi.is_finite() => wgsl::enclose_f32(lo, hi),
+        _ => (1.0, 0.0),
     };
-    let (t0, t1) = if t1.is_finite() { (t0, t1) } else { (1.0, 0.0) };
-    [
-        (x0 as f32).to_bits(),
-        (x1 as f32).to_bits(),
-        (y0 as f32).to_bits(),
-        (y1 as f32).to_bits(),
-        t0.to_bits(),
-        t1.to_bits(),
-    ]
+    out[12] = t0.to_bits();
+    out[13] = t1.to_bits();
+    out
 }
 
-fn decode(r: [u32; 4]) -> GpuPixel {
+fn decode(r: [u32; 4]) -> GpuBeam {
     let t = || {
         let (lo, hi) = (f32::from_bits(r[1]), f32::from_bits(r[2]));
         Interval::new(f64::from(lo), f64::from(hi)).unwrap_or(Interval::EMPTY)
@@ -224,5 +220,5 @@ fn decode(r: [u32; 4]) -> GpuPixel {
         1 => GpuClass::Hit { t: t() },
         _ => GpuClass::Undecided { t: t() },
     };
-    GpuPixel { class, steps: r[3] }
+    GpuBeam { class, steps: r[3] }
 }

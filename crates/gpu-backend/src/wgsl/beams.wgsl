@@ -1,32 +1,25 @@
-// Primary visibility of screen rectangles (pixels or screen boxes): the beam from the eye
-// through each rectangle, searched over its parameter range with the counter-based
+// Beams (primary beams through pixels or screen boxes, rays, shadow segments, shadow beams
+// over a light and its sub-beams: every set of rays `origin + t · dir` with the origin and
+// the direction in boxes), each searched over its parameter range with the counter-based
 // non-recursive bisection (levels `ns`, section `k`, as the CPU's `counter-bisection`), the
 // rejection test on every section, and the inclusion test (a sign change of g at the two
-// ends of a section for every ray, with g continuous and the ends inside the scene bounds)
-// when the surface is total and continuous. The library and the generated function
-// `surface` are pasted before this.
+// ends of a section for every ray, with g continuous and the ends inside the scene bounds,
+// with the CPU's look-ahead) when the surface is total and continuous and the caller asks.
+// The library and the generated function `surface` are pasted before this.
 
 struct Scene {
-    eye_lo: vec4<f32>,
-    eye_hi: vec4<f32>,
-    corner_lo: vec4<f32>,
-    corner_hi: vec4<f32>,
-    du_lo: vec4<f32>,
-    du_hi: vec4<f32>,
-    dv_lo: vec4<f32>,
-    dv_hi: vec4<f32>,
     bounds_lo: vec4<f32>,
     bounds_hi: vec4<f32>,
-    // epsilon (width of a final section), unused x3
+    // epsilon (width of a final section, absolute), relative epsilon (of t), unused x2
     tol: vec4<f32>,
-    // count, max_steps, inclusion allowed (0/1), unused
+    // count, max_steps, inclusion (0/1), unused
     ints: vec4<u32>,
 }
 
-// A rectangle of the image and the beam's parameter range inside the scene bounds:
-// x0, x1, y0, y1, t0, t1 (f32 bit patterns; t1 < t0: nothing to search).
+// A beam: origin lo/hi, direction lo/hi (x, y, z each) and the parameter range t0, t1, as
+// f32 bit patterns (t1 < t0: nothing to search); two unused words.
 @group(0) @binding(0) var<uniform> scene: Scene;
-@group(0) @binding(1) var<storage, read> rects: array<array<u32, 6>>;
+@group(0) @binding(1) var<storage, read> beams: array<array<u32, 16>>;
 // class (0 miss, 1 hit, 2 undecided, 3 out of steps), t.lo, t.hi (bits), steps.
 @group(0) @binding(2) var<storage, read_write> results: array<vec4<u32>>;
 
@@ -81,49 +74,24 @@ fn section_end(lo: f32, hi: f32, k: u32, ns: u32, up: bool) -> f32 {
     return clamp(select(e.lo, e.hi, up), lo, hi);
 }
 
-fn interval_of(lo: f32, hi: f32) -> Interval {
-    return Interval(lo, hi);
-}
-
 @compute @workgroup_size(64)
 fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let i = id.x;
     if i >= scene.ints.x {
         return;
     }
-    let r = rects[i];
-    let x = i_from_bits(r[0], r[1]);
-    let y = i_from_bits(r[2], r[3]);
-    let t0 = bitcast<f32>(r[4]);
-    let t1 = bitcast<f32>(r[5]);
+    let r = beams[i];
+    let t0 = bitcast<f32>(r[12]);
+    let t1 = bitcast<f32>(r[13]);
     var out = vec4<u32>(0u, 0u, 0u, 0u);
     if t1 < t0 {
         results[i] = out;
         return;
     }
     var b: Beam;
-    b.e = array<Interval, 3>(
-        interval_of(scene.eye_lo.x, scene.eye_hi.x),
-        interval_of(scene.eye_lo.y, scene.eye_hi.y),
-        interval_of(scene.eye_lo.z, scene.eye_hi.z),
-    );
-    let c = array<Interval, 3>(
-        interval_of(scene.corner_lo.x, scene.corner_hi.x),
-        interval_of(scene.corner_lo.y, scene.corner_hi.y),
-        interval_of(scene.corner_lo.z, scene.corner_hi.z),
-    );
-    let du = array<Interval, 3>(
-        interval_of(scene.du_lo.x, scene.du_hi.x),
-        interval_of(scene.du_lo.y, scene.du_hi.y),
-        interval_of(scene.du_lo.z, scene.du_hi.z),
-    );
-    let dv = array<Interval, 3>(
-        interval_of(scene.dv_lo.x, scene.dv_hi.x),
-        interval_of(scene.dv_lo.y, scene.dv_hi.y),
-        interval_of(scene.dv_lo.z, scene.dv_hi.z),
-    );
     for (var a = 0; a < 3; a++) {
-        b.d[a] = i_add(c[a], i_add(i_mul(x, du[a]), i_mul(y, dv[a])));
+        b.e[a] = i_from_bits(r[2 * a], r[2 * a + 1]);
+        b.d[a] = i_from_bits(r[6 + 2 * a], r[6 + 2 * a + 1]);
     }
     let eps = scene.tol.x;
     let max_steps = scene.ints.y;
@@ -146,7 +114,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                     break;
                 }
             }
-            if ns == MAX_LEVEL || hi - lo <= eps {
+            if ns == MAX_LEVEL || hi - lo <= max(eps, scene.tol.y * lo) {
                 out = vec4<u32>(2u, bitcast<u32>(lo), bitcast<u32>(hi), steps);
                 // Look-ahead (as the CPU's beams): every ray is root-free before `lo`, so a
                 // sign change of g between `lo` and a point `b` a few widths further, with g
