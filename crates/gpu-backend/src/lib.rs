@@ -36,6 +36,7 @@ mod device;
 mod dispatch;
 mod error;
 pub mod library;
+pub mod render;
 pub mod surface;
 
 pub use device::Gpu;

@@ -59,6 +59,9 @@ struct Args {
     /// beam-all:n, beam-quadtree:n, minkowski:stochastic:N or minkowski:beam:n.
     #[arg(long)]
     shadows: Option<ShadowSpec>,
+    /// Where the searches run: cpu (the reliable CPU renderer) or gpu (wgpu compute).
+    #[arg(long, value_parser = ["cpu", "gpu"], default_value = "cpu")]
+    backend: String,
     /// Write the soft-shadow classification image (proven lit green, proven umbra blue,
     /// penumbra orange).
     #[arg(long)]
@@ -213,12 +216,22 @@ fn run(args: Args) -> Result<(), String> {
         scene.lights.len(),
         rayon::current_num_threads()
     );
-    print!("{}", beam_trace::Plan::for_scene(&scene));
     let bar = Bar {
         bar: Mutex::new(None),
         quiet: args.quiet,
     };
-    let out = render(&scene, &bar).map_err(|e| e.to_string())?;
+    let out = if args.backend == "gpu" {
+        let gpu = gpu_backend::Gpu::new().map_err(|e| e.to_string())?;
+        println!("GPU adapter: {}", gpu.name());
+        println!(
+            "plan: every beam and ray on the GPU ({}); normals and shading on the CPU",
+            gpu_backend::render::GPU_PASSES.join(", ")
+        );
+        gpu_backend::render::render(&gpu, &scene, &bar).map_err(|e| e.to_string())?
+    } else {
+        print!("{}", beam_trace::Plan::for_scene(&scene));
+        render(&scene, &bar).map_err(|e| e.to_string())?
+    };
     out.image.write_png(&args.out).map_err(|e| e.to_string())?;
     println!("{}", out.stats);
     println!("wrote {}", args.out.display());

@@ -13,6 +13,8 @@ use rayon::prelude::*;
 
 mod soft_shadows;
 
+pub use soft_shadows::shadow_class_image;
+
 use crate::aa;
 use crate::beam::{BoxClass, Extent, evaluate_box};
 use crate::camera::Camera;
@@ -274,7 +276,7 @@ impl Tracer<'_> {
 /// The parameter of the shading point of a hit with enclosure `t`: the end on the origin's
 /// side of a floating-point sign change of `g` inside `t`, narrowed by bisection on point
 /// values; the midpoint where `g` shows no sign change (a tangent, a possible root).
-fn shading_parameter(
+pub fn shading_parameter(
     eval: &mut crate::ray::BeamEval,
     ray: &Ray,
     t: Interval<f64>,
@@ -318,7 +320,7 @@ fn shading_parameter(
 /// (`epsilon` times the segment's length) by a wide margin, or the search finds the surface
 /// the segment leaves as a possible root (shadow acne); occluders thinner than it at the
 /// very start of a segment are not seen.
-const SHADOW_OFFSET: f64 = 1e-4;
+pub const SHADOW_OFFSET: f64 = 1e-4;
 
 /// Work counters of a pass, summed over pieces.
 #[derive(Copy, Clone, Debug, Default)]
@@ -884,17 +886,23 @@ fn primary_pixel(
     }
 }
 
+/// The colour of a beam class in classification images: proven miss blue, proven hit red,
+/// undecided yellow.
+pub fn box_class_color(class: &BoxClass) -> [f32; 3] {
+    match class {
+        BoxClass::Miss => [0.1, 0.25, 0.8],
+        BoxClass::Hit { .. } => [0.85, 0.15, 0.1],
+        BoxClass::Undecided { .. } => [0.95, 0.85, 0.1],
+    }
+}
+
 fn classification_image(w: u32, h: u32, classes: &[Option<(BoxClass, bool)>]) -> Image {
     let pixels = classes
         .iter()
         .map(|c| match c {
             None => [0.5, 0.5, 0.5],
             Some((class, edge)) => {
-                let base = match class {
-                    BoxClass::Miss => [0.1, 0.25, 0.8],
-                    BoxClass::Hit { .. } => [0.85, 0.15, 0.1],
-                    BoxClass::Undecided { .. } => [0.95, 0.85, 0.1],
-                };
+                let base = box_class_color(class);
                 if *edge { base.map(|v| v * 0.6) } else { base }
             }
         })
@@ -906,7 +914,9 @@ fn classification_image(w: u32, h: u32, classes: &[Option<(BoxClass, bool)>]) ->
     }
 }
 
-fn cost_image(w: u32, h: u32, cost: &[f32]) -> Image {
+/// A heat map of per-pixel costs (logarithmic, blue cheap to red expensive; black where the
+/// cost is zero).
+pub fn cost_image(w: u32, h: u32, cost: &[f32]) -> Image {
     let max = cost.iter().copied().fold(0f32, f32::max).max(1e-9);
     let min = cost
         .iter()

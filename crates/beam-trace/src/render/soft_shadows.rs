@@ -356,7 +356,7 @@ fn stats(
 /// The shadow classification image (the soft-shadow paper's Fig. 7): proven lit (green),
 /// proven umbra (blue), penumbra (orange), facing away from the light (dark blue-grey), no
 /// shaded surface (dark grey).
-pub(crate) fn shadow_class_image(w: u32, h: u32, classes: &[Option<ShadowClass>]) -> Image {
+pub fn shadow_class_image(w: u32, h: u32, classes: &[Option<ShadowClass>]) -> Image {
     let pixels = classes
         .iter()
         .map(|c| match c {
