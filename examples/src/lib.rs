@@ -4,6 +4,9 @@
 //!   comparisons of the `root-finders` example and the benchmarks).
 //! * [`render2d`]: the quadtree interval renderer of planar implicit regions behind the
 //!   `render2d` example (also timed by the benchmarks).
+//! * [`soft_scene`]: catalog surfaces under a square area light (the soft-shadow paper's
+//!   set-up).
 
 pub mod catalog_view;
 pub mod render2d;
+pub mod soft_scene;

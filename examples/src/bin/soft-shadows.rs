@@ -22,11 +22,10 @@ use std::fmt::Write as _;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-use beam_trace::scene::AreaLight;
-use beam_trace::shadow::{Patch, ShadowSpec};
+use beam_trace::shadow::ShadowSpec;
 use beam_trace::{Light, NoProgress, RenderOutput, Scene, render};
 use clap::{Parser, Subcommand};
-use glam::DVec3;
+use examples::soft_scene::{catalog_with_area_light, square_light};
 
 /// Soft-shadow experiments of the beam and Minkowski papers.
 #[derive(Parser, Debug)]
@@ -101,29 +100,6 @@ const PAPER_TABLE1: [PaperRow; 4] = [
     ),
 ];
 
-/// A catalog surface at `size × size`, its automatic point light replaced by an
-/// axis-aligned horizontal square light of area `fraction` of the view at the surface.
-fn catalog_scene(name: &str, size: u32, fraction: f64) -> Result<Scene, String> {
-    let mut scene = Scene::catalog(name, size, size).map_err(|e| e.to_string())?;
-    let position = scene
-        .lights
-        .iter()
-        .find_map(Light::as_point)
-        .ok_or("the catalog scene has no light")?
-        .position;
-    let cam = &scene.camera;
-    let (w, h) = cam.view_size_at(cam.eye().distance(cam.look_at()));
-    scene.lights = vec![square_light(position, (fraction * w * h).sqrt())];
-    Ok(scene)
-}
-
-fn square_light(center: DVec3, side: f64) -> Light {
-    Light::Area(AreaLight {
-        patch: Patch::square(center, side, 1),
-        color: [1.0; 3],
-    })
-}
-
 fn render_with(scene: &Scene, method: ShadowSpec) -> Result<RenderOutput, String> {
     let mut s = scene.clone();
     s.settings.shadow_method = method;
@@ -158,7 +134,7 @@ fn table1(size: u32, sub: u32, fraction: f64) -> Result<String, String> {
         "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for name in SURFACES {
-        let scene = catalog_scene(name, size, fraction)?;
+        let scene = catalog_with_area_light(name, size, fraction)?;
         let a = render_with(&scene, beam("beam")?)?;
         let b = render_with(&scene, beam("beam-all")?)?;
         let q = render_with(&scene, beam("beam-quadtree")?)?;
@@ -211,7 +187,7 @@ fn penumbra(size: u32, samples: u32) -> Result<String, String> {
     let _ = writeln!(md, "|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     let mut scenes: Vec<(String, Scene)> = Vec::new();
     for name in SURFACES {
-        scenes.push((name.to_string(), catalog_scene(name, size, 0.1)?));
+        scenes.push((name.to_string(), catalog_with_area_light(name, size, 0.1)?));
     }
     let file = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/soft-shadows.toml");
     let mut ss = Scene::load(std::path::Path::new(file)).map_err(|e| e.to_string())?;
