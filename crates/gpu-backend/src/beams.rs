@@ -16,7 +16,7 @@ use implicit_expr::{BinaryOp, Tape, UnaryOp, wgsl};
 use interval_core::Interval;
 
 use crate::device::Gpu;
-use crate::dispatch::{Kernel, MAX_ELEMENTS};
+use crate::dispatch::{Kernel, max_elements};
 use crate::error::GpuError;
 use crate::library::INTERVAL_LIBRARY;
 
@@ -162,7 +162,7 @@ impl BeamKernel {
     ) -> Result<Vec<GpuBeam>, GpuError> {
         let b = self.bounds.map(|i| wgsl::enclose_f32(i.inf(), i.sup()));
         let mut out = Vec::with_capacity(queries.len());
-        for chunk in queries.chunks(MAX_ELEMENTS) {
+        for chunk in queries.chunks(max_elements(gpu, std::mem::size_of::<[u32; 16]>())) {
             let params = SceneParams {
                 bounds: [[b[0].0, b[1].0, b[2].0, 0.0], [b[0].1, b[1].1, b[2].1, 0.0]],
                 tol: [settings.epsilon, settings.rel_epsilon, 0.0, 0.0],

@@ -19,7 +19,15 @@ pub(crate) struct Kernel {
 pub(crate) const WORKGROUP: u32 = 64;
 
 /// Elements per dispatch: at most 65 535 workgroups along one dimension.
-pub(crate) const MAX_ELEMENTS: usize = 65_535 * WORKGROUP as usize;
+const MAX_DISPATCH: usize = 65_535 * WORKGROUP as usize;
+
+/// The most elements of `bytes_per_element` (the larger of an input and an output element)
+/// one dispatch of `gpu` can take: the dispatch limit and the adapter's largest storage
+/// binding.
+pub(crate) fn max_elements(gpu: &Gpu, bytes_per_element: usize) -> usize {
+    let binding = gpu.device.limits().max_storage_buffer_binding_size as usize;
+    MAX_DISPATCH.min(binding / bytes_per_element.max(1)).max(1)
+}
 
 impl Kernel {
     /// Compiles `source` (entry point `main`) with the pipeline constants `constants`.
@@ -71,9 +79,10 @@ impl Kernel {
         if count == 0 {
             return Ok(Vec::new());
         }
-        if count > MAX_ELEMENTS {
+        let most = max_elements(gpu, out_size.max(input.len() / count));
+        if count > most {
             return Err(GpuError::TooLarge(format!(
-                "{}: {count} elements in one dispatch, at most {MAX_ELEMENTS}",
+                "{}: {count} elements in one dispatch, at most {most}",
                 self.label
             )));
         }

@@ -26,10 +26,11 @@
 //! # Ok::<(), gpu_backend::GpuError>(())
 //! ```
 //!
-//! Status: the device, the whole library (every function implicit-expr's WGSL output calls:
-//! arithmetic, powers, `sqrt`, `exp`, `ln`, `log10`, trigonometric and inverse functions,
-//! `pow`, rounding, `not` and the slopes) and its soundness tests. The render kernels and the
-//! `--backend gpu` path are not written yet.
+//! * [`beams::BeamKernel`]: every beam and ray search of the renderer (primary beams, rays,
+//!   shadow segments, shadow beams and sub-beams) with the counter-based non-recursive
+//!   bisection and the rejection and inclusion tests.
+//! * [`render::render`]: the GPU render path (`render --backend gpu`), with the CPU
+//!   renderer's plan, output types and per-pass table; shading runs on the CPU.
 
 pub mod beams;
 mod device;

@@ -12,7 +12,7 @@
 use bytemuck::{Pod, Zeroable};
 
 use crate::device::Gpu;
-use crate::dispatch::{Kernel, MAX_ELEMENTS};
+use crate::dispatch::{Kernel, max_elements};
 use crate::error::GpuError;
 
 /// The WGSL source of the interval library: the representation, the arithmetic and the
@@ -228,7 +228,7 @@ impl OpRunner {
         inputs: &[OpInput],
     ) -> Result<Vec<[f32; 2]>, GpuError> {
         let mut out = Vec::with_capacity(inputs.len());
-        for chunk in inputs.chunks(MAX_ELEMENTS) {
+        for chunk in inputs.chunks(max_elements(gpu, std::mem::size_of::<OpInput>())) {
             let params = Params {
                 op: op.index(),
                 count: chunk.len() as u32,

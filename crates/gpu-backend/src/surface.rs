@@ -6,7 +6,7 @@ use implicit_expr::{Tape, wgsl};
 use interval_core::Interval;
 
 use crate::device::Gpu;
-use crate::dispatch::{Kernel, MAX_ELEMENTS};
+use crate::dispatch::{Kernel, max_elements};
 use crate::error::GpuError;
 use crate::library::{BIG, INTERVAL_LIBRARY};
 
@@ -55,7 +55,7 @@ impl SurfaceKernel {
     /// [`GpuError`] if the GPU rejects the work or the results cannot be read back.
     pub fn eval(&self, gpu: &Gpu, boxes: &[IBox]) -> Result<Vec<Interval<f64>>, GpuError> {
         let mut out = Vec::with_capacity(boxes.len());
-        for chunk in boxes.chunks(MAX_ELEMENTS) {
+        for chunk in boxes.chunks(max_elements(gpu, std::mem::size_of::<[u32; 6]>())) {
             let input: Vec<[u32; 6]> = chunk.iter().map(box_bits).collect();
             let params = Params {
                 count: chunk.len() as u32,
