@@ -30,7 +30,8 @@
 //!   shadow segments, shadow beams and sub-beams) with the counter-based non-recursive
 //!   bisection and the rejection and inclusion tests.
 //! * [`render::render`]: the GPU render path (`render --backend gpu`), with the CPU
-//!   renderer's plan, output types and per-pass table; shading runs on the CPU.
+//!   renderer's plan, output types and per-pass table; Phong on the GPU
+//!   ([`shading::ShadingKernel`]), shading points and normals on the CPU.
 
 pub mod beams;
 mod device;
@@ -38,6 +39,7 @@ mod dispatch;
 mod error;
 pub mod library;
 pub mod render;
+pub mod shading;
 pub mod surface;
 
 pub use device::Gpu;

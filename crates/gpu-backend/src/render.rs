@@ -1,6 +1,6 @@
 //! The GPU render path: the CPU renderer's plan and output, with every beam and ray search
-//! on the GPU ([`BeamKernel`]) and the light CPU work (shading points, normals, Phong) in
-//! parallel on the CPU.
+//! on the GPU ([`BeamKernel`]) and Phong on the GPU, and the light CPU work (shading points,
+//! normals) in parallel on the CPU.
 //!
 //! * **Primary visibility**: one beam per pixel. A hit is shaded at the pixel's central ray
 //!   inside the proven section; a miss is background. An undecided pixel gets its central
@@ -32,6 +32,7 @@ use rayon::prelude::*;
 use crate::beams::{BeamKernel, BeamQuery, BeamSettings, GpuBeam, GpuClass};
 use crate::device::Gpu;
 use crate::error::GpuError;
+use crate::shading::{MAX_LIGHTS, ShadingInput, ShadingKernel, ShadingLight};
 
 /// The passes of the GPU path, in the order they run.
 pub const GPU_PASSES: [&str; 8] = [
@@ -358,44 +359,85 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
         passes.push(PassStats::skipped("soft-shadows"));
     }
 
-    // Shading on the CPU.
+    // Phong on the GPU (on the CPU beyond the kernel's light count), then each pixel's
+    // weighted average.
     let t = Instant::now();
     let lit = plan.runs("shading");
     let leaves = geometry.leaves();
-    let pixels: Vec<[f32; 3]> = samples
-        .par_iter()
-        .zip(&vis)
-        .map(|(px, v)| {
-            let mut acc = [0f32; 3];
-            let mut wsum = 0f32;
-            for (si, s) in px.iter().enumerate() {
-                let c = match s.hit {
-                    None => scene.background,
-                    Some(hit) => {
-                        let m = &leaves[hit.leaf as usize].material;
-                        if lit {
-                            let incoming: Vec<Incoming> = scene
-                                .lights
-                                .iter()
-                                .enumerate()
-                                .map(|(li, l)| Incoming {
-                                    dir: (l.center() - hit.point).normalize_or_zero(),
-                                    color: l.color().map(|c| c * v[si * nl + li]),
-                                })
-                                .collect();
-                            phong(m, scene.ambient, hit.normal, hit.to_eye, &incoming)
-                        } else {
-                            m.color
-                        }
-                    }
-                };
-                for k in 0..3 {
-                    acc[k] += s.weight * c[k];
+    let colors: Vec<[f32; 3]> = if lit {
+        let inputs: Vec<ShadingInput> = hits
+            .iter()
+            .map(|(p, s, h)| {
+                let mut fractions = [0f32; MAX_LIGHTS];
+                for (li, f) in fractions.iter_mut().enumerate().take(nl) {
+                    *f = vis[*p][s * nl + li];
                 }
-                wsum += s.weight;
-            }
-            if wsum > 0.0 {
-                acc.map(|a| a / wsum)
+                ShadingInput {
+                    point: h.point,
+                    normal: h.normal,
+                    to_eye: h.to_eye,
+                    material: leaves[h.leaf as usize].material,
+                    fractions,
+                }
+            })
+            .collect();
+        if nl <= MAX_LIGHTS {
+            let lights: Vec<ShadingLight> = scene
+                .lights
+                .iter()
+                .map(|l| ShadingLight {
+                    position: l.center(),
+                    color: l.color(),
+                })
+                .collect();
+            let shader = ShadingKernel::new(gpu)?;
+            timed(&mut gpu_time, || {
+                shader.shade(gpu, &lights, scene.ambient, &inputs)
+            })?
+        } else {
+            hits.par_iter()
+                .map(|(p, s, h)| {
+                    let incoming: Vec<Incoming> = scene
+                        .lights
+                        .iter()
+                        .enumerate()
+                        .map(|(li, l)| Incoming {
+                            dir: (l.center() - h.point).normalize_or_zero(),
+                            color: l.color().map(|c| c * vis[*p][s * nl + li]),
+                        })
+                        .collect();
+                    phong(
+                        &leaves[h.leaf as usize].material,
+                        scene.ambient,
+                        h.normal,
+                        h.to_eye,
+                        &incoming,
+                    )
+                })
+                .collect()
+        }
+    } else {
+        hits.iter()
+            .map(|(_, _, h)| leaves[h.leaf as usize].material.color)
+            .collect()
+    };
+    let mut acc = vec![([0f32; 3], 0f32); samples.len()];
+    for ((p, s, _), c) in hits.iter().zip(&colors) {
+        let wgt = samples[*p][*s].weight;
+        for (a, v) in acc[*p].0.iter_mut().zip(c) {
+            *a += wgt * v;
+        }
+        acc[*p].1 += wgt;
+    }
+    let pixels: Vec<[f32; 3]> = samples
+        .iter()
+        .zip(&acc)
+        .map(|(px, (sum, hit_weight))| {
+            // Background for the samples that see none.
+            let total: f32 = px.iter().map(|s| s.weight).sum();
+            let bg = total - hit_weight;
+            if total > 0.0 {
+                std::array::from_fn(|k| (sum[k] + bg * scene.background[k]) / total)
             } else {
                 scene.background
             }
