@@ -221,6 +221,13 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
     let nl = scene.lights.len();
     let mut vis: Vec<Vec<f32>> = samples.iter().map(|s| vec![1.0; s.len() * nl]).collect();
     let offset = SHADOW_OFFSET * diag;
+    // A segment is a single ray: its sections shrink to the root-finder scale; shadow
+    // beams stop where a section is small against their cross-section (1/16 of t).
+    let segment_settings = BeamSettings {
+        epsilon: (1e-3 * offset) as f32,
+        rel_epsilon: 1e-6,
+        ..BeamSettings::default()
+    };
     let shadow_settings = BeamSettings {
         epsilon: (1e-3 * offset) as f32,
         rel_epsilon: 1.0 / 16.0,
@@ -261,7 +268,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
                 })
                 .collect();
             let results = timed(&mut gpu_time, || {
-                kernel.classify(gpu, &queries, &shadow_settings)
+                kernel.classify(gpu, &queries, &segment_settings)
             })?;
             // Facing away from the light: no direct light anyway.
             for (p, s, h) in &hits {

@@ -224,7 +224,7 @@ fn run(args: Args) -> Result<(), String> {
         let gpu = gpu_backend::Gpu::new().map_err(|e| e.to_string())?;
         println!("GPU adapter: {}", gpu.name());
         println!(
-            "plan: every beam and ray on the GPU ({}); normals and shading on the CPU",
+            "plan: every beam and ray and Phong on the GPU ({}); shading points and normals on the CPU",
             gpu_backend::render::GPU_PASSES.join(", ")
         );
         gpu_backend::render::render(&gpu, &scene, &bar).map_err(|e| e.to_string())?
