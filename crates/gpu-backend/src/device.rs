@@ -62,6 +62,26 @@ impl Gpu {
         })
     }
 
+    /// The adapter for a test suite: `Some` when there is one. Without one, the reason is
+    /// printed and the tests are to be skipped (`None`), except where the `CI` environment
+    /// variable is set, where a missing adapter is a failure (a panic) rather than a silent
+    /// skip.
+    pub fn for_tests() -> Option<Gpu> {
+        match Gpu::new() {
+            Ok(g) => {
+                eprintln!("adapter: {}", g.name());
+                Some(g)
+            }
+            Err(e) if std::env::var_os("CI").is_some() => {
+                panic!("CI must run the GPU tests, but: {e}")
+            }
+            Err(e) => {
+                eprintln!("skipping the GPU tests: {e}");
+                None
+            }
+        }
+    }
+
     /// The adapter's name, driver and backend, e.g.
     /// `llvmpipe (LLVM 15.0.6, 256 bits) (Vulkan, Cpu, Mesa 22.3.6)`.
     pub fn name(&self) -> String {

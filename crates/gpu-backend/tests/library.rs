@@ -16,23 +16,6 @@ use interval_core::Interval;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-/// The adapter, or `None` (test skipped) outside CI when there is none.
-fn gpu() -> Option<Gpu> {
-    match Gpu::new() {
-        Ok(g) => {
-            eprintln!("adapter: {}", g.name());
-            Some(g)
-        }
-        Err(e) if std::env::var_os("CI").is_some() => {
-            panic!("CI must run the GPU tests, but: {e}")
-        }
-        Err(e) => {
-            eprintln!("skipping the GPU tests: {e}");
-            None
-        }
-    }
-}
-
 const TINY: f32 = f32::MIN_POSITIVE;
 
 /// Edge values: signed zeros, subnormals, the smallest normals, powers of two around the
@@ -273,7 +256,9 @@ fn violation(op: LibraryOp, v: &OpInput, [lo, hi]: [f32; 2]) -> Option<String> {
 }
 
 fn check_library(flush: bool) -> Result<(), GpuError> {
-    let Some(gpu) = gpu() else { return Ok(()) };
+    let Some(gpu) = Gpu::for_tests() else {
+        return Ok(());
+    };
     let runner = OpRunner::new(&gpu, flush)?;
     let mut failures = Vec::new();
     for (k, op) in LibraryOp::ALL.into_iter().enumerate() {
@@ -311,7 +296,9 @@ fn every_operation_encloses_the_exact_range_when_subnormals_are_flushed() -> Res
 /// its WGSL error bound allows, no wider.
 #[test]
 fn arithmetic_is_tight_on_moderate_inputs() -> Result<(), GpuError> {
-    let Some(gpu) = gpu() else { return Ok(()) };
+    let Some(gpu) = Gpu::for_tests() else {
+        return Ok(());
+    };
     let runner = OpRunner::new(&gpu, false)?;
     let p = |x: f32| [x.to_bits(), x.to_bits()];
     let a = p(1.0 / 3.0);

@@ -11,22 +11,11 @@ use gpu_backend::Gpu;
 use gpu_backend::beams::{BeamKernel, BeamQuery, BeamSettings, GpuClass};
 use interval_core::Interval;
 
-fn gpu() -> Option<Gpu> {
-    match Gpu::new() {
-        Ok(g) => Some(g),
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI must run the GPU tests: {e}"),
-        Err(e) => {
-            eprintln!("skipping the GPU tests: {e}");
-            None
-        }
-    }
-}
-
 const SIZE: u32 = 40;
 
 #[test]
 fn gpu_classes_never_contradict_cpu_roots() {
-    let Some(gpu) = gpu() else { return };
+    let Some(gpu) = Gpu::for_tests() else { return };
     let finder = RootMethod::NewtonAlefeldHansen.finder();
     let settings = RootSettings::default();
     let mut failures = Vec::new();

@@ -9,17 +9,6 @@ use beam_trace::shadow::ShadowClass;
 use beam_trace::{NoProgress, Scene, render};
 use gpu_backend::Gpu;
 
-fn gpu() -> Option<Gpu> {
-    match Gpu::new() {
-        Ok(g) => Some(g),
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI must run the GPU tests: {e}"),
-        Err(e) => {
-            eprintln!("skipping the GPU tests: {e}");
-            None
-        }
-    }
-}
-
 fn scene(method: &str) -> Scene {
     let text = format!(
         r#"
@@ -61,7 +50,7 @@ shadow_method = "{method}"
 
 #[test]
 fn gpu_render_agrees_with_the_cpu() {
-    let Some(gpu) = gpu() else { return };
+    let Some(gpu) = Gpu::for_tests() else { return };
     let s = scene("beam:4");
     let g = gpu_backend::render::render(&gpu, &s, &NoProgress).expect("the GPU renders");
     let c = render(&s, &NoProgress).expect("the CPU renders");
@@ -86,7 +75,7 @@ fn gpu_render_agrees_with_the_cpu() {
 
 #[test]
 fn gpu_shadow_proofs_agree_with_many_cpu_samples() {
-    let Some(gpu) = gpu() else { return };
+    let Some(gpu) = Gpu::for_tests() else { return };
     let g =
         gpu_backend::render::render(&gpu, &scene("beam:4"), &NoProgress).expect("the GPU renders");
     // One ray per pixel through its centre, the ray the GPU shades too.
@@ -126,7 +115,7 @@ fn gpu_shadow_proofs_agree_with_many_cpu_samples() {
 
 #[test]
 fn gpu_adaptive_anti_aliasing_splits_only_border_pixels() {
-    let Some(gpu) = gpu() else { return };
+    let Some(gpu) = Gpu::for_tests() else { return };
     let mut s = scene("beam:2");
     s.settings.aa = AaMode::Iaa {
         max_depth: AaMode::IAA_DEPTH,

@@ -8,17 +8,6 @@ use gpu_backend::shading::{MAX_LIGHTS, ShadingInput, ShadingKernel, ShadingLight
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-fn gpu() -> Option<Gpu> {
-    match Gpu::new() {
-        Ok(g) => Some(g),
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI must run the GPU tests: {e}"),
-        Err(e) => {
-            eprintln!("skipping the GPU tests: {e}");
-            None
-        }
-    }
-}
-
 fn unit(rng: &mut StdRng) -> DVec3 {
     DVec3::new(
         rng.gen_range(-1.0..1.0),
@@ -30,7 +19,7 @@ fn unit(rng: &mut StdRng) -> DVec3 {
 
 #[test]
 fn gpu_phong_matches_the_cpu() {
-    let Some(gpu) = gpu() else { return };
+    let Some(gpu) = Gpu::for_tests() else { return };
     let kernel = ShadingKernel::new(&gpu).expect("the kernel compiles");
     let mut rng = StdRng::seed_from_u64(5);
     let lights: Vec<ShadingLight> = (0..3)

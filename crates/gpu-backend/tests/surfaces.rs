@@ -12,17 +12,6 @@ use interval_core::Interval;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
-fn gpu() -> Option<Gpu> {
-    match Gpu::new() {
-        Ok(g) => Some(g),
-        Err(e) if std::env::var_os("CI").is_some() => panic!("CI must run the GPU tests: {e}"),
-        Err(e) => {
-            eprintln!("skipping the GPU tests: {e}");
-            None
-        }
-    }
-}
-
 /// A random box inside `bounds`, of a random size from `10^-5` of the bounds to all of them.
 fn random_box(rng: &mut StdRng, bounds: &IBox) -> IBox {
     let scale = 10f64.powf(rng.gen_range(-5.0..0.0));
@@ -58,7 +47,7 @@ fn points(rng: &mut StdRng, b: &IBox) -> Vec<[f64; 3]> {
 
 #[test]
 fn generated_surfaces_enclose_their_point_values() {
-    let Some(gpu) = gpu() else { return };
+    let Some(gpu) = Gpu::for_tests() else { return };
     let mut failures = Vec::new();
     for (s, name) in catalog::names().enumerate() {
         let scene = Scene::catalog(name, 8, 8).expect("a catalog scene");
