@@ -70,6 +70,10 @@ pub struct BeamSettings {
     /// Whether to try the inclusion test (proving hits); it runs only when the surface is
     /// total and continuous.
     pub inclusion: bool,
+    /// Whether the inclusion test runs on final sections only (and their look-ahead), so
+    /// that a proven section is narrow: for a ray whose first root is to be located, not
+    /// only proven.
+    pub narrow_hits: bool,
 }
 
 impl Default for BeamSettings {
@@ -79,6 +83,7 @@ impl Default for BeamSettings {
             rel_epsilon: 0.0,
             max_steps: 4096,
             inclusion: true,
+            narrow_hits: false,
         }
     }
 }
@@ -170,7 +175,7 @@ impl BeamKernel {
                     chunk.len() as u32,
                     settings.max_steps,
                     u32::from(settings.inclusion && self.continuous),
-                    0,
+                    u32::from(settings.narrow_hits),
                 ],
             };
             let input: Vec<[u32; 16]> = chunk.iter().map(encode).collect();

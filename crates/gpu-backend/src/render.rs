@@ -2,8 +2,10 @@
 //! on the GPU ([`BeamKernel`]) and Phong on the GPU, and the light CPU work (shading points,
 //! normals) in parallel on the CPU.
 //!
-//! * **Primary visibility**: one beam per pixel. A hit is shaded at the pixel's central ray
-//!   inside the proven section; a miss is background. An undecided pixel gets its central
+//! * **Primary visibility**: the screen box structure (the default primary mode: tiles of
+//!   16 × 16 pixels split level by level where undecided, one batch per level), or one beam
+//!   per pixel (`primary = "per-pixel"` and anti-aliasing). A hit is shaded at the pixel's
+//!   central ray inside the proven section; a miss is background. An undecided pixel gets its central
 //!   ray searched on the GPU, or, with anti-aliasing asked for (`aa = "iaa"`), the adaptive
 //!   scheme of thesis 7.3.5: the pixel is split into 3 × 3 sub-beams only where its beam
 //!   crosses a border, and the parts are averaged.
@@ -19,7 +21,8 @@ use std::time::{Duration, Instant};
 use beam_trace::beam::BoxClass;
 use beam_trace::ray::{Beam, IBox, Ray, ival, point_box};
 use beam_trace::render::{
-    Hit, SHADOW_OFFSET, Sample, box_class_color, cost_image, shading_parameter, shadow_class_image,
+    Hit, SHADOW_OFFSET, Sample, box_class_color, child_window, cost_image, shading_parameter,
+    shadow_class_image,
 };
 use beam_trace::shading::{Incoming, phong};
 use beam_trace::shadow::{Fine, Patch, ShadowClass, ShadowSpec};
@@ -35,8 +38,9 @@ use crate::error::GpuError;
 use crate::shading::{MAX_LIGHTS, ShadingInput, ShadingKernel, ShadingLight};
 
 /// The passes of the GPU path, in the order they run.
-pub const GPU_PASSES: [&str; 8] = [
+pub const GPU_PASSES: [&str; 9] = [
     "gpu-compile",
+    "screen-boxes",
     "primary-beams",
     "primary-rays",
     "normals",
@@ -80,23 +84,51 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
         epsilon: (plan.beam.epsilon) as f32,
         ..BeamSettings::default()
     };
-    let t = Instant::now();
-    progress.begin("primary-beams", 1);
     let pixel_rects: Vec<[f64; 4]> = (0..w * h)
         .map(|i| {
             let (x, y) = (f64::from(i % w), f64::from(i / w));
             [x, y, x + 1.0, y + 1.0]
         })
         .collect();
-    let queries: Vec<BeamQuery> = pixel_rects
-        .par_iter()
-        .map(|r| primary_query(scene, &bounds, r))
-        .collect();
-    let pixel_classes = timed(&mut gpu_time, || {
-        kernel.classify(gpu, &queries, &primary_settings)
-    })?;
-    progress.end();
-    passes.push(beam_stats("primary-beams", t.elapsed(), &pixel_classes));
+    let t = Instant::now();
+    let pixel_classes = if let beam_trace::plan::Primary::ScreenBoxes { .. } = plan.primary {
+        progress.begin("screen-boxes", 1);
+        let (classes, beams) = timed(&mut gpu_time, || {
+            screen_boxes(gpu, &kernel, scene, &bounds, &primary_settings)
+        })?;
+        progress.end();
+        let count =
+            |f: fn(&GpuClass) -> bool| classes.iter().filter(|b| f(&b.class)).count() as u64;
+        passes.push(stats(
+            "screen-boxes",
+            t.elapsed(),
+            &[
+                ("beams", beams.len() as u64),
+                ("miss_pixels", count(|c| matches!(c, GpuClass::Miss))),
+                ("hit_pixels", count(|c| matches!(c, GpuClass::Hit { .. }))),
+                (
+                    "undecided_pixels",
+                    count(|c| matches!(c, GpuClass::Undecided { .. })),
+                ),
+                ("steps", steps(&beams)),
+            ],
+        ));
+        passes.push(PassStats::skipped("primary-beams"));
+        classes
+    } else {
+        passes.push(PassStats::skipped("screen-boxes"));
+        progress.begin("primary-beams", 1);
+        let queries: Vec<BeamQuery> = pixel_rects
+            .par_iter()
+            .map(|r| primary_query(scene, &bounds, r, None))
+            .collect();
+        let classes = timed(&mut gpu_time, || {
+            kernel.classify(gpu, &queries, &primary_settings)
+        })?;
+        progress.end();
+        passes.push(beam_stats("primary-beams", t.elapsed(), &classes));
+        classes
+    };
 
     // Undecided pixels: 3 × 3 sub-beams with anti-aliasing, else the central ray.
     let aa = matches!(plan.primary, beam_trace::plan::Primary::Iaa { .. });
@@ -115,7 +147,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
             .iter()
             .zip(&pixel_classes)
             .filter(|(_, c)| matches!(c.class, GpuClass::Undecided { .. }))
-            .flat_map(|(p, _)| p.iter().map(|r| primary_query(scene, &bounds, r)))
+            .flat_map(|(p, _)| p.iter().map(|r| primary_query(scene, &bounds, r, None)))
             .collect();
         let mut results = timed(&mut gpu_time, || {
             kernel.classify(gpu, &flat, &primary_settings)
@@ -132,21 +164,30 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
     } else {
         pixel_classes.iter().map(|c| vec![*c]).collect()
     };
-    // Central rays of the undecided parts, searched from where their beam stopped.
+    // Central rays of every part that may see a surface: searched inside the section of a
+    // hit (which holds every ray's first root, and maybe later ones: the ray's own search
+    // finds its first), and from where an undecided beam stopped.
     let ray_settings = BeamSettings {
         epsilon: (1e-6 * diag) as f32,
         rel_epsilon: 1e-6,
+        narrow_hits: true,
         ..BeamSettings::default()
     };
     let mut ray_jobs = Vec::new();
     let mut ray_queries = Vec::new();
     for (pi, (p, cs)) in parts.iter().zip(&part_classes).enumerate() {
         for (k, (r, c)) in p.iter().zip(cs).enumerate() {
-            if let GpuClass::Undecided { t } = c.class {
+            let window = match c.class {
+                GpuClass::Miss => continue,
+                GpuClass::Hit { t } => t,
+                GpuClass::Undecided { t } => ival(t.inf().max(0.0), f64::MAX),
+            };
+            {
                 let ray = center_ray(scene, r);
-                let range = ray.beam().t_range(&bounds).map_or(Interval::EMPTY, |b| {
-                    b.intersection(ival(t.inf().max(0.0), f64::MAX))
-                });
+                let range = ray
+                    .beam()
+                    .t_range(&bounds)
+                    .map_or(Interval::EMPTY, |b| b.intersection(window));
                 ray_jobs.push((pi, k));
                 ray_queries.push(BeamQuery {
                     beam: ray.beam(),
@@ -645,13 +686,86 @@ fn center_ray(scene: &Scene, r: &[f64; 4]) -> Ray {
     scene.camera.ray(0.5 * (r[0] + r[2]), 0.5 * (r[1] + r[3]))
 }
 
-/// The beam through a rectangle of the image, and its range inside the bounds.
-fn primary_query(scene: &Scene, bounds: &IBox, r: &[f64; 4]) -> BeamQuery {
+/// The beam through a rectangle of the image, and its range inside the bounds and inside
+/// what a classified `parent` beam left open ([`child_window`]).
+fn primary_query(
+    scene: &Scene,
+    bounds: &IBox,
+    r: &[f64; 4],
+    parent: Option<&BoxClass>,
+) -> BeamQuery {
     let beam = scene.camera.beam(r[0], r[1], r[2], r[3]);
+    let window = child_window(parent).intersection(ival(0.0, f64::MAX));
     let t = beam
         .t_range(bounds)
-        .map_or(Interval::EMPTY, |t| t.intersection(ival(0.0, f64::MAX)));
+        .map_or(Interval::EMPTY, |t| t.intersection(window));
     BeamQuery { beam, t }
+}
+
+/// Side of the tiles the screen box structure starts from.
+const TILE: u32 = 16;
+
+/// The screen box structure (thesis 5.4) on the GPU, level by level: tiles of
+/// [`TILE`] pixels are classified in one batch; Miss and Hit boxes give their class to every
+/// pixel (a Hit box's section holds every pixel ray's first root); Undecided boxes are
+/// split in four for the next batch, searching only what their parent left open, down to
+/// single pixels. Returns each pixel's class and every beam traced.
+fn screen_boxes(
+    gpu: &Gpu,
+    kernel: &BeamKernel,
+    scene: &Scene,
+    bounds: &IBox,
+    settings: &BeamSettings,
+) -> Result<(Vec<GpuBeam>, Vec<GpuBeam>), GpuError> {
+    let (w, h) = (scene.camera.width(), scene.camera.height());
+    let mut pixels = vec![
+        GpuBeam {
+            class: GpuClass::Miss,
+            steps: 0,
+        };
+        (w * h) as usize
+    ];
+    let mut boxes: Vec<([u32; 4], Option<BoxClass>)> = Vec::new();
+    for y0 in (0..h).step_by(TILE as usize) {
+        for x0 in (0..w).step_by(TILE as usize) {
+            boxes.push(([x0, y0, (x0 + TILE).min(w), (y0 + TILE).min(h)], None));
+        }
+    }
+    let mut all = Vec::new();
+    while !boxes.is_empty() {
+        let queries: Vec<BeamQuery> = boxes
+            .par_iter()
+            .map(|(r, parent)| {
+                let rect = r.map(f64::from);
+                primary_query(scene, bounds, &rect, parent.as_ref())
+            })
+            .collect();
+        let results = kernel.classify(gpu, &queries, settings)?;
+        let mut next = Vec::new();
+        for ((r, _), res) in boxes.iter().zip(&results) {
+            let [x0, y0, x1, y1] = *r;
+            let single = x1 - x0 == 1 && y1 - y0 == 1;
+            if matches!(res.class, GpuClass::Undecided { .. }) && !single {
+                let (xm, ym) = ((x0 + x1).div_ceil(2), (y0 + y1).div_ceil(2));
+                for (a, b) in [(x0, xm), (xm, x1)] {
+                    for (c, d) in [(y0, ym), (ym, y1)] {
+                        if a < b && c < d {
+                            next.push(([a, c, b, d], Some(to_box_class(res.class))));
+                        }
+                    }
+                }
+            } else {
+                for y in y0..y1 {
+                    for x in x0..x1 {
+                        pixels[(y * w + x) as usize] = *res;
+                    }
+                }
+            }
+        }
+        all.extend(results);
+        boxes = next;
+    }
+    Ok((pixels, all))
 }
 
 /// A hit record on `ray` inside the section `t` (the shading point as the CPU places it).

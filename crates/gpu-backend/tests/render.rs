@@ -54,7 +54,7 @@ fn gpu_render_agrees_with_the_cpu() {
     let s = scene("beam:4");
     let g = gpu_backend::render::render(&gpu, &s, &NoProgress).expect("the GPU renders");
     let c = render(&s, &NoProgress).expect("the CPU renders");
-    for pass in ["primary-beams", "hard-shadows", "soft-shadows", "shading"] {
+    for pass in ["screen-boxes", "hard-shadows", "soft-shadows", "shading"] {
         assert!(
             g.stats.pass(pass).is_some_and(|p| p.ran),
             "{pass} did not run"
@@ -123,6 +123,7 @@ fn gpu_adaptive_anti_aliasing_splits_only_border_pixels() {
     };
     let g = gpu_backend::render::render(&gpu, &s, &NoProgress).expect("the GPU renders");
     let beams = g.stats.pass("primary-beams").unwrap();
+    assert!(!g.stats.pass("screen-boxes").unwrap().ran);
     let undecided = beams.counter("undecided");
     let rays = g.stats.pass("primary-rays").unwrap().counter("beams");
     assert!(

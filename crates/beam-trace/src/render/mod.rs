@@ -130,7 +130,7 @@ pub(crate) struct Tracer<'a> {
 /// subset of its rays, so the same holds for it. For an Undecided parent the window starts
 /// a few widths of its undecided range earlier (still in the rejected prefix), so that `g`
 /// has one strict sign at the window's start, which the inclusion test needs.
-pub(crate) fn child_window(parent: Option<&BoxClass>) -> Interval<f64> {
+pub fn child_window(parent: Option<&BoxClass>) -> Interval<f64> {
     match parent {
         None => forward(),
         Some(BoxClass::Hit { t_final }) => *t_final,

@@ -12,7 +12,7 @@ struct Scene {
     bounds_hi: vec4<f32>,
     // epsilon (width of a final section, absolute), relative epsilon (of t), unused x2
     tol: vec4<f32>,
-    // count, max_steps, inclusion (0/1), unused
+    // count, max_steps, inclusion (0/1), inclusion on final sections only (0/1)
     ints: vec4<u32>,
 }
 
@@ -96,6 +96,9 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
     let eps = scene.tol.x;
     let max_steps = scene.ints.y;
     let inclusion = scene.ints.z == 1u;
+    // A ray's search for its shading point: a proof on a wide section would not say where
+    // the first root is inside it, so only final sections (and their look-ahead) count.
+    let final_only = scene.ints.w == 1u;
     var ns = 0u;
     var k = 0u;
     var steps = 0u;
@@ -105,7 +108,8 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
         let t = Interval(lo, hi);
         steps += 1u;
         if may_vanish(g(b, t)) {
-            if inclusion && inside(b, lo) && inside(b, hi) {
+            let last = ns == MAX_LEVEL || hi - lo <= max(eps, scene.tol.y * lo);
+            if inclusion && (last || !final_only) && inside(b, lo) && inside(b, hi) {
                 let ga = g(b, pt(lo));
                 let gb = g(b, pt(hi));
                 if !i_is_empty(ga) && !i_is_empty(gb)
@@ -114,7 +118,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                     break;
                 }
             }
-            if ns == MAX_LEVEL || hi - lo <= max(eps, scene.tol.y * lo) {
+            if last {
                 out = vec4<u32>(2u, bitcast<u32>(lo), bitcast<u32>(hi), steps);
                 // Look-ahead (as the CPU's beams): every ray is root-free before `lo`, so a
                 // sign change of g between `lo` and a point `b` a few widths further, with g
