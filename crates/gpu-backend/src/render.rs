@@ -142,6 +142,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
             _ => vec![*r],
         })
         .collect();
+    let mut sub_beams_traced = 0;
     let part_classes: Vec<Vec<GpuBeam>> = if aa {
         let flat: Vec<BeamQuery> = parts
             .iter()
@@ -149,6 +150,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
             .filter(|(_, c)| matches!(c.class, GpuClass::Undecided { .. }))
             .flat_map(|(p, _)| p.iter().map(|r| primary_query(scene, &bounds, r, None)))
             .collect();
+        sub_beams_traced = flat.len();
         let mut results = timed(&mut gpu_time, || {
             kernel.classify(gpu, &flat, &primary_settings)
         })?
@@ -227,7 +229,11 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
         )
         .collect();
     progress.end();
-    passes.push(beam_stats("primary-rays", t.elapsed(), &ray_results));
+    let mut rays_pass = beam_stats("primary-rays", t.elapsed(), &ray_results);
+    rays_pass
+        .counters
+        .push(("aa_sub_beams".into(), sub_beams_traced as u64));
+    passes.push(rays_pass);
 
     // Normals on the CPU.
     let t = Instant::now();
