@@ -184,18 +184,16 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
                 GpuClass::Hit { t } => t,
                 GpuClass::Undecided { t } => ival(t.inf().max(0.0), f64::MAX),
             };
-            {
-                let ray = center_ray(scene, r);
-                let range = ray
-                    .beam()
-                    .t_range(&bounds)
-                    .map_or(Interval::EMPTY, |b| b.intersection(window));
-                ray_jobs.push((pi, k));
-                ray_queries.push(BeamQuery {
-                    beam: ray.beam(),
-                    t: range,
-                });
-            }
+            let ray = center_ray(scene, r);
+            let range = ray
+                .beam()
+                .t_range(&bounds)
+                .map_or(Interval::EMPTY, |b| b.intersection(window));
+            ray_jobs.push((pi, k));
+            ray_queries.push(BeamQuery {
+                beam: ray.beam(),
+                t: range,
+            });
         }
     }
     let ray_results = timed(&mut gpu_time, || {
