@@ -165,9 +165,14 @@ impl BeamKernel {
         queries: &[BeamQuery],
         settings: &BeamSettings,
     ) -> Result<Vec<GpuBeam>, GpuError> {
-        let b = self.bounds.map(|i| wgsl::enclose_f32(i.inf(), i.sup()));
+        // Inclusion proofs must place roots inside the bounds: round them inward.
+        let b = self.bounds.map(|i| inward_f32(i.inf(), i.sup()));
+        // Only bounded ranges can be cut into sections; the others are reported undecided
+        // (rejecting them whole would need the search the kernel does not run).
+        let bounded = |q: &BeamQuery| q.t.is_empty() || q.t.is_common_interval();
+        let searched: Vec<BeamQuery> = queries.iter().copied().filter(bounded).collect();
         let mut out = Vec::with_capacity(queries.len());
-        for chunk in queries.chunks(max_elements(gpu, std::mem::size_of::<[u32; 16]>())) {
+        for chunk in searched.chunks(max_elements(gpu, std::mem::size_of::<[u32; 16]>())) {
             let params = SceneParams {
                 bounds: [[b[0].0, b[1].0, b[2].0, 0.0], [b[0].1, b[1].1, b[2].1, 0.0]],
                 tol: [settings.epsilon, settings.rel_epsilon, 0.0, 0.0],
@@ -192,13 +197,55 @@ impl BeamKernel {
                     .map(decode),
             );
         }
-        Ok(out)
+        let mut results = out.into_iter();
+        Ok(queries
+            .iter()
+            .map(|q| {
+                if bounded(q) {
+                    results.next().expect("one result per searched query")
+                } else {
+                    GpuBeam {
+                        class: GpuClass::Undecided { t: q.t },
+                        steps: 0,
+                    }
+                }
+            })
+            .collect())
     }
 }
 
+/// `[lo, hi]` rounded inward to `f32` (finite bounds clamped to the `f32` range; a bound
+/// strictly inside the subnormal range goes to 0).
+fn inward_f32(lo: f64, hi: f64) -> (f32, f32) {
+    let max = f64::from(f32::MAX);
+    let (lo, hi) = (lo.clamp(-max, max), hi.clamp(-max, max));
+    let mut l = lo as f32;
+    if f64::from(l) < lo {
+        l = l.next_up();
+    }
+    let mut h = hi as f32;
+    if f64::from(h) > hi {
+        h = h.next_down();
+    }
+    let normal = |x: f32, inward_is_down: bool| {
+        if x != 0.0 && x.abs() < f32::MIN_POSITIVE {
+            if (x > 0.0) == inward_is_down {
+                0.0
+            } else if x > 0.0 {
+                f32::MIN_POSITIVE
+            } else {
+                -f32::MIN_POSITIVE
+            }
+        } else {
+            x
+        }
+    };
+    (normal(l, false), normal(h, true))
+}
+
 /// The kernel input of a query: the beam's boxes and its range, rounded outward to `f32`
-/// bit patterns; an empty or unbounded range is sent as `t1 < t0` (nothing to search, which
-/// the caller must not ask for an unbounded range).
+/// bit patterns; an empty range is sent as `t1 < t0` (nothing to search). Unbounded ranges
+/// never reach the kernel ([`BeamKernel::classify`] reports them undecided).
 fn encode(q: &BeamQuery) -> [u32; 16] {
     let mut out = [0u32; 16];
     for (k, axis) in q.beam.origin.iter().chain(&q.beam.dir).enumerate() {
@@ -207,7 +254,12 @@ fn encode(q: &BeamQuery) -> [u32; 16] {
         out[2 * k + 1] = hi.to_bits();
     }
     let (t0, t1) = match q.t.bounds() {
-        Some((lo, hi)) if lo.is_finite() && hi.is_finite() => wgsl::enclose_f32(lo, hi),
+        Some((lo, hi)) if lo.is_finite() && hi.is_finite() => {
+            let (a, b) = wgsl::enclose_f32(lo, hi);
+            // Outward rounding of a finite value may reach infinity, which a kernel may
+            // assume absent: keep the f32 range (the search still covers the range).
+            (a.max(-f32::MAX), b.min(f32::MAX))
+        }
         _ => (1.0, 0.0),
     };
     out[12] = t0.to_bits();
@@ -226,4 +278,19 @@ fn decode(r: [u32; 4]) -> GpuBeam {
         _ => GpuClass::Undecided { t: t() },
     };
     GpuBeam { class, steps: r[3] }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn bounds_round_inward() {
+        let (l, h) = inward_f32(0.1, 0.3);
+        assert!(f64::from(l) >= 0.1 && f64::from(h) <= 0.3);
+        assert!(f64::from(l.next_down()) < 0.1 && f64::from(h.next_up()) > 0.3);
+        assert_eq!(inward_f32(-1e-40, 1e-40), (0.0, 0.0));
+        assert_eq!(inward_f32(1e-40, 1.0).0, f32::MIN_POSITIVE);
+        assert_eq!(inward_f32(-1e300, 1e300), (-f32::MAX, f32::MAX));
+    }
 }

@@ -110,7 +110,14 @@ fn inputs(op: LibraryOp, n: usize, seed: u64) -> Vec<OpInput> {
     }
     if op == LibraryOp::Pown {
         for (i, input) in out.iter_mut().enumerate() {
-            input[2] = ((i % 15) as i32 - 5) as u32;
+            // Small exponents, and the extremes (|i32::MIN| does not fit an i32).
+            let n = match i % 100 {
+                0 => i32::MIN,
+                1 => i32::MAX,
+                2 => i32::MIN + 1,
+                _ => (i % 15) as i32 - 5,
+            };
+            input[2] = n as u32;
         }
     }
     out

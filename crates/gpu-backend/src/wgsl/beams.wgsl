@@ -129,7 +129,7 @@ fn main(@builtin(global_invocation_id) id: vec3<u32>) {
                     for (var j = 0; j < 8; j++) {
                         w = w * 2.0f;
                         let end = min(lo + w, t1);
-                        let far = select(step_up(end, 1u), end, end >= t1);
+                        let far = select(min(step_up(end, 1u), t1), end, end >= t1);
                         if !inside(b, far) {
                             break;
                         }
