@@ -6,7 +6,9 @@
 //!   `render2d` example (also timed by the benchmarks).
 //! * [`soft_scene`]: catalog surfaces under a square area light (the soft-shadow paper's
 //!   set-up).
+//! * [`report`]: printing and saving a markdown report, and the exit status.
 
 pub mod catalog_view;
 pub mod render2d;
+pub mod report;
 pub mod soft_scene;

@@ -87,20 +87,9 @@ fn run(args: Args) -> Result<(), String> {
             }
         }
     }
-    println!("{md}");
-    if let Some(p) = &args.markdown {
-        std::fs::write(p, &md).map_err(|e| format!("{}: {e}", p.display()))?;
-        eprintln!("wrote {}", p.display());
-    }
-    Ok(())
+    examples::report::print_and_save(&md, args.markdown.as_deref())
 }
 
 fn main() -> ExitCode {
-    match run(Args::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    examples::report::exit(run(Args::parse()))
 }

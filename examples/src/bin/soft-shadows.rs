@@ -256,20 +256,9 @@ fn run(args: Args) -> Result<(), String> {
         } => table1(size, sub, light_fraction)?,
         Table::Penumbra { size, samples } => penumbra(size, samples)?,
     };
-    println!("{md}");
-    if let Some(p) = &args.markdown {
-        std::fs::write(p, &md).map_err(|e| format!("{}: {e}", p.display()))?;
-        eprintln!("wrote {}", p.display());
-    }
-    Ok(())
+    examples::report::print_and_save(&md, args.markdown.as_deref())
 }
 
 fn main() -> ExitCode {
-    match run(Args::parse()) {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    examples::report::exit(run(Args::parse()))
 }
