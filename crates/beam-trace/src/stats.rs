@@ -3,6 +3,8 @@
 use std::fmt;
 use std::time::Duration;
 
+use crate::root::RootCounters;
+
 /// Time and counters of one pass of the render.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
 pub struct PassStats {
@@ -28,6 +30,36 @@ impl PassStats {
             name: name.into(),
             ..Self::default()
         }
+    }
+
+    /// A pass that ran, with its counters in order.
+    pub fn new(name: &str, time: Duration, counters: &[(&str, u64)]) -> Self {
+        Self {
+            name: name.into(),
+            ran: true,
+            time,
+            counters: counters.iter().map(|(n, v)| (n.to_string(), *v)).collect(),
+        }
+    }
+
+    /// A pass that ran searches: its own counters (`labels` with `items`), then the root
+    /// search counters `g_evals`, `dg_evals`, `point_evals` and `bisections`.
+    pub fn with_search(
+        name: &str,
+        time: Duration,
+        labels: &[&str],
+        items: &[u64],
+        root: &RootCounters,
+    ) -> Self {
+        let mut counters: Vec<(&str, u64)> =
+            labels.iter().copied().zip(items.iter().copied()).collect();
+        counters.extend([
+            ("g_evals", root.g_evals),
+            ("dg_evals", root.dg_evals),
+            ("point_evals", root.point_evals),
+            ("bisections", root.bisections),
+        ]);
+        Self::new(name, time, &counters)
     }
 
     /// The counter `name` (0 when absent).

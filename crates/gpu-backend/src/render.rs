@@ -68,7 +68,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
     progress.begin("gpu-compile", 1);
     let kernel = BeamKernel::new(gpu, geometry.tape(), geometry.bounds())?;
     progress.end();
-    passes.push(stats(
+    passes.push(PassStats::new(
         "gpu-compile",
         t.elapsed(),
         &[
@@ -99,7 +99,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
         progress.end();
         let count =
             |f: fn(&GpuClass) -> bool| classes.iter().filter(|b| f(&b.class)).count() as u64;
-        passes.push(stats(
+        passes.push(PassStats::new(
             "screen-boxes",
             t.elapsed(),
             &[
@@ -257,7 +257,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
         0
     };
     passes.push(if plan.runs("normals") {
-        stats("normals", t.elapsed(), &[("degenerate", degenerate)])
+        PassStats::new("normals", t.elapsed(), &[("degenerate", degenerate)])
     } else {
         PassStats::skipped("normals")
     });
@@ -295,13 +295,13 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
             let jobs: Vec<(usize, usize)> = hits
                 .iter()
                 .enumerate()
-                .filter(|(_, (_, _, h))| facing(h).dot(pl.position - h.point) > 0.0)
+                .filter(|(_, (_, _, h))| h.facing_normal().dot(pl.position - h.point) > 0.0)
                 .map(|(k, _)| (k, li))
                 .collect();
             let queries: Vec<BeamQuery> = jobs
                 .iter()
                 .map(|&(k, _)| {
-                    let from = origin(&hits[k].2, offset);
+                    let from = hits[k].2.shadow_origin(offset);
                     BeamQuery {
                         beam: Ray {
                             origin: from,
@@ -317,7 +317,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
             })?;
             // Facing away from the light: no direct light anyway.
             for (p, s, h) in &hits {
-                if facing(h).dot(pl.position - h.point) <= 0.0 {
+                if h.facing_normal().dot(pl.position - h.point) <= 0.0 {
                     vis[*p][s * nl + li] = 0.0;
                 }
             }
@@ -362,11 +362,11 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
                 let wgt = samples[*p][*s].weight;
                 per_pixel[*p].0 += wgt * fraction;
                 per_pixel[*p].1 += wgt;
-                pixel_class[*p] = Some(merge(pixel_class[*p], class));
+                pixel_class[*p] = Some(ShadowClass::merge(pixel_class[*p], class));
             }
             for (c, pc) in classes.iter_mut().zip(&pixel_class) {
                 if let Some(pc) = pc {
-                    *c = Some(c.map_or(*pc, |c| merge(Some(c), *pc)));
+                    *c = Some(ShadowClass::merge(*c, *pc));
                 }
             }
             fractions.push(
@@ -381,7 +381,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
                 .iter()
                 .filter(|(f, wsum)| *wsum > 0.0 && f / wsum < 1.0)
                 .count() as u64;
-            light_stats.push(stats(
+            light_stats.push(PassStats::new(
                 &format!("light {li} (gpu beam:{n})"),
                 tl.elapsed(),
                 &[
@@ -496,7 +496,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
         })
         .collect();
     passes.push(if lit {
-        stats(
+        PassStats::new(
             "shading",
             t.elapsed(),
             &[("shaded_samples", hits.len() as u64)],
@@ -504,7 +504,7 @@ pub fn render(gpu: &Gpu, scene: &Scene, progress: &dyn Progress) -> Result<Rende
     } else {
         PassStats::skipped("shading")
     });
-    passes.push(stats("total-gpu", gpu_time, &[]));
+    passes.push(PassStats::new("total-gpu", gpu_time, &[]));
 
     let classification = Image {
         width: w,
@@ -557,11 +557,9 @@ fn soft_shadows(
     settings: &BeamSettings,
     gpu_time: &mut Duration,
 ) -> Result<SoftShadows, GpuError> {
-    let faces = |h: &Hit| {
-        let nrm = facing(h);
-        light.corners().iter().any(|c| nrm.dot(*c - h.point) > 0.0)
-    };
-    let front: Vec<usize> = (0..hits.len()).filter(|&k| faces(&hits[k].2)).collect();
+    let front: Vec<usize> = (0..hits.len())
+        .filter(|&k| !light.is_behind(hits[k].2.point, hits[k].2.facing_normal()))
+        .collect();
     let beam_over = |from: DVec3, part: &Patch| Beam {
         origin: point_box(from),
         dir: part.directions_from(from),
@@ -569,7 +567,7 @@ fn soft_shadows(
     let initial_queries: Vec<BeamQuery> = front
         .iter()
         .map(|&k| BeamQuery {
-            beam: beam_over(origin(&hits[k].2, offset), light),
+            beam: beam_over(hits[k].2.shadow_origin(offset), light),
             t: ival(0.0, 1.0),
         })
         .collect();
@@ -590,7 +588,7 @@ fn soft_shadows(
             }
             GpuClass::Undecided { t } => {
                 occluded += 1;
-                let from = origin(&hits[k].2, offset);
+                let from = hits[k].2.shadow_origin(offset);
                 for j in 0..n {
                     for i in 0..n {
                         sub_jobs.push(k);
@@ -645,29 +643,6 @@ fn sub_beams(spec: &ShadowSpec) -> u32 {
         } => n,
         _ => 7,
     }
-}
-
-/// Two shadow classes of one pixel merged.
-fn merge(a: Option<ShadowClass>, b: ShadowClass) -> ShadowClass {
-    match a {
-        None => b,
-        Some(a) if a == b => a,
-        Some(_) => ShadowClass::Penumbra,
-    }
-}
-
-/// The normal of a hit, turned towards the eye.
-fn facing(h: &Hit) -> DVec3 {
-    if h.normal.dot(h.to_eye) < 0.0 {
-        -h.normal
-    } else {
-        h.normal
-    }
-}
-
-/// Where the shadow rays of a hit start: off the surface along the normal.
-fn origin(h: &Hit, offset: f64) -> DVec3 {
-    h.point + facing(h) * offset
 }
 
 /// The pixel rectangle `[x0, y0, x1, y1]` in 3 × 3 parts.
@@ -810,7 +785,7 @@ fn steps(r: &[GpuBeam]) -> u64 {
 
 fn beam_stats(name: &str, time: Duration, r: &[GpuBeam]) -> PassStats {
     let count = |f: fn(&GpuClass) -> bool| r.iter().filter(|b| f(&b.class)).count() as u64;
-    stats(
+    PassStats::new(
         name,
         time,
         &[
@@ -824,13 +799,4 @@ fn beam_stats(name: &str, time: Duration, r: &[GpuBeam]) -> PassStats {
             ("steps", steps(r)),
         ],
     )
-}
-
-fn stats(name: &str, time: Duration, counters: &[(&str, u64)]) -> PassStats {
-    PassStats {
-        name: name.into(),
-        ran: true,
-        time,
-        counters: counters.iter().map(|(n, v)| (n.to_string(), *v)).collect(),
-    }
 }

@@ -101,6 +101,23 @@ pub struct Hit {
     pub normal: DVec3,
 }
 
+impl Hit {
+    /// The normal turned towards the eye (the side of the surface the sample sees).
+    pub fn facing_normal(&self) -> DVec3 {
+        if self.normal.dot(self.to_eye) < 0.0 {
+            -self.normal
+        } else {
+            self.normal
+        }
+    }
+
+    /// Where shadow rays from the hit start: `offset` off the surface along the facing
+    /// normal (see [`SHADOW_OFFSET`]).
+    pub fn shadow_origin(&self, offset: f64) -> DVec3 {
+        self.point + self.facing_normal() * offset
+    }
+}
+
 /// One primary sample of a pixel: its weight (area fraction) and what it sees.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Sample {
@@ -339,23 +356,7 @@ impl Work {
     }
 
     fn stats(&self, name: &str, time: Duration, labels: &[&str]) -> PassStats {
-        let mut counters: Vec<(String, u64)> = labels
-            .iter()
-            .zip(self.items)
-            .map(|(l, v)| (l.to_string(), v))
-            .collect();
-        counters.extend([
-            ("g_evals".to_string(), self.root.g_evals),
-            ("dg_evals".to_string(), self.root.dg_evals),
-            ("point_evals".to_string(), self.root.point_evals),
-            ("bisections".to_string(), self.root.bisections),
-        ]);
-        PassStats {
-            name: name.into(),
-            ran: true,
-            time,
-            counters,
-        }
+        PassStats::with_search(name, time, labels, &self.items, &self.root)
     }
 }
 
@@ -520,17 +521,16 @@ fn grid_pass(scene: &Scene, resolution: u32, progress: &dyn Progress) -> (Grid, 
     let g = Grid::build(&scene.geometry, resolution);
     let s = g.stats();
     progress.end();
-    let stats = PassStats {
-        name: "grid".into(),
-        ran: true,
-        time: t0.elapsed(),
-        counters: vec![
-            ("cells".into(), s.cells),
-            ("non_empty".into(), s.non_empty),
-            ("functions".into(), s.functions),
-            ("leaf_evals".into(), s.leaf_evals),
+    let stats = PassStats::new(
+        "grid",
+        t0.elapsed(),
+        &[
+            ("cells", s.cells),
+            ("non_empty", s.non_empty),
+            ("functions", s.functions),
+            ("leaf_evals", s.leaf_evals),
         ],
-    };
+    );
     (g, stats)
 }
 
@@ -652,11 +652,7 @@ fn hard_shadow_pass(
                 for (px, v) in srow.iter().zip(vrow.iter_mut()) {
                     for (si, s) in px.iter().enumerate() {
                         let Some(hit) = s.hit else { continue };
-                        let n = if hit.normal.dot(hit.to_eye) < 0.0 {
-                            -hit.normal
-                        } else {
-                            hit.normal
-                        };
+                        let n = hit.facing_normal();
                         for (li, pos) in lights.iter().enumerate() {
                             let Some(pos) = pos else { continue };
                             work.items[0] += 1;
@@ -666,7 +662,7 @@ fn hard_shadow_pass(
                                 v[si * nl + li] = 0.0;
                                 continue;
                             }
-                            let from = hit.point + n * (SHADOW_OFFSET * diag);
+                            let from = hit.shadow_origin(SHADOW_OFFSET * diag);
                             let r = tracer.segment(ev, from, *pos, &mut work.root);
                             let (k, lit) = match r {
                                 Visibility::Lit => (1, 1.0),
@@ -746,12 +742,7 @@ fn shading_pass(
         .collect();
     let stats = if lit {
         let shaded = samples.iter().flatten().filter(|s| s.hit.is_some()).count() as u64;
-        PassStats {
-            name: "shading".into(),
-            ran: true,
-            time: t0.elapsed(),
-            counters: vec![("shaded_samples".into(), shaded)],
-        }
+        PassStats::new("shading", t0.elapsed(), &[("shaded_samples", shaded)])
     } else {
         PassStats::skipped("shading")
     };

@@ -220,11 +220,7 @@ pub(crate) fn soft_shadow_pass(
                             sum += s.weight * lv.fraction;
                             weight += s.weight;
                             shadowed |= lv.fraction < 1.0;
-                            class = Some(match (class, sample_class) {
-                                (None, c) => c,
-                                (Some(a), b) if a == b => a,
-                                _ => ShadowClass::Penumbra,
-                            });
+                            class = Some(ShadowClass::merge(class, sample_class));
                         }
                         items[0] += u64::from(shadowed);
                         match class {
@@ -253,12 +249,9 @@ pub(crate) fn soft_shadow_pass(
             work.add(&wk);
             for (k, c) in row_classes.into_iter().enumerate() {
                 let slot = &mut classes[i * w + k];
-                *slot = match (*slot, c) {
-                    (s, None) => s,
-                    (None, c) => c,
-                    (Some(a), Some(b)) if a == b => Some(a),
-                    _ => Some(ShadowClass::Penumbra),
-                };
+                if let Some(c) = c {
+                    *slot = Some(ShadowClass::merge(*slot, c));
+                }
             }
         }
         items[4] = work.queries;
@@ -303,21 +296,11 @@ fn sample_visibility(
     items: &mut [u64; LABELS.len()],
     work: &mut ShadowWork,
 ) -> (LightVisibility, ShadowClass) {
-    let n = if hit.normal.dot(hit.to_eye) < 0.0 {
-        -hit.normal
-    } else {
-        hit.normal
-    };
-    if light
-        .patch
-        .corners()
-        .iter()
-        .all(|c| n.dot(*c - hit.point) <= 0.0)
-    {
+    if light.patch.is_behind(hit.point, hit.facing_normal()) {
         items[5] += 1;
         return (LightVisibility::estimate(0.0), ShadowClass::BackFacing);
     }
-    let origin = hit.point + n * (SHADOW_OFFSET * tracer.scene.geometry.diagonal());
+    let origin = hit.shadow_origin(SHADOW_OFFSET * tracer.scene.geometry.diagonal());
     let q = ShadowQuery {
         origin,
         light: light.patch,
@@ -334,23 +317,7 @@ fn stats(
     items: &[u64; LABELS.len()],
     root: &RootCounters,
 ) -> PassStats {
-    let mut counters: Vec<(String, u64)> = LABELS
-        .iter()
-        .zip(items)
-        .map(|(l, v)| (l.to_string(), *v))
-        .collect();
-    counters.extend([
-        ("g_evals".to_string(), root.g_evals),
-        ("dg_evals".to_string(), root.dg_evals),
-        ("point_evals".to_string(), root.point_evals),
-        ("bisections".to_string(), root.bisections),
-    ]);
-    PassStats {
-        name: name.into(),
-        ran: true,
-        time,
-        counters,
-    }
+    PassStats::with_search(name, time, &LABELS, items, root)
 }
 
 /// The shadow classification image (the soft-shadow paper's Fig. 7): proven lit (green),

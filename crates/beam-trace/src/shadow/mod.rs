@@ -62,6 +62,17 @@ pub struct LightVisibility {
     pub upper: f32,
 }
 
+impl ShadowClass {
+    /// The class of a pixel holding a part of class `a` (if any) and one of class `b`: the
+    /// common class, or penumbra where they differ.
+    pub fn merge(a: Option<ShadowClass>, b: ShadowClass) -> ShadowClass {
+        match a {
+            Some(a) if a != b => ShadowClass::Penumbra,
+            _ => b,
+        }
+    }
+}
+
 impl LightVisibility {
     /// Proven fully lit.
     pub const LIT: LightVisibility = LightVisibility {

@@ -67,6 +67,12 @@ impl Patch {
         ]
     }
 
+    /// Whether the whole light lies behind the plane through `point` with normal `normal`
+    /// (on or below it): a surface point there gets no direct light from it.
+    pub fn is_behind(&self, point: DVec3, normal: DVec3) -> bool {
+        self.corners().iter().all(|c| normal.dot(*c - point) <= 0.0)
+    }
+
     /// The sub-parallelogram `[u0, u1] × [v0, v1]` of parameters.
     pub fn part(&self, u0: f64, u1: f64, v0: f64, v1: f64) -> Patch {
         Patch {
