@@ -16,7 +16,7 @@ use implicit_expr::{BinaryOp, Tape, UnaryOp, wgsl};
 use interval_core::Interval;
 
 use crate::device::Gpu;
-use crate::dispatch::{Kernel, max_elements};
+use crate::dispatch::Kernel;
 use crate::error::GpuError;
 use crate::library::INTERVAL_LIBRARY;
 
@@ -171,33 +171,21 @@ impl BeamKernel {
         // (rejecting them whole would need the search the kernel does not run).
         let bounded = |q: &BeamQuery| q.t.is_empty() || q.t.is_common_interval();
         let searched: Vec<BeamQuery> = queries.iter().copied().filter(bounded).collect();
-        let mut out = Vec::with_capacity(queries.len());
-        for chunk in searched.chunks(max_elements(gpu, std::mem::size_of::<[u32; 16]>())) {
+        let input: Vec<[u32; 16]> = searched.iter().map(encode).collect();
+        let out: Vec<[u32; 4]> = self.kernel.map(gpu, &input, |count| {
             let params = SceneParams {
                 bounds: [[b[0].0, b[1].0, b[2].0, 0.0], [b[0].1, b[1].1, b[2].1, 0.0]],
                 tol: [settings.epsilon, settings.rel_epsilon, 0.0, 0.0],
                 ints: [
-                    chunk.len() as u32,
+                    count as u32,
                     settings.max_steps,
                     u32::from(settings.inclusion && self.continuous),
                     u32::from(settings.narrow_hits),
                 ],
             };
-            let input: Vec<[u32; 16]> = chunk.iter().map(encode).collect();
-            let bytes = self.kernel.run(
-                gpu,
-                bytemuck::bytes_of(&params),
-                bytemuck::cast_slice(&input),
-                chunk.len(),
-                std::mem::size_of::<[u32; 4]>(),
-            )?;
-            out.extend(
-                bytemuck::pod_collect_to_vec::<u8, [u32; 4]>(&bytes)
-                    .into_iter()
-                    .map(decode),
-            );
-        }
-        let mut results = out.into_iter();
+            bytemuck::bytes_of(&params).to_vec()
+        })?;
+        let mut results = out.into_iter().map(decode);
         Ok(queries
             .iter()
             .map(|q| {

@@ -1,6 +1,7 @@
 //! Running a one-dimensional compute kernel over an array: the buffers, the bind group, the
 //! dispatch and the read-back that every kernel of the backend shares.
 
+use bytemuck::Pod;
 use wgpu::util::DeviceExt;
 
 use crate::device::Gpu;
@@ -24,7 +25,7 @@ const MAX_DISPATCH: usize = 65_535 * WORKGROUP as usize;
 /// The most elements of `bytes_per_element` (the larger of an input and an output element)
 /// one dispatch of `gpu` can take: the dispatch limit and the adapter's largest storage
 /// binding.
-pub(crate) fn max_elements(gpu: &Gpu, bytes_per_element: usize) -> usize {
+fn max_elements(gpu: &Gpu, bytes_per_element: usize) -> usize {
     let binding = gpu.device.limits().max_storage_buffer_binding_size as usize;
     MAX_DISPATCH.min(binding / bytes_per_element.max(1)).max(1)
 }
@@ -66,9 +67,33 @@ impl Kernel {
         })
     }
 
+    /// Runs the kernel on every element of `inputs`, in as many dispatches as the adapter's
+    /// limits need: `uniform(n)` gives the parameter bytes of a dispatch of `n` elements
+    /// (the kernels read their element count from them). One output per input, in order.
+    pub(crate) fn map<I: Pod, O: Pod>(
+        &self,
+        gpu: &Gpu,
+        inputs: &[I],
+        uniform: impl Fn(usize) -> Vec<u8>,
+    ) -> Result<Vec<O>, GpuError> {
+        let size = std::mem::size_of::<I>().max(std::mem::size_of::<O>());
+        let mut out = Vec::with_capacity(inputs.len());
+        for chunk in inputs.chunks(max_elements(gpu, size)) {
+            let bytes = self.run(
+                gpu,
+                &uniform(chunk.len()),
+                bytemuck::cast_slice(chunk),
+                chunk.len(),
+                std::mem::size_of::<O>(),
+            )?;
+            out.extend(bytemuck::pod_collect_to_vec::<u8, O>(&bytes));
+        }
+        Ok(out)
+    }
+
     /// Runs the kernel on `count` elements (`input` holds them, `uniform` the parameters)
     /// and reads back `count * out_size` bytes of output.
-    pub(crate) fn run(
+    fn run(
         &self,
         gpu: &Gpu,
         uniform: &[u8],

@@ -12,7 +12,7 @@
 use bytemuck::{Pod, Zeroable};
 
 use crate::device::Gpu;
-use crate::dispatch::{Kernel, max_elements};
+use crate::dispatch::Kernel;
 use crate::error::GpuError;
 
 /// The WGSL source of the interval library: the representation, the arithmetic and the
@@ -28,6 +28,17 @@ const OPS_KERNEL: &str = include_str!("wgsl/ops.wgsl");
 
 /// The largest finite `f32`: as a bound, it stands for infinity.
 pub const BIG: f32 = f32::MAX;
+
+/// A bound of a library interval as `f64`: `±BIG` is infinite.
+pub fn bound_to_f64(x: f32) -> f64 {
+    if x >= BIG {
+        f64::INFINITY
+    } else if x <= -BIG {
+        f64::NEG_INFINITY
+    } else {
+        f64::from(x)
+    }
+}
 
 /// The library functions the op kernel runs.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
@@ -227,21 +238,12 @@ impl OpRunner {
         op: LibraryOp,
         inputs: &[OpInput],
     ) -> Result<Vec<[f32; 2]>, GpuError> {
-        let mut out = Vec::with_capacity(inputs.len());
-        for chunk in inputs.chunks(max_elements(gpu, std::mem::size_of::<OpInput>())) {
-            let params = Params {
+        self.kernel.map(gpu, inputs, |count| {
+            bytemuck::bytes_of(&Params {
                 op: op.index(),
-                count: chunk.len() as u32,
-            };
-            let bytes = self.kernel.run(
-                gpu,
-                bytemuck::bytes_of(&params),
-                bytemuck::cast_slice(chunk),
-                chunk.len(),
-                std::mem::size_of::<[f32; 2]>(),
-            )?;
-            out.extend(bytemuck::pod_collect_to_vec::<u8, [f32; 2]>(&bytes));
-        }
-        Ok(out)
+                count: count as u32,
+            })
+            .to_vec()
+        })
     }
 }

@@ -6,7 +6,7 @@ use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
 
 use crate::device::Gpu;
-use crate::dispatch::{Kernel, max_elements};
+use crate::dispatch::Kernel;
 use crate::error::GpuError;
 
 const SHADING_KERNEL: &str = include_str!("wgsl/shading.wgsl");
@@ -101,38 +101,27 @@ impl ShadingKernel {
             params.color[k] = [l.color[0], l.color[1], l.color[2], 0.0];
         }
         params.ambient = [ambient, 0.0, 0.0, 0.0];
-        let mut out = Vec::with_capacity(samples.len());
-        for chunk in samples.chunks(max_elements(gpu, std::mem::size_of::<Sample>())) {
-            params.ints = [lights.len() as u32, chunk.len() as u32, 0, 0];
-            let input: Vec<Sample> = chunk
-                .iter()
-                .map(|s| Sample {
-                    point: v3(s.point),
-                    normal: v3(s.normal),
-                    to_eye: v3(s.to_eye),
-                    material: [
-                        s.material.color[0],
-                        s.material.color[1],
-                        s.material.color[2],
-                        s.material.specular,
-                    ],
-                    shininess: [s.material.shininess, 0.0, 0.0, 0.0],
-                    fraction: s.fractions,
-                })
-                .collect();
-            let bytes = self.kernel.run(
-                gpu,
-                bytemuck::bytes_of(&params),
-                bytemuck::cast_slice(&input),
-                chunk.len(),
-                std::mem::size_of::<[f32; 4]>(),
-            )?;
-            out.extend(
-                bytemuck::pod_collect_to_vec::<u8, [f32; 4]>(&bytes)
-                    .into_iter()
-                    .map(|c| [c[0], c[1], c[2]]),
-            );
-        }
-        Ok(out)
+        let input: Vec<Sample> = samples
+            .iter()
+            .map(|s| Sample {
+                point: v3(s.point),
+                normal: v3(s.normal),
+                to_eye: v3(s.to_eye),
+                material: [
+                    s.material.color[0],
+                    s.material.color[1],
+                    s.material.color[2],
+                    s.material.specular,
+                ],
+                shininess: [s.material.shininess, 0.0, 0.0, 0.0],
+                fraction: s.fractions,
+            })
+            .collect();
+        let out: Vec<[f32; 4]> = self.kernel.map(gpu, &input, |count| {
+            let mut p = params;
+            p.ints = [lights.len() as u32, count as u32, 0, 0];
+            bytemuck::bytes_of(&p).to_vec()
+        })?;
+        Ok(out.into_iter().map(|c| [c[0], c[1], c[2]]).collect())
     }
 }

@@ -6,9 +6,9 @@ use implicit_expr::{Tape, wgsl};
 use interval_core::Interval;
 
 use crate::device::Gpu;
-use crate::dispatch::{Kernel, max_elements};
+use crate::dispatch::Kernel;
 use crate::error::GpuError;
-use crate::library::{BIG, INTERVAL_LIBRARY};
+use crate::library::{INTERVAL_LIBRARY, bound_to_f64};
 
 /// A box in space, as the CPU renderer writes it.
 pub type IBox = [Interval<f64>; 3];
@@ -54,27 +54,15 @@ impl SurfaceKernel {
     ///
     /// [`GpuError`] if the GPU rejects the work or the results cannot be read back.
     pub fn eval(&self, gpu: &Gpu, boxes: &[IBox]) -> Result<Vec<Interval<f64>>, GpuError> {
-        let mut out = Vec::with_capacity(boxes.len());
-        for chunk in boxes.chunks(max_elements(gpu, std::mem::size_of::<[u32; 6]>())) {
-            let input: Vec<[u32; 6]> = chunk.iter().map(box_bits).collect();
-            let params = Params {
-                count: chunk.len() as u32,
+        let input: Vec<[u32; 6]> = boxes.iter().map(box_bits).collect();
+        let out: Vec<[f32; 2]> = self.kernel.map(gpu, &input, |count| {
+            bytemuck::bytes_of(&Params {
+                count: count as u32,
                 pad: [0; 3],
-            };
-            let bytes = self.kernel.run(
-                gpu,
-                bytemuck::bytes_of(&params),
-                bytemuck::cast_slice(&input),
-                chunk.len(),
-                std::mem::size_of::<[f32; 2]>(),
-            )?;
-            out.extend(
-                bytemuck::pod_collect_to_vec::<u8, [f32; 2]>(&bytes)
-                    .into_iter()
-                    .map(|[lo, hi]| to_f64(lo, hi)),
-            );
-        }
-        Ok(out)
+            })
+            .to_vec()
+        })?;
+        Ok(out.into_iter().map(|[lo, hi]| to_f64(lo, hi)).collect())
     }
 }
 
@@ -94,14 +82,5 @@ fn box_bits(b: &IBox) -> [u32; 6] {
 
 /// A library interval as `f64`: `±BIG` is infinite, `lo > hi` empty.
 pub fn to_f64(lo: f32, hi: f32) -> Interval<f64> {
-    let widen = |x: f32| {
-        if x >= BIG {
-            f64::INFINITY
-        } else if x <= -BIG {
-            f64::NEG_INFINITY
-        } else {
-            f64::from(x)
-        }
-    };
-    Interval::new(widen(lo), widen(hi)).unwrap_or(Interval::EMPTY)
+    Interval::new(bound_to_f64(lo), bound_to_f64(hi)).unwrap_or(Interval::EMPTY)
 }

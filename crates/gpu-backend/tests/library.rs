@@ -10,7 +10,7 @@
 //! environment variable set, a missing adapter fails them; elsewhere they are skipped with
 //! the reason printed.
 
-use gpu_backend::library::{BIG, LibraryOp, OpInput, OpRunner};
+use gpu_backend::library::{BIG, LibraryOp, OpInput, OpRunner, bound_to_f64};
 use gpu_backend::{Gpu, GpuError};
 use interval_core::Interval;
 use rand::rngs::StdRng;
@@ -148,18 +148,7 @@ fn bound(bits: u32, up: bool) -> f64 {
     } else {
         x
     };
-    widen(b)
-}
-
-/// A result bound as `f64`: `±BIG` is infinite.
-fn widen(x: f32) -> f64 {
-    if x >= BIG {
-        f64::INFINITY
-    } else if x <= -BIG {
-        f64::NEG_INFINITY
-    } else {
-        f64::from(x)
-    }
+    bound_to_f64(b)
 }
 
 fn interval(lo: u32, hi: u32) -> Interval<f64> {
@@ -256,7 +245,7 @@ fn violation(op: LibraryOp, v: &OpInput, [lo, hi]: [f32; 2]) -> Option<String> {
     // (2^-29 of an f32 ULP): an f32 bound within that ULP of the exact value cannot be
     // judged by it, so the check allows it.
     let (rlo, rhi) = (rlo.next_up().min(rhi), rhi.next_down().max(rlo));
-    if !(widen(lo) <= rlo && rhi <= widen(hi)) {
+    if !(bound_to_f64(lo) <= rlo && rhi <= bound_to_f64(hi)) {
         return Some(format!("does not contain the exact range: {}", show()));
     }
     None
