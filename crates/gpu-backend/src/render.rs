@@ -575,7 +575,7 @@ fn soft_shadows(
         kernel.classify(gpu, &initial_queries, settings)
     })?;
     let mut results = vec![(0.0, ShadowClass::BackFacing); hits.len()];
-    let mut sub_jobs = Vec::new();
+    let mut sub_points = Vec::new();
     let mut sub_queries = Vec::new();
     let (mut occluded, mut umbra) = (0, 0);
     for (&k, r) in front.iter().zip(&initial) {
@@ -589,9 +589,9 @@ fn soft_shadows(
             GpuClass::Undecided { t } => {
                 occluded += 1;
                 let from = hits[k].2.shadow_origin(offset);
+                sub_points.push(k);
                 for j in 0..n {
                     for i in 0..n {
-                        sub_jobs.push(k);
                         sub_queries.push(BeamQuery {
                             beam: beam_over(from, &light.cell(i, j, n)),
                             t: ival(t.inf().max(0.0), 1.0),
@@ -608,21 +608,16 @@ fn soft_shadows(
     let sub = timed(gpu_time, || {
         kernel.classify(gpu, &sub_queries, &sub_settings)
     })?;
-    let mut free = vec![0u32; hits.len()];
-    for (&k, r) in sub_jobs.iter().zip(&sub) {
-        free[k] += u32::from(r.class == GpuClass::Miss);
-    }
-    let total = n * n;
-    for (k, result) in results.iter_mut().enumerate() {
-        if sub_jobs.binary_search(&k).is_ok() {
-            let f = free[k] as f32 / total as f32;
-            let class = if free[k] == total {
-                ShadowClass::Lit
-            } else {
-                ShadowClass::Penumbra
-            };
-            *result = (f, class);
-        }
+    // The n² sub-beams of each point in a row: the share of them proven free.
+    let total = (n * n) as usize;
+    for (&k, cells) in sub_points.iter().zip(sub.chunks(total)) {
+        let free = cells.iter().filter(|r| r.class == GpuClass::Miss).count();
+        let class = if free == total {
+            ShadowClass::Lit
+        } else {
+            ShadowClass::Penumbra
+        };
+        results[k] = (free as f32 / total as f32, class);
     }
     Ok(SoftShadows {
         back_facing: (hits.len() - front.len()) as u64,

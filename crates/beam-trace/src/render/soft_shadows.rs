@@ -38,16 +38,20 @@ impl Occluders for SceneOccluders<'_, '_> {
         let r = self
             .tracer
             .cast(self.ev, &ray, Interval::new_unchecked(start, 1.0), c);
-        let object = match r {
+        let at = match r {
             RootResult::Root { t, .. } | RootResult::Undecided { t } if t.mid().is_finite() => {
-                Some(self.ev.geo.object_at(ray.at(t.mid())) as u32)
+                Some(t.mid())
             }
             _ => None,
         };
         Occlusion {
             visibility: segment_visibility(r, self.tracer.finder.is_reliable()),
-            object,
+            at,
         }
+    }
+
+    fn object_at(&mut self, p: DVec3) -> u32 {
+        self.ev.geo.object_at(p) as u32
     }
 
     fn segment_meets_object(

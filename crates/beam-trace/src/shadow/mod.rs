@@ -120,12 +120,12 @@ pub struct ShadowQuery {
 }
 
 /// The answer of an occluder segment query.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+#[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Occlusion {
     /// Whether the segment is free.
     pub visibility: Visibility,
-    /// The top-level object whose surface the search met, when it met one.
-    pub object: Option<u32>,
+    /// The segment parameter of the surface the search met, when it met one.
+    pub at: Option<f64>,
 }
 
 /// The queries a shadow method asks of the scene's occluders.
@@ -134,6 +134,9 @@ pub trait Occluders {
     /// before `start`), searched by the renderer's root finder: [`Visibility::Lit`] is a
     /// proof with a reliable finder.
     fn segment(&mut self, from: DVec3, to: DVec3, start: f64, c: &mut RootCounters) -> Occlusion;
+
+    /// The top-level object whose surface passes nearest `p`.
+    fn object_at(&mut self, p: DVec3) -> u32;
 
     /// Whether the segment from `from` to `to` proven meets the top-level object `object`
     /// alone (a proven root of that object's function): then it meets the scene's solid,

@@ -59,7 +59,7 @@ pub fn estimate(
     for (u, v) in strata(samples, q.seed) {
         let to = q.light.point(u, v);
         work.rays += 1;
-        if let Some(object) = last.filter(|_| cache)
+        if let Some(object) = last
             && occluders.segment_meets_object(object, q.origin, to, &mut work.root)
         {
             work.cache_hits += 1;
@@ -68,8 +68,10 @@ pub fn estimate(
         let o = occluders.segment(q.origin, to, start, &mut work.root);
         if o.visibility == Visibility::Lit {
             free += 1;
-        } else {
-            last = o.object;
+        } else if cache {
+            // Which object blocked it: only looked up when the cache will use it.
+            last =
+                o.at.map(|t| occluders.object_at(q.origin + t * (to - q.origin)));
         }
     }
     LightVisibility::estimate(free as f32 / samples as f32)
