@@ -38,4 +38,12 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
+    /// A render backend cannot run the scene, or failed.
+    #[error("{backend} backend: {message}")]
+    Backend {
+        /// The backend.
+        backend: String,
+        /// What went wrong.
+        message: String,
+    },
 }

@@ -59,15 +59,18 @@
 //! ```
 
 pub mod aa;
+pub mod backend;
 pub mod beam;
 pub mod camera;
 pub mod error;
 pub mod grid;
 pub mod image;
 pub mod plan;
+pub mod progress;
 pub mod ray;
 pub mod render;
 pub mod root;
+pub mod sample;
 pub mod scene;
 pub mod screen;
 pub mod shading;
@@ -77,9 +80,12 @@ pub mod stats;
 pub use camera::Camera;
 pub use error::Error;
 pub use image::Image;
-pub use plan::Plan;
+pub use backend::{Backend, Routing, cpu::Cpu};
+pub use plan::{Pass, Plan};
+pub use progress::{NoProgress, Progress};
 pub use ray::{Beam, BeamEval, IBox, Precision, Ray};
-pub use render::{NoProgress, Progress, RenderOutput, ShadowMaps, render};
+pub use render::{RenderOutput, ShadowMaps, render, render_on};
+pub use sample::{Hit, Sample};
 pub use root::{Proof, RayFn, RootCounters, RootFinder, RootMethod, RootResult, RootSettings};
 pub use scene::{Geometry, Light, Material, Scene};
 pub use stats::RenderStats;

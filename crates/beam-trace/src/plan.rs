@@ -63,17 +63,60 @@ pub struct Plan {
     pub precision: Precision,
 }
 
-/// Names of the passes, in the order they run.
-pub const PASSES: [&str; 8] = [
-    "grid",
-    "screen-boxes",
-    "primary-rays",
-    "iaa",
-    "normals",
-    "hard-shadows",
-    "soft-shadows",
-    "shading",
-];
+/// The passes of the render pipeline, in the order they run.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+pub enum Pass {
+    /// The regular grid of interval-classified cells (built by the CPU backend).
+    Grid,
+    /// The screen box structure: beams over image rectangles (thesis 5.4).
+    ScreenBoxes,
+    /// Ray-based primary visibility (per pixel, or in undecided screen boxes).
+    PrimaryRays,
+    /// Interval anti-aliasing (thesis 5.5.2).
+    Iaa,
+    /// Surface normals of the hit samples.
+    Normals,
+    /// Hard shadows from point lights.
+    HardShadows,
+    /// Soft shadows from area lights.
+    SoftShadows,
+    /// Phong shading and pixel colours.
+    Shading,
+}
+
+impl Pass {
+    /// Every pass, in the order they run.
+    pub const ALL: [Pass; 8] = [
+        Pass::Grid,
+        Pass::ScreenBoxes,
+        Pass::PrimaryRays,
+        Pass::Iaa,
+        Pass::Normals,
+        Pass::HardShadows,
+        Pass::SoftShadows,
+        Pass::Shading,
+    ];
+
+    /// The pass's name in plans and statistics (`screen-boxes`).
+    pub fn name(self) -> &'static str {
+        match self {
+            Pass::Grid => "grid",
+            Pass::ScreenBoxes => "screen-boxes",
+            Pass::PrimaryRays => "primary-rays",
+            Pass::Iaa => "iaa",
+            Pass::Normals => "normals",
+            Pass::HardShadows => "hard-shadows",
+            Pass::SoftShadows => "soft-shadows",
+            Pass::Shading => "shading",
+        }
+    }
+}
+
+impl fmt::Display for Pass {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
 
 impl Plan {
     /// The plan for `scene`.
@@ -128,17 +171,57 @@ impl Plan {
         }
     }
 
-    /// Whether the pass `name` runs.
-    pub fn runs(&self, name: &str) -> bool {
-        match name {
-            "grid" => self.grid.is_some(),
-            "screen-boxes" => matches!(self.primary, Primary::ScreenBoxes { .. }),
-            "primary-rays" => !matches!(self.primary, Primary::Iaa { .. }),
-            "iaa" => matches!(self.primary, Primary::Iaa { .. }),
-            "normals" | "shading" => self.shading,
-            "hard-shadows" => self.shading && self.hard_shadow_lights > 0,
-            "soft-shadows" => self.shading && self.soft_shadow_lights > 0,
-            _ => false,
+    /// Whether `pass` runs.
+    pub fn runs(&self, pass: Pass) -> bool {
+        match pass {
+            Pass::Grid => self.grid.is_some(),
+            Pass::ScreenBoxes => matches!(self.primary, Primary::ScreenBoxes { .. }),
+            Pass::PrimaryRays => !matches!(self.primary, Primary::Iaa { .. }),
+            Pass::Iaa => matches!(self.primary, Primary::Iaa { .. }),
+            Pass::Normals | Pass::Shading => self.shading,
+            Pass::HardShadows => self.shading && self.hard_shadow_lights > 0,
+            Pass::SoftShadows => self.shading && self.soft_shadow_lights > 0,
+        }
+    }
+
+    /// What `pass` does under this plan, in words (empty when it does not run).
+    pub fn describe(&self, pass: Pass) -> String {
+        if !self.runs(pass) {
+            return String::new();
+        }
+        match pass {
+            Pass::Grid => format!(
+                "regular grid, {} cells on the longest side",
+                self.grid.unwrap_or(0)
+            ),
+            Pass::ScreenBoxes => "beams over screen boxes: rejection + inclusion tests (Miss / Hit / Undecided)".to_string(),
+            Pass::PrimaryRays => match self.primary {
+                Primary::ScreenBoxes { rays_per_undecided } => format!(
+                    "1 ray per pixel in Hit boxes (search in T_final), {rays_per_undecided} per pixel in Undecided ones; root finder {}, epsilon {:e}",
+                    self.root_finder, self.root.epsilon
+                ),
+                Primary::PerPixel { rays_per_pixel } => format!(
+                    "{rays_per_pixel} ray(s) per pixel; root finder {}, epsilon {:e}",
+                    self.root_finder, self.root.epsilon
+                ),
+                Primary::Iaa { .. } => String::new(),
+            },
+            Pass::Iaa => match self.primary {
+                Primary::Iaa { max_depth, threshold } => format!(
+                    "interval anti-aliasing: a beam per pixel, split in four to depth {max_depth}, normal-variation threshold {threshold}"
+                ),
+                _ => String::new(),
+            },
+            Pass::Normals => "surface normals from the gradient".to_string(),
+            Pass::HardShadows => format!(
+                "shadow segments to {} point light(s), searched through the grid: a reliable \"no root\" proves the point lit",
+                self.hard_shadow_lights
+            ),
+            Pass::SoftShadows => format!(
+                "visible fraction of {} area light(s) by {}",
+                self.soft_shadow_lights, self.shadow_method
+            ),
+            Pass::Shading => "Phong (ambient, diffuse, specular)".to_string(),
         }
     }
 }
@@ -146,44 +229,13 @@ impl Plan {
 impl fmt::Display for Plan {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         writeln!(f, "plan:")?;
-        for name in PASSES {
-            let what = if !self.runs(name) {
-                "skipped".to_string()
+        for pass in Pass::ALL {
+            let what = if self.runs(pass) {
+                self.describe(pass)
             } else {
-                match name {
-                    "grid" => format!("regular grid, {} cells on the longest side", self.grid.unwrap_or(0)),
-                    "screen-boxes" => "beams over screen boxes: rejection + inclusion tests (Miss / Hit / Undecided)".to_string(),
-                    "primary-rays" => match self.primary {
-                        Primary::ScreenBoxes { rays_per_undecided } => format!(
-                            "1 ray per pixel in Hit boxes (search in T_final), {rays_per_undecided} per pixel in Undecided ones; root finder {}, epsilon {:e}",
-                            self.root_finder, self.root.epsilon
-                        ),
-                        Primary::PerPixel { rays_per_pixel } => format!(
-                            "{rays_per_pixel} ray(s) per pixel; root finder {}, epsilon {:e}",
-                            self.root_finder, self.root.epsilon
-                        ),
-                        Primary::Iaa { .. } => String::new(),
-                    },
-                    "iaa" => match self.primary {
-                        Primary::Iaa { max_depth, threshold } => format!(
-                            "interval anti-aliasing: a beam per pixel, split in four to depth {max_depth}, normal-variation threshold {threshold}"
-                        ),
-                        _ => String::new(),
-                    },
-                    "normals" => "surface normals from the gradient".to_string(),
-                    "hard-shadows" => format!(
-                        "shadow segments to {} point light(s), searched through the grid: a reliable \"no root\" proves the point lit",
-                        self.hard_shadow_lights
-                    ),
-                    "soft-shadows" => format!(
-                        "visible fraction of {} area light(s) by {}",
-                        self.soft_shadow_lights, self.shadow_method
-                    ),
-                    "shading" => "Phong (ambient, diffuse, specular)".to_string(),
-                    _ => String::new(),
-                }
+                "skipped".to_string()
             };
-            writeln!(f, "  {name:<13} {what}")?;
+            writeln!(f, "  {:<13} {what}", pass.name())?;
         }
         writeln!(
             f,

@@ -6,8 +6,6 @@
 //! across it: an aliasing region, thesis 5.5.1) is split further. Undecided boxes are split
 //! down to single pixels, which then get several rays.
 
-use interval_core::Interval;
-
 use crate::beam::BoxClass;
 
 /// A rectangle of pixels `[x0, x1) × [y0, y1)`.
@@ -66,36 +64,31 @@ pub struct ScreenBox {
     pub class: BoxClass,
 }
 
-/// Subdivides `tile` into classified boxes: `classify` evaluates the beam of a rectangle,
-/// given the class of the box it was split from (a part's beam needs to search only what
-/// its parent's left open).
-/// Hit boxes with `T_final` wider than `t_final_width` and Undecided boxes are split until
-/// they are single pixels. The boxes come out in a fixed order (depth first, quadrants in
-/// reading order), independent of threads.
-pub fn subdivide(
-    tile: PixelRect,
-    t_final_width: f64,
-    mut classify: impl FnMut(&PixelRect, Option<&BoxClass>) -> BoxClass,
-) -> Vec<ScreenBox> {
+/// Whether a box of class `class` is split further: Hit boxes with `T_final` wider than
+/// `t_final_width` (an aliasing region, thesis 5.5.1) and Undecided boxes are split until
+/// they are single pixels; Miss boxes never.
+pub fn needs_split(rect: &PixelRect, class: &BoxClass, t_final_width: f64) -> bool {
+    !rect.is_pixel()
+        && match class {
+            BoxClass::Miss => false,
+            BoxClass::Hit { t_final } => t_final.wid() > t_final_width,
+            BoxClass::Undecided { .. } => true,
+        }
+}
+
+/// The tiles of side `size` (or less at the right and bottom edges) covering a `w × h`
+/// image, row by row: where the structure starts.
+pub fn tiles(w: u32, h: u32, size: u32) -> Vec<PixelRect> {
     let mut out = Vec::new();
-    let mut stack: Vec<(PixelRect, Option<BoxClass>)> = vec![(tile, None)];
-    while let Some((rect, parent)) = stack.pop() {
-        let class = classify(&rect, parent.as_ref());
-        let split = !rect.is_pixel()
-            && match class {
-                BoxClass::Miss => false,
-                BoxClass::Hit { t_final } => wide(t_final, t_final_width),
-                BoxClass::Undecided { .. } => true,
-            };
-        if split {
-            stack.extend(rect.split().into_iter().rev().map(|r| (r, Some(class))));
-        } else {
-            out.push(ScreenBox { rect, class });
+    for y0 in (0..h).step_by(size as usize) {
+        for x0 in (0..w).step_by(size as usize) {
+            out.push(PixelRect {
+                x0,
+                y0,
+                x1: (x0 + size).min(w),
+                y1: (y0 + size).min(h),
+            });
         }
     }
     out
-}
-
-fn wide(t: Interval<f64>, width: f64) -> bool {
-    t.wid() > width
 }

@@ -83,13 +83,10 @@ fn assert_passes(stats: &RenderStats, ran: &[&str], skipped: &[&str]) {
 fn every_pass_is_reported_in_order() {
     let out = run(&scene(16, ONE_LIGHT, ""));
     let names: Vec<&str> = out.stats.passes.iter().map(|p| p.name.as_str()).collect();
-    assert_eq!(names, beam_trace::plan::PASSES);
-    for name in beam_trace::plan::PASSES {
-        assert_eq!(
-            out.plan.runs(name),
-            out.stats.pass(name).unwrap().ran,
-            "{name}"
-        );
+    let expected: Vec<&str> = beam_trace::Pass::ALL.iter().map(|p| p.name()).collect();
+    assert_eq!(names, expected);
+    for pass in beam_trace::Pass::ALL {
+        assert_eq!(out.plan.runs(pass), out.stats.of(pass).unwrap().ran, "{pass}");
     }
 }
 

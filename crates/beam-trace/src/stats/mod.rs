@@ -3,7 +3,11 @@
 use std::fmt;
 use std::time::Duration;
 
-use crate::root::RootCounters;
+pub mod counters;
+
+pub use counters::Counters;
+
+use crate::plan::Pass;
 
 /// Time and counters of one pass of the render.
 #[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
@@ -42,24 +46,9 @@ impl PassStats {
         }
     }
 
-    /// A pass that ran searches: its own counters (`labels` with `items`), then the root
-    /// search counters `g_evals`, `dg_evals`, `point_evals` and `bisections`.
-    pub fn with_search(
-        name: &str,
-        time: Duration,
-        labels: &[&str],
-        items: &[u64],
-        root: &RootCounters,
-    ) -> Self {
-        let mut counters: Vec<(&str, u64)> =
-            labels.iter().copied().zip(items.iter().copied()).collect();
-        counters.extend([
-            ("g_evals", root.g_evals),
-            ("dg_evals", root.dg_evals),
-            ("point_evals", root.point_evals),
-            ("bisections", root.bisections),
-        ]);
-        Self::new(name, time, &counters)
+    /// A pass of the pipeline that ran, with its named counters.
+    pub fn of(pass: Pass, time: Duration, counters: &impl Counters) -> Self {
+        Self::new(pass.name(), time, &counters.list())
     }
 
     /// The counter `name` (0 when absent).
@@ -96,6 +85,11 @@ impl RenderStats {
     /// The pass called `name`.
     pub fn pass(&self, name: &str) -> Option<&PassStats> {
         self.passes.iter().find(|p| p.name == name)
+    }
+
+    /// The statistics of the pipeline's pass `pass`.
+    pub fn of(&self, pass: Pass) -> Option<&PassStats> {
+        self.pass(pass.name())
     }
 
     /// The statistics without the times: what must not depend on the thread count.

@@ -1,0 +1,129 @@
+//! The normals pass and the shading pass.
+
+use std::time::Instant;
+
+use crate::backend::{Queries, ShadeBatch, ShadeLight, ShadeSample};
+use crate::error::Error;
+use crate::plan::Pass;
+use crate::progress::Progress;
+use crate::sample::Sample;
+use crate::scene::Scene;
+use crate::stats::PassStats;
+use crate::stats::counters::{NormalCounters, ShadingCounters};
+
+/// Unit normals of the hit samples from the gradient.
+pub(super) fn normals(
+    q: &dyn Queries,
+    samples: &mut [Vec<Sample>],
+    progress: &dyn Progress,
+) -> Result<PassStats, Error> {
+    let t0 = Instant::now();
+    let points: Vec<_> = samples
+        .iter()
+        .flatten()
+        .filter_map(|s| s.hit.map(|h| h.point))
+        .collect();
+    progress.begin(Pass::Normals.name(), 1);
+    let answers = q.normals(&points)?;
+    progress.end();
+    let mut c = NormalCounters {
+        normals: points.len() as u64,
+        search: answers.search,
+        ..NormalCounters::default()
+    };
+    let hits = samples.iter_mut().flatten().filter_map(|s| s.hit.as_mut());
+    for (hit, n) in hits.zip(answers.values) {
+        match n {
+            Some(n) => hit.normal = n,
+            None => c.degenerate += 1,
+        }
+    }
+    Ok(PassStats::of(Pass::Normals, t0.elapsed(), &c))
+}
+
+/// Each pixel's colour: the weighted sum of its samples' Phong colours under the lights'
+/// visible fractions `vis` (the flat material colour when the scene has no lights, and the
+/// pass does not run: `lit` is false).
+pub(super) fn shading(
+    q: &dyn Queries,
+    scene: &Scene,
+    lit: bool,
+    samples: &[Vec<Sample>],
+    vis: &[Vec<f32>],
+) -> Result<(Vec<[f32; 3]>, PassStats), Error> {
+    let t0 = Instant::now();
+    let leaves = scene.geometry.leaves();
+    let nl = scene.lights.len();
+    let hits = || samples.iter().flatten().filter_map(|s| s.hit);
+    let colors: Vec<[f32; 3]> = if lit {
+        let lights: Vec<ShadeLight> = scene
+            .lights
+            .iter()
+            .map(|l| ShadeLight {
+                position: l.center(),
+                color: l.color(),
+            })
+            .collect();
+        let shade: Vec<ShadeSample> = hits()
+            .map(|h| ShadeSample {
+                point: h.point,
+                normal: h.normal,
+                to_eye: h.to_eye,
+                material: leaves[h.leaf as usize].material,
+            })
+            .collect();
+        let fractions: Vec<f32> = samples
+            .iter()
+            .zip(vis)
+            .flat_map(|(px, v)| {
+                px.iter()
+                    .enumerate()
+                    .filter(|(_, s)| s.hit.is_some())
+                    .flat_map(move |(si, _)| v[si * nl..(si + 1) * nl].iter().copied())
+            })
+            .collect();
+        q.shade(&ShadeBatch {
+            lights: &lights,
+            ambient: scene.ambient,
+            samples: &shade,
+            fractions: &fractions,
+        })?
+        .values
+    } else {
+        hits()
+            .map(|h| leaves[h.leaf as usize].material.color)
+            .collect()
+    };
+    let mut colors = colors.into_iter();
+    let pixels = samples
+        .iter()
+        .map(|px| {
+            let mut acc = [0f32; 3];
+            let mut wsum = 0f32;
+            for s in px {
+                let c = match s.hit {
+                    None => scene.background,
+                    Some(_) => colors.next().unwrap_or(scene.background),
+                };
+                for k in 0..3 {
+                    acc[k] += s.weight * c[k];
+                }
+                wsum += s.weight;
+            }
+            if wsum > 0.0 {
+                acc.map(|a| a / wsum)
+            } else {
+                scene.background
+            }
+        })
+        .collect();
+    let stats = if lit {
+        let c = ShadingCounters {
+            shaded_samples: hits().count() as u64,
+        };
+        PassStats::of(Pass::Shading, t0.elapsed(), &c)
+    } else {
+        PassStats::skipped(Pass::Shading.name())
+    };
+    Ok((pixels, stats))
+}

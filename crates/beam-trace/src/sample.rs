@@ -1,0 +1,53 @@
+//! What a primary sample sees: the surface point it hit (its root enclosure, its shading
+//! point, the leaf whose material shades it, its normal), and its weight in its pixel.
+
+use glam::DVec3;
+use interval_core::Interval;
+
+/// Distance, as a fraction of the scene diagonal, by which a shadow segment starts off the
+/// surface along the normal. It must exceed the width of a root enclosure along the segment
+/// (`epsilon` times the segment's length) by a wide margin, or the search finds the surface
+/// the segment leaves as a possible root (shadow acne); occluders thinner than it at the
+/// very start of a segment are not seen.
+pub const SHADOW_OFFSET: f64 = 1e-4;
+
+/// A surface point seen by a primary sample.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Hit {
+    /// Enclosure of the ray parameter of the first root.
+    pub t: Interval<f64>,
+    /// The point (central ray at the middle of `t`).
+    pub point: DVec3,
+    /// Unit vector from the point to the eye.
+    pub to_eye: DVec3,
+    /// The leaf surface whose material shades it.
+    pub leaf: u32,
+    /// Unit normal (set by the normals pass).
+    pub normal: DVec3,
+}
+
+impl Hit {
+    /// The normal turned towards the eye (the side of the surface the sample sees).
+    pub fn facing_normal(&self) -> DVec3 {
+        if self.normal.dot(self.to_eye) < 0.0 {
+            -self.normal
+        } else {
+            self.normal
+        }
+    }
+
+    /// Where shadow rays from the hit start: `offset` off the surface along the facing
+    /// normal (see [`SHADOW_OFFSET`]).
+    pub fn shadow_origin(&self, offset: f64) -> DVec3 {
+        self.point + self.facing_normal() * offset
+    }
+}
+
+/// One primary sample of a pixel: its weight (area fraction) and what it sees.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Sample {
+    /// Weight of the sample in its pixel (the weights of a pixel sum to 1).
+    pub weight: f32,
+    /// The surface point, or `None` for background.
+    pub hit: Option<Hit>,
+}
