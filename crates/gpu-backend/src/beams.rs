@@ -60,7 +60,7 @@ pub struct BeamQuery {
 
 /// Settings of the GPU search.
 #[derive(Copy, Clone, Debug, PartialEq)]
-pub struct BeamSettings {
+pub struct KernelSettings {
     /// Width of a final section (absolute, in the ray parameter).
     pub epsilon: f32,
     /// Width of a final section relative to its start `t` (0: only `epsilon`).
@@ -76,7 +76,7 @@ pub struct BeamSettings {
     pub narrow_hits: bool,
 }
 
-impl Default for BeamSettings {
+impl Default for KernelSettings {
     fn default() -> Self {
         Self {
             epsilon: 1e-4,
@@ -163,7 +163,7 @@ impl BeamKernel {
         &self,
         gpu: &Gpu,
         queries: &[BeamQuery],
-        settings: &BeamSettings,
+        settings: &KernelSettings,
     ) -> Result<Vec<GpuBeam>, GpuError> {
         // Inclusion proofs must place roots inside the bounds: round them inward.
         let b = self.bounds.map(|i| inward_f32(i.inf(), i.sup()));

@@ -29,18 +29,22 @@
 //! * [`beams::BeamKernel`]: every beam and ray search of the renderer (primary beams, rays,
 //!   shadow segments, shadow beams and sub-beams) with the counter-based non-recursive
 //!   bisection and the rejection and inclusion tests.
-//! * [`render::render`]: the GPU render path (`render --backend gpu`), with the CPU
-//!   renderer's plan, output types and per-pass table; Phong on the GPU
-//!   ([`shading::ShadingKernel`]), shading points and normals on the CPU.
+//! * [`GpuBackend`]: the GPU as a backend of beam-trace's one render pipeline
+//!   ([`beam_trace::render_on`], `render --backend gpu`): beams, rays, shadow segments, soft
+//!   shadows (the shadow methods of beam-trace run in rounds of batched questions) and
+//!   Phong ([`shading::ShadingKernel`]) on the GPU; the queries it does not answer
+//!   (shading points, normals, IAA's normal variation) go to the CPU, as the printed routing
+//!   says.
 
+pub mod backend;
 pub mod beams;
 mod device;
 mod dispatch;
 mod error;
 pub mod library;
-pub mod render;
 pub mod shading;
 pub mod surface;
 
+pub use backend::GpuBackend;
 pub use device::Gpu;
 pub use error::GpuError;

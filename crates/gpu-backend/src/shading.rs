@@ -1,6 +1,7 @@
 //! Phong shading on the GPU: beam-trace's `phong` (thesis eq. 2.6) for many samples at once,
 //! each with its point, normal, material and the visible fraction of every light.
 
+pub use beam_trace::backend::ShadeLight;
 use beam_trace::scene::Material;
 use bytemuck::{Pod, Zeroable};
 use glam::DVec3;
@@ -13,15 +14,6 @@ const SHADING_KERNEL: &str = include_str!("wgsl/shading.wgsl");
 
 /// The most lights the shading kernel takes.
 pub const MAX_LIGHTS: usize = 8;
-
-/// A light as shading sees it: where it is (an area light's centre) and its colour.
-#[derive(Copy, Clone, Debug, PartialEq)]
-pub struct ShadingLight {
-    /// Position.
-    pub position: DVec3,
-    /// Colour times intensity.
-    pub color: [f32; 3],
-}
 
 /// One sample to shade.
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -84,7 +76,7 @@ impl ShadingKernel {
     pub fn shade(
         &self,
         gpu: &Gpu,
-        lights: &[ShadingLight],
+        lights: &[ShadeLight],
         ambient: f32,
         samples: &[ShadingInput],
     ) -> Result<Vec<[f32; 3]>, GpuError> {

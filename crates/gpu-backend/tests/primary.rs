@@ -8,7 +8,7 @@ use beam_trace::root::{Proof, RootCounters, RootMethod, RootResult, RootSettings
 use beam_trace::screen::PixelRect;
 use beam_trace::{BeamEval, Scene};
 use gpu_backend::Gpu;
-use gpu_backend::beams::{BeamKernel, BeamQuery, BeamSettings, GpuClass};
+use gpu_backend::beams::{BeamKernel, BeamQuery, KernelSettings, GpuClass};
 use interval_core::Interval;
 
 const SIZE: u32 = 40;
@@ -42,9 +42,9 @@ fn gpu_classes_never_contradict_cpu_roots() {
             })
             .collect();
         // The CPU plan's beam tolerance: 10^-3 of the scene diagonal.
-        let gpu_settings = BeamSettings {
+        let gpu_settings = KernelSettings {
             epsilon: (1e-3 * geometry.diagonal()) as f32,
-            ..BeamSettings::default()
+            ..KernelSettings::default()
         };
         let queries: Vec<BeamQuery> = rects
             .iter()

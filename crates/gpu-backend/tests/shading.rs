@@ -4,7 +4,7 @@ use beam_trace::scene::Material;
 use beam_trace::shading::{Incoming, phong};
 use glam::DVec3;
 use gpu_backend::Gpu;
-use gpu_backend::shading::{MAX_LIGHTS, ShadingInput, ShadingKernel, ShadingLight};
+use gpu_backend::shading::{MAX_LIGHTS, ShadingInput, ShadingKernel, ShadeLight};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 
@@ -22,8 +22,8 @@ fn gpu_phong_matches_the_cpu() {
     let Some(gpu) = Gpu::for_tests() else { return };
     let kernel = ShadingKernel::new(&gpu).expect("the kernel compiles");
     let mut rng = StdRng::seed_from_u64(5);
-    let lights: Vec<ShadingLight> = (0..3)
-        .map(|_| ShadingLight {
+    let lights: Vec<ShadeLight> = (0..3)
+        .map(|_| ShadeLight {
             position: unit(&mut rng) * 10.0,
             color: [rng.gen_range(0.0..1.0), rng.gen_range(0.0..1.0), 1.0],
         })

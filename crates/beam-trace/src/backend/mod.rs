@@ -272,8 +272,8 @@ pub trait Backend: Sync {
     /// The backend's name in plans and errors (`cpu`, `gpu (llvmpipe)`).
     fn name(&self) -> String;
 
-    /// Whether it answers queries of `kind` under `plan`.
-    fn support(&self, kind: QueryKind, plan: &Plan) -> Support;
+    /// Whether it answers queries of `kind` for `scene` under `plan`.
+    fn support(&self, kind: QueryKind, scene: &Scene, plan: &Plan) -> Support;
 
     /// Prepares the queries of `scene` under `plan`, for the query kinds `kinds` (those
     /// the routing sends to it).
@@ -282,7 +282,7 @@ pub trait Backend: Sync {
     ///
     /// [`Error::Backend`] when the scene cannot run on the backend.
     fn prepare<'a>(
-        &self,
+        &'a self,
         scene: &'a Scene,
         plan: &'a Plan,
         kinds: &[QueryKind],

@@ -42,6 +42,9 @@ pub fn pass_queries(pass: Pass, plan: &Plan) -> &'static [QueryKind] {
     }
 }
 
+/// The CPU backend that answers in the chosen one's place.
+static CPU: Cpu = Cpu;
+
 /// Who answers a kind of query.
 #[derive(Clone, Debug, PartialEq, Eq)]
 enum Route {
@@ -60,8 +63,8 @@ pub struct Routing {
 }
 
 impl Routing {
-    /// The routing of `plan`'s queries on `backend`.
-    pub fn new(backend: &dyn Backend, plan: &Plan) -> Routing {
+    /// The routing of the queries of `scene` under `plan` on `backend`.
+    pub fn new(backend: &dyn Backend, scene: &Scene, plan: &Plan) -> Routing {
         let passes: Vec<(Pass, &'static [QueryKind])> = Pass::ALL
             .iter()
             .map(|&p| (p, pass_queries(p, plan)))
@@ -73,7 +76,7 @@ impl Routing {
                 if routes.iter().any(|(k, _)| *k == kind) {
                     continue;
                 }
-                let route = match backend.support(kind, plan) {
+                let route = match backend.support(kind, scene, plan) {
                     Support::Yes => Route::Main,
                     Support::No(why) => Route::Cpu(why),
                 };
@@ -120,7 +123,7 @@ impl Routing {
     /// The error of a backend's preparation.
     pub fn prepare<'a>(
         &self,
-        backend: &dyn Backend,
+        backend: &'a dyn Backend,
         scene: &'a Scene,
         plan: &'a Plan,
     ) -> Result<(Routed<'a>, Vec<PassStats>), Error> {
@@ -132,7 +135,7 @@ impl Routing {
         let cpu = if cpu_kinds.is_empty() {
             None
         } else {
-            let p = Cpu.prepare(scene, plan, &cpu_kinds)?;
+            let p = CPU.prepare(scene, plan, &cpu_kinds)?;
             passes.extend(p.passes);
             Some(p.queries)
         };

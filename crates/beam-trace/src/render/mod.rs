@@ -24,6 +24,7 @@ use std::time::Instant;
 use glam::DVec3;
 
 use crate::backend::cpu::Cpu;
+use crate::beam::BoxClass;
 use crate::backend::{Backend, Routing};
 use crate::error::Error;
 use crate::image::Image;
@@ -47,6 +48,8 @@ pub struct RenderOutput {
     /// The cost of primary visibility per pixel, as a heat map (thesis fig. 5.8), in the
     /// backend's unit of cost (time on the CPU).
     pub cost_map: Image,
+    /// Each pixel's screen box class (`None` where no screen box pass ran).
+    pub box_classes: Vec<Option<BoxClass>>,
     /// Soft shadows per pixel; `None` without a soft-shadow pass.
     pub shadows: Option<ShadowMaps>,
     /// The plan that ran.
@@ -76,7 +79,8 @@ pub struct ShadowMaps {
 ///
 /// [`Error`] when a backend fails (the CPU does not).
 pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Error> {
-    render_on(scene, &Cpu, progress)
+    static CPU: Cpu = Cpu;
+    render_on(scene, &CPU, progress)
 }
 
 /// Renders `scene` with `backend` answering the queries it supports and the CPU the others
@@ -85,14 +89,14 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
 /// # Errors
 ///
 /// [`Error::Backend`] when the backend cannot run the scene or fails.
-pub fn render_on(
-    scene: &Scene,
-    backend: &dyn Backend,
+pub fn render_on<'a>(
+    scene: &'a Scene,
+    backend: &'a dyn Backend,
     progress: &dyn Progress,
 ) -> Result<RenderOutput, Error> {
     let start = Instant::now();
     let plan = Plan::for_scene(scene);
-    let routing = Routing::new(backend, &plan);
+    let routing = Routing::new(backend, scene, &plan);
     let (queries, mut passes) = routing.prepare(backend, scene, &plan)?;
     let q = &queries;
     let cam = &scene.camera;
@@ -172,6 +176,7 @@ pub fn render_on(
 
     Ok(RenderOutput {
         classification: classification_image(w, h, &classes),
+        box_classes: classes.iter().map(|c| c.map(|c| c.0)).collect(),
         cost_map: cost_image(w, h, &cost),
         shadows,
         image: Image {

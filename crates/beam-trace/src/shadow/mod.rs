@@ -24,6 +24,7 @@ pub mod beam;
 pub mod hard;
 pub mod minkowski;
 mod patch;
+pub mod rounds;
 mod spec;
 pub mod stochastic;
 

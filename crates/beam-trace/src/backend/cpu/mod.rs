@@ -39,12 +39,12 @@ impl Backend for Cpu {
         "cpu".into()
     }
 
-    fn support(&self, _kind: QueryKind, _plan: &Plan) -> Support {
+    fn support(&self, _kind: QueryKind, _scene: &Scene, _plan: &Plan) -> Support {
         Support::Yes
     }
 
     fn prepare<'a>(
-        &self,
+        &'a self,
         scene: &'a Scene,
         plan: &'a Plan,
         kinds: &[QueryKind],

@@ -1,0 +1,220 @@
+//! The agreement suite: the same scenes rendered by every backend through the one pipeline
+//! (the CPU, and the GPU when an adapter exists: Mesa's lavapipe in CI), checked against
+//! the CPU's results by containment, since the GPU evaluates in f32 and the CPU in f64:
+//!
+//! * no pixel is proven to miss by one backend and proven to hit by another, and where both
+//!   prove a hit their `T_final` sections overlap;
+//! * no pixel is proven lit by one and proven in the umbra by another;
+//! * the images agree on most pixels;
+//! * every planned pass ran, with the same passes in the same order.
+//!
+//! And the GPU's shadow proofs are checked against 256 reliable CPU shadow segments.
+
+use beam_trace::backend::Backend;
+use beam_trace::beam::BoxClass;
+use beam_trace::scene::{AaMode, PrimaryMode};
+use beam_trace::shadow::ShadowClass;
+use beam_trace::{Cpu, NoProgress, Pass, RenderOutput, Routing, Scene, render, render_on};
+use gpu_backend::{Gpu, GpuBackend};
+
+fn scene(method: &str) -> Scene {
+    let text = format!(
+        r#"
+[camera]
+eye = [0.0, 3.0, 6.0]
+look_at = [0.0, -0.6, 0.0]
+fov = 45.0
+width = 40
+height = 40
+
+[[surfaces]]
+name = "ball"
+formula = "x^2 + y^2 + z^2 - 1"
+bounds = [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]
+
+[[surfaces]]
+name = "floor"
+formula = "y + 1.2"
+bounds = [[-3.0, -1.5, -3.0], [3.0, -1.2, 3.0]]
+clip = true
+
+[[lights]]
+type = "area"
+center = [-1.0, 4.0, 1.0]
+size = 1.5
+normal = "y"
+
+[[lights]]
+type = "point"
+position = [3.0, 5.0, 2.0]
+intensity = 0.3
+
+[render]
+shadow_method = "{method}"
+"#
+    );
+    Scene::from_toml(&text, "gpu.toml", None).unwrap_or_else(|e| panic!("{e}"))
+}
+
+/// The backends under test: the CPU, and the GPU where there is one.
+fn backends() -> Vec<Box<dyn Backend>> {
+    let mut out: Vec<Box<dyn Backend>> = vec![Box::new(Cpu)];
+    if let Some(gpu) = Gpu::for_tests() {
+        out.push(Box::new(GpuBackend::new(gpu)));
+    }
+    out
+}
+
+/// The scenes of the suite: shadows by several methods, anti-aliasing, per-pixel rays.
+fn suite() -> Vec<(String, Scene)> {
+    let mut out = Vec::new();
+    for method in ["beam:4", "beam-quadtree:4", "minkowski:beam:3", "stochastic:16"] {
+        out.push((method.to_string(), scene(method)));
+    }
+    let mut iaa = scene("beam:2");
+    iaa.settings.aa = AaMode::Iaa {
+        max_depth: 2,
+        threshold: AaMode::IAA_THRESHOLD,
+    };
+    out.push(("iaa".into(), iaa));
+    let mut per_pixel = scene("minkowski:stochastic:8");
+    per_pixel.settings.primary = PrimaryMode::PerPixel;
+    out.push(("per-pixel".into(), per_pixel));
+    out
+}
+
+/// What contradicts between `a` and the reference `r`.
+fn contradictions(a: &RenderOutput, r: &RenderOutput) -> Vec<String> {
+    let mut bad = Vec::new();
+    for (i, (x, y)) in a.box_classes.iter().zip(&r.box_classes).enumerate() {
+        match (x, y) {
+            (Some(BoxClass::Miss), Some(BoxClass::Hit { .. }))
+            | (Some(BoxClass::Hit { .. }), Some(BoxClass::Miss)) => {
+                bad.push(format!("pixel {i}: {x:?} against {y:?}"));
+            }
+            (Some(BoxClass::Hit { t_final: s }), Some(BoxClass::Hit { t_final: t }))
+                if s.intersection(*t).is_empty() =>
+            {
+                bad.push(format!("pixel {i}: T_final {s:?} and {t:?} are disjoint"));
+            }
+            _ => {}
+        }
+    }
+    if let (Some(sa), Some(sr)) = (&a.shadows, &r.shadows) {
+        for (i, (x, y)) in sa.classes.iter().zip(&sr.classes).enumerate() {
+            if matches!(
+                (x, y),
+                (Some(ShadowClass::Lit), Some(ShadowClass::Umbra))
+                    | (Some(ShadowClass::Umbra), Some(ShadowClass::Lit))
+            ) {
+                bad.push(format!("pixel {i}: shadow {x:?} against {y:?}"));
+            }
+        }
+    }
+    bad
+}
+
+#[test]
+fn every_backend_agrees_with_the_cpu() {
+    for backend in backends() {
+        for (name, s) in suite() {
+            let reference = render(&s, &NoProgress).expect("the CPU renders");
+            let out = render_on(&s, backend.as_ref(), &NoProgress)
+                .unwrap_or_else(|e| panic!("{name} on {}: {e}", backend.name()));
+            let who = format!("{name} on {}", backend.name());
+            eprintln!("{}", Routing::new(backend.as_ref(), &s, &out.plan));
+            for pass in Pass::ALL.into_iter().filter(|&p| p != Pass::Grid) {
+                assert_eq!(
+                    out.stats.of(pass).map(|p| p.ran),
+                    reference.stats.of(pass).map(|p| p.ran),
+                    "{who}: pass {pass}"
+                );
+            }
+            let bad = contradictions(&out, &reference);
+            assert!(bad.is_empty(), "{who}:\n{}", bad.join("\n"));
+            let close = out
+                .image
+                .pixels
+                .iter()
+                .zip(&reference.image.pixels)
+                .filter(|(a, b)| a.iter().zip(b.iter()).all(|(x, y)| (x - y).abs() <= 0.1))
+                .count();
+            let share = close as f64 / out.image.pixels.len() as f64;
+            eprintln!("{who}: {:.1} % of the pixels agree within 0.1", 100.0 * share);
+            assert!(share >= 0.9, "{who}: only {share} of the pixels agree");
+        }
+    }
+}
+
+#[test]
+fn the_cpu_backend_through_render_on_is_the_cpu_render() {
+    let s = scene("beam:3");
+    let a = render(&s, &NoProgress).unwrap();
+    let b = render_on(&s, &Cpu, &NoProgress).unwrap();
+    assert_eq!(a.image.pixels, b.image.pixels);
+    assert_eq!(a.stats.work(), b.stats.work());
+}
+
+#[test]
+fn the_gpu_routing_names_what_runs_on_the_cpu() {
+    let Some(gpu) = Gpu::for_tests() else { return };
+    let backend = GpuBackend::new(gpu);
+    let mut s = scene("stochastic:8:cache");
+    s.settings.aa = AaMode::Iaa {
+        max_depth: 2,
+        threshold: AaMode::IAA_THRESHOLD,
+    };
+    let plan = beam_trace::Plan::for_scene(&s);
+    let routing = Routing::new(&backend, &s, &plan).to_string();
+    for line in [
+        "beams on gpu",
+        "normal-variation on the cpu",
+        "hit-points on the cpu",
+        "soft-shadows on the cpu (the last-occluder cache",
+        "normals on the cpu",
+    ] {
+        assert!(routing.contains(line), "{line}:\n{routing}");
+    }
+    let out = render_on(&s, &backend, &NoProgress).expect("the GPU renders");
+    assert!(out.stats.pass("gpu-compile").is_some_and(|p| p.ran));
+}
+
+#[test]
+fn gpu_shadow_proofs_agree_with_many_cpu_samples() {
+    let Some(gpu) = Gpu::for_tests() else { return };
+    let g = render_on(&scene("beam:4"), &GpuBackend::new(gpu), &NoProgress)
+        .expect("the GPU renders");
+    // One ray per pixel through its centre, the ray the GPU shades too.
+    let mut cpu = scene("stochastic:256");
+    cpu.settings.primary = PrimaryMode::PerPixel;
+    cpu.settings.rays_per_pixel = 1;
+    let reference = render(&cpu, &NoProgress).expect("the CPU renders");
+    let gm = g.shadows.as_ref().expect("soft shadows ran");
+    let rf = &reference
+        .shadows
+        .as_ref()
+        .expect("soft shadows ran")
+        .fractions[0];
+    let (mut lit, mut umbra, mut bad) = (0, 0, Vec::new());
+    for (i, class) in gm.classes.iter().enumerate() {
+        let r = rf[i];
+        match class {
+            Some(ShadowClass::Lit) => {
+                lit += 1;
+                if r.is_finite() && r != 1.0 {
+                    bad.push(format!("pixel {i}: GPU proven lit, CPU samples {r}"));
+                }
+            }
+            Some(ShadowClass::Umbra) => {
+                umbra += 1;
+                if r.is_finite() && r != 0.0 {
+                    bad.push(format!("pixel {i}: GPU proven umbra, CPU samples {r}"));
+                }
+            }
+            _ => {}
+        }
+    }
+    eprintln!("GPU proven lit {lit}, umbra {umbra}");
+    assert!(lit > 200, "{lit} proven lit pixels");
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
+}
