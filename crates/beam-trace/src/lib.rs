@@ -77,15 +77,15 @@ pub mod shading;
 pub mod shadow;
 pub mod stats;
 
+pub use backend::{Backend, Routing, cpu::Cpu};
 pub use camera::Camera;
 pub use error::Error;
 pub use image::Image;
-pub use backend::{Backend, Routing, cpu::Cpu};
 pub use plan::{Pass, Plan};
 pub use progress::{NoProgress, Progress};
 pub use ray::{Beam, BeamEval, IBox, Precision, Ray};
 pub use render::{RenderOutput, ShadowMaps, render, render_on};
-pub use sample::{Hit, Sample};
 pub use root::{Proof, RayFn, RootCounters, RootFinder, RootMethod, RootResult, RootSettings};
+pub use sample::{Hit, Sample};
 pub use scene::{Geometry, Light, Material, Scene};
 pub use stats::RenderStats;

@@ -194,7 +194,10 @@ impl Plan {
                 "regular grid, {} cells on the longest side",
                 self.grid.unwrap_or(0)
             ),
-            Pass::ScreenBoxes => "beams over screen boxes: rejection + inclusion tests (Miss / Hit / Undecided)".to_string(),
+            Pass::ScreenBoxes => {
+                "beams over screen boxes: rejection + inclusion tests (Miss / Hit / Undecided)"
+                    .to_string()
+            }
             Pass::PrimaryRays => match self.primary {
                 Primary::ScreenBoxes { rays_per_undecided } => format!(
                     "1 ray per pixel in Hit boxes (search in T_final), {rays_per_undecided} per pixel in Undecided ones; root finder {}, epsilon {:e}",
@@ -207,7 +210,10 @@ impl Plan {
                 Primary::Iaa { .. } => String::new(),
             },
             Pass::Iaa => match self.primary {
-                Primary::Iaa { max_depth, threshold } => format!(
+                Primary::Iaa {
+                    max_depth,
+                    threshold,
+                } => format!(
                     "interval anti-aliasing: a beam per pixel, split in four to depth {max_depth}, normal-variation threshold {threshold}"
                 ),
                 _ => String::new(),

@@ -86,7 +86,11 @@ fn every_pass_is_reported_in_order() {
     let expected: Vec<&str> = beam_trace::Pass::ALL.iter().map(|p| p.name()).collect();
     assert_eq!(names, expected);
     for pass in beam_trace::Pass::ALL {
-        assert_eq!(out.plan.runs(pass), out.stats.of(pass).unwrap().ran, "{pass}");
+        assert_eq!(
+            out.plan.runs(pass),
+            out.stats.of(pass).unwrap().ran,
+            "{pass}"
+        );
     }
 }
 

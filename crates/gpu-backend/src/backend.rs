@@ -50,7 +50,7 @@ impl GpuBackend {
 
 impl Backend for GpuBackend {
     fn name(&self) -> String {
-        format!("gpu ({})", self.gpu.name())
+        "gpu".into()
     }
 
     fn support(&self, kind: QueryKind, scene: &Scene, plan: &Plan) -> Support {
@@ -170,9 +170,9 @@ fn ahead() -> Interval<f64> {
 impl GpuQueries<'_> {
     /// The kernel query of `beam` for parameters in `window`, inside the scene bounds.
     fn query(&self, beam: Beam, window: Interval<f64>) -> beams::BeamQuery {
-        let t = beam
-            .t_range(&self.bounds)
-            .map_or(Interval::EMPTY, |t| t.intersection(window).intersection(ahead()));
+        let t = beam.t_range(&self.bounds).map_or(Interval::EMPTY, |t| {
+            t.intersection(window).intersection(ahead())
+        });
         beams::BeamQuery { beam, t }
     }
 

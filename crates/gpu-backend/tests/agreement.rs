@@ -68,7 +68,12 @@ fn backends() -> Vec<Box<dyn Backend>> {
 /// The scenes of the suite: shadows by several methods, anti-aliasing, per-pixel rays.
 fn suite() -> Vec<(String, Scene)> {
     let mut out = Vec::new();
-    for method in ["beam:4", "beam-quadtree:4", "minkowski:beam:3", "stochastic:16"] {
+    for method in [
+        "beam:4",
+        "beam-quadtree:4",
+        "minkowski:beam:3",
+        "stochastic:16",
+    ] {
         out.push((method.to_string(), scene(method)));
     }
     let mut iaa = scene("beam:2");
@@ -140,7 +145,10 @@ fn every_backend_agrees_with_the_cpu() {
                 .filter(|(a, b)| a.iter().zip(b.iter()).all(|(x, y)| (x - y).abs() <= 0.1))
                 .count();
             let share = close as f64 / out.image.pixels.len() as f64;
-            eprintln!("{who}: {:.1} % of the pixels agree within 0.1", 100.0 * share);
+            eprintln!(
+                "{who}: {:.1} % of the pixels agree within 0.1",
+                100.0 * share
+            );
             assert!(share >= 0.9, "{who}: only {share} of the pixels agree");
         }
     }
@@ -182,8 +190,8 @@ fn the_gpu_routing_names_what_runs_on_the_cpu() {
 #[test]
 fn gpu_shadow_proofs_agree_with_many_cpu_samples() {
     let Some(gpu) = Gpu::for_tests() else { return };
-    let g = render_on(&scene("beam:4"), &GpuBackend::new(gpu), &NoProgress)
-        .expect("the GPU renders");
+    let g =
+        render_on(&scene("beam:4"), &GpuBackend::new(gpu), &NoProgress).expect("the GPU renders");
     // One ray per pixel through its centre, the ray the GPU shades too.
     let mut cpu = scene("stochastic:256");
     cpu.settings.primary = PrimaryMode::PerPixel;

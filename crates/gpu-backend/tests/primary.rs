@@ -8,7 +8,7 @@ use beam_trace::root::{Proof, RootCounters, RootMethod, RootResult, RootSettings
 use beam_trace::screen::PixelRect;
 use beam_trace::{BeamEval, Scene};
 use gpu_backend::Gpu;
-use gpu_backend::beams::{BeamKernel, BeamQuery, KernelSettings, GpuClass};
+use gpu_backend::beams::{BeamKernel, BeamQuery, GpuClass, KernelSettings};
 use interval_core::Interval;
 
 const SIZE: u32 = 40;

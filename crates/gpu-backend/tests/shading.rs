@@ -4,7 +4,7 @@ use beam_trace::scene::Material;
 use beam_trace::shading::{Incoming, phong};
 use glam::DVec3;
 use gpu_backend::Gpu;
-use gpu_backend::shading::{MAX_LIGHTS, ShadingInput, ShadingKernel, ShadeLight};
+use gpu_backend::shading::{MAX_LIGHTS, ShadeLight, ShadingInput, ShadingKernel};
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
 

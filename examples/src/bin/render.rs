@@ -20,7 +20,7 @@ use beam_trace::image::{check_writable, write_atomic};
 use beam_trace::root::RootMethod;
 use beam_trace::scene::{AaMode, PrimaryMode};
 use beam_trace::shadow::ShadowSpec;
-use beam_trace::{Precision, Progress, Scene, render};
+use beam_trace::{Precision, Progress, Scene, render_on};
 use clap::Parser;
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -220,18 +220,20 @@ fn run(args: Args) -> Result<(), String> {
         bar: Mutex::new(None),
         quiet: args.quiet,
     };
-    let out = if args.backend == "gpu" {
+    let backend: Box<dyn beam_trace::Backend> = if args.backend == "gpu" {
         let gpu = gpu_backend::Gpu::new().map_err(|e| e.to_string())?;
         println!("GPU adapter: {}", gpu.name());
-        println!(
-            "plan: every beam and ray and Phong on the GPU ({}); shading points and normals on the CPU",
-            gpu_backend::render::GPU_PASSES.join(", ")
-        );
-        gpu_backend::render::render(&gpu, &scene, &bar).map_err(|e| e.to_string())?
+        Box::new(gpu_backend::GpuBackend::new(gpu))
     } else {
-        print!("{}", beam_trace::Plan::for_scene(&scene));
-        render(&scene, &bar).map_err(|e| e.to_string())?
+        Box::new(beam_trace::Cpu)
     };
+    let plan = beam_trace::Plan::for_scene(&scene);
+    print!("{plan}");
+    print!(
+        "{}",
+        beam_trace::Routing::new(backend.as_ref(), &scene, &plan)
+    );
+    let out = render_on(&scene, backend.as_ref(), &bar).map_err(|e| e.to_string())?;
     out.image.write_png(&args.out).map_err(|e| e.to_string())?;
     println!("{}", out.stats);
     println!("wrote {}", args.out.display());

@@ -24,8 +24,8 @@ use std::time::Instant;
 use glam::DVec3;
 
 use crate::backend::cpu::Cpu;
-use crate::beam::BoxClass;
 use crate::backend::{Backend, Routing};
+use crate::beam::BoxClass;
 use crate::error::Error;
 use crate::image::Image;
 use crate::plan::{Pass, Plan, Primary};

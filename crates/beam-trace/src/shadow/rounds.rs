@@ -263,12 +263,9 @@ mod tests {
 
     impl Fake {
         fn answer(q: &Question) -> (Answer, RootCounters) {
-            let h = q
-                .key()
-                .iter()
-                .fold(0xcbf2_9ce4_8422_2325u64, |h, &x| {
-                    (h ^ x).wrapping_mul(0x0100_0000_01b3)
-                });
+            let h = q.key().iter().fold(0xcbf2_9ce4_8422_2325u64, |h, &x| {
+                (h ^ x).wrapping_mul(0x0100_0000_01b3)
+            });
             let c = RootCounters {
                 g_evals: h % 7,
                 bisections: h % 3,
@@ -300,7 +297,13 @@ mod tests {
     }
 
     impl Occluders for Fake {
-        fn segment(&mut self, from: DVec3, to: DVec3, start: f64, c: &mut RootCounters) -> Occlusion {
+        fn segment(
+            &mut self,
+            from: DVec3,
+            to: DVec3,
+            start: f64,
+            c: &mut RootCounters,
+        ) -> Occlusion {
             let (a, s) = Fake::answer(&Question::Segment { from, to, start });
             c.add(&s);
             match a {
@@ -311,7 +314,13 @@ mod tests {
         fn object_at(&mut self, _: DVec3) -> u32 {
             0
         }
-        fn segment_meets_object(&mut self, _: u32, _: DVec3, _: DVec3, _: &mut RootCounters) -> bool {
+        fn segment_meets_object(
+            &mut self,
+            _: u32,
+            _: DVec3,
+            _: DVec3,
+            _: &mut RootCounters,
+        ) -> bool {
             false
         }
         fn beam(

@@ -13,12 +13,12 @@ use super::{
     Answers, Backend, BeamQuery, HitQuery, Prepared, Queries, QueryKind, RayQuery, SegmentQuery,
     ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
+use crate::aa::normal_variation;
 use crate::beam::{BoxClass, Extent, evaluate_box};
 use crate::error::Error;
 use crate::grid::{Grid, GridEval};
 use crate::plan::{Pass, Plan};
 use crate::ray::{Beam, BeamEval, Ray};
-use crate::aa::normal_variation;
 use crate::root::{RayFn, RootCounters, RootFinder, RootResult};
 use crate::sample::Hit;
 use crate::scene::Scene;
@@ -212,7 +212,13 @@ impl CpuQueries<'_> {
     /// The first root along `ray` for parameters in `t` (clipped to `t ≥ 0`): through the
     /// grid's cells when there is a grid (each with its reduced function), else with the
     /// whole scene function inside the scene bounds.
-    fn cast(&self, ev: &mut Evals, ray: &Ray, t: Interval<f64>, c: &mut RootCounters) -> RootResult {
+    fn cast(
+        &self,
+        ev: &mut Evals,
+        ray: &Ray,
+        t: Interval<f64>,
+        c: &mut RootCounters,
+    ) -> RootResult {
         let root = &self.plan.root;
         let t = t.intersection(forward());
         if t.is_empty() {
@@ -342,7 +348,12 @@ impl Queries for CpuQueries<'_> {
 /// The parameter of the shading point of a hit with enclosure `t`: the end on the origin's
 /// side of a floating-point sign change of `g` inside `t`, narrowed by bisection on point
 /// values; the midpoint where `g` shows no sign change (a tangent, a possible root).
-fn shading_parameter(eval: &mut BeamEval, ray: &Ray, t: Interval<f64>, c: &mut RootCounters) -> f64 {
+fn shading_parameter(
+    eval: &mut BeamEval,
+    ray: &Ray,
+    t: Interval<f64>,
+    c: &mut RootCounters,
+) -> f64 {
     let (mut a, mut b) = (t.inf(), t.sup());
     if !(a.is_finite() && b.is_finite()) {
         return t.mid();
