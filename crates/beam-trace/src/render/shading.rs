@@ -2,6 +2,8 @@
 
 use std::time::Instant;
 
+use rayon::prelude::*;
+
 use crate::backend::{Queries, ShadeBatch, ShadeLight, ShadeSample};
 use crate::error::Error;
 use crate::plan::Pass;
@@ -94,19 +96,29 @@ pub(super) fn shading(
             .map(|h| leaves[h.leaf as usize].material.color)
             .collect()
     };
-    let mut colors = colors.into_iter();
+    // Each pixel's first colour: its hit samples' colours are consecutive.
+    let mut first = Vec::with_capacity(samples.len());
+    let mut k = 0;
+    for px in samples {
+        first.push(k);
+        k += px.iter().filter(|s| s.hit.is_some()).count();
+    }
     let pixels = samples
-        .iter()
-        .map(|px| {
+        .par_iter()
+        .zip(first)
+        .map(|(px, mut k)| {
             let mut acc = [0f32; 3];
             let mut wsum = 0f32;
             for s in px {
                 let c = match s.hit {
                     None => scene.background,
-                    Some(_) => colors.next().unwrap_or(scene.background),
+                    Some(_) => {
+                        k += 1;
+                        colors[k - 1]
+                    }
                 };
-                for k in 0..3 {
-                    acc[k] += s.weight * c[k];
+                for j in 0..3 {
+                    acc[j] += s.weight * c[j];
                 }
                 wsum += s.weight;
             }

@@ -328,18 +328,23 @@ impl Queries for CpuQueries<'_> {
             .samples
             .par_iter()
             .enumerate()
-            .map(|(i, s)| {
-                let incoming: Vec<Incoming> = batch
-                    .lights
-                    .iter()
-                    .zip(&batch.fractions[i * nl..(i + 1) * nl])
-                    .map(|(l, f)| Incoming {
-                        dir: (l.position - s.point).normalize_or_zero(),
-                        color: l.color.map(|c| c * f),
-                    })
-                    .collect();
-                phong(&s.material, batch.ambient, s.normal, s.to_eye, &incoming)
-            })
+            .map_init(
+                || Vec::with_capacity(nl),
+                |incoming: &mut Vec<Incoming>, (i, s)| {
+                    incoming.clear();
+                    incoming.extend(
+                        batch
+                            .lights
+                            .iter()
+                            .zip(&batch.fractions[i * nl..(i + 1) * nl])
+                            .map(|(l, f)| Incoming {
+                                dir: (l.position - s.point).normalize_or_zero(),
+                                color: l.color.map(|c| c * f),
+                            }),
+                    );
+                    phong(&s.material, batch.ambient, s.normal, s.to_eye, incoming)
+                },
+            )
             .collect();
         Ok(Answers::free(colors))
     }
