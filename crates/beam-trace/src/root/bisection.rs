@@ -19,8 +19,9 @@
 
 use interval_core::Interval;
 
+use super::finder::{RootCounters, RootFinder, RootResult, RootSettings};
 use super::search::{Budget, Eval, Stack, is_small, may_vanish, settle_piece};
-use super::{RayFn, RootCounters, RootFinder, RootResult, RootSettings};
+use crate::ray::RayFn;
 
 /// Classic interval bisection: reject by `0 ∉ G(X)`, otherwise halve, to width `ε`.
 #[derive(Copy, Clone, Debug, Default)]

@@ -51,9 +51,10 @@
 
 use interval_core::Interval;
 
+use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
 use super::search::{Budget, Eval, is_small, may_vanish, settle_piece};
-use super::{Proof, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
-use crate::ray::ival;
+use crate::ibox::ival;
+use crate::ray::RayFn;
 
 /// The deepest level: sections of level 60 are `2^−60` of `T`, below the resolution of
 /// `f64` for any `T` whose ends are of similar size to its width.

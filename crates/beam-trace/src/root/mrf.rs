@@ -40,10 +40,11 @@
 
 use interval_core::Interval;
 
+use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
 use super::search::{
     Budget, Eval, Stack, excludes_zero, is_small, may_vanish, newton, settle, shrunk, sign_change,
 };
-use super::{Proof, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
+use crate::ray::RayFn;
 
 /// MRF: interval bisection that drops everything after the midpoint once the left half
 /// is proven to hold a root.

@@ -19,11 +19,12 @@
 
 use interval_core::Interval;
 
+use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
 use super::search::{
     Budget, Eval, Stack, excludes_zero, is_small, may_vanish, newton, settle_piece, shrunk,
 };
-use super::{Proof, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
-use crate::ray::ipoint;
+use crate::ibox::ipoint;
+use crate::ray::RayFn;
 
 /// Interval Newton with bisection where `0 ∈ G'(X)`.
 #[derive(Copy, Clone, Debug, Default)]

@@ -12,9 +12,10 @@
 
 use interval_core::Interval;
 
+use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
 use super::search::{Budget, Eval};
-use super::{Proof, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
-use crate::ray::ival;
+use crate::ibox::ival;
+use crate::ray::RayFn;
 
 /// The most samples one search takes, whatever `sampling_step` says.
 const MAX_SAMPLES: u64 = 1 << 24;

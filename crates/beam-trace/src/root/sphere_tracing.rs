@@ -11,9 +11,10 @@
 
 use interval_core::Interval;
 
+use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
 use super::search::{Budget, Eval};
-use super::{Proof, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
-use crate::ray::ival;
+use crate::ibox::ival;
+use crate::ray::RayFn;
 
 /// Sphere tracing with the Lipschitz bound of the settings.
 #[derive(Copy, Clone, Debug, Default)]

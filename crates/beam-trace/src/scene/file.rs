@@ -31,7 +31,7 @@ use super::{
 };
 use crate::camera::Camera;
 use crate::error::Error;
-use crate::ray::{IBox, ival};
+use crate::ibox::{IBox, ival};
 use crate::shadow::Patch;
 
 /// The built-in default scene (TOML): the catalog's chubs, a sphere and a cube with a

@@ -18,7 +18,7 @@
 use glam::DVec3;
 use interval_core::Interval;
 
-use crate::ray::{IBox, ipoint};
+use crate::ibox::{IBox, ipoint};
 
 type Mat3 = [[f64; 3]; 3];
 
@@ -176,7 +176,7 @@ impl Affine {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ray::ival;
+    use crate::ibox::ival;
 
     #[test]
     fn right_angles_are_exact() {
