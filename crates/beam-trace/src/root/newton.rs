@@ -21,7 +21,7 @@ use interval_core::Interval;
 
 use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
 use super::search::{
-    Budget, Eval, Stack, excludes_zero, is_small, may_vanish, newton, settle_piece, shrunk,
+    Eval, Stack, begin, excludes_zero, is_small, may_vanish, newton, settle_piece, shrunk,
 };
 use crate::ibox::ipoint;
 use crate::ray::RayFn;
@@ -69,11 +69,9 @@ pub(crate) fn newton_search(
     counters: &mut RootCounters,
     extended: bool,
 ) -> RootResult {
-    if t.is_empty() {
+    let Some((mut ev, mut budget)) = begin(g, t, settings, counters) else {
         return RootResult::NoRoot;
-    }
-    let mut ev = Eval::new(g, counters);
-    let mut budget = Budget::new(settings, t);
+    };
     let mut stack = Stack::new(Piece::open(t));
     while let Some(p) = stack.pop() {
         let x = p.t;

@@ -13,7 +13,7 @@
 use interval_core::Interval;
 
 use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
-use super::search::{Budget, Eval};
+use super::search::{Budget, Eval, begin};
 use crate::ibox::ival;
 use crate::ray::RayFn;
 
@@ -40,10 +40,12 @@ impl RootFinder for PointSampling {
         settings: &RootSettings,
         counters: &mut RootCounters,
     ) -> RootResult {
+        let Some((mut ev, budget)) = begin(g, t, settings, counters) else {
+            return RootResult::NoRoot;
+        };
         if !t.is_common_interval() {
             return RootResult::NoRoot;
         }
-        let mut ev = Eval::new(g, counters);
         let (lo, hi) = (t.inf(), t.sup());
         let samples = if settings.sampling_step > 0.0 {
             (1.0 / settings.sampling_step)
@@ -72,7 +74,7 @@ impl RootFinder for PointSampling {
                 };
             }
             if (ga < 0.0) != (gb < 0.0) && !ga.is_nan() && !gb.is_nan() {
-                return refine(&mut ev, a, b, ga, settings, t);
+                return refine(&mut ev, a, b, ga, settings, budget);
             }
             (a, ga) = (b, gb);
         }
@@ -80,16 +82,16 @@ impl RootFinder for PointSampling {
     }
 }
 
-/// Point bisection of `[a, b]`, where `g(a)` (`ga`) and `g(b)` have opposite signs.
+/// Point bisection of `[a, b]`, where `g(a)` (`ga`) and `g(b)` have opposite signs, within
+/// the search's `budget`.
 fn refine(
     ev: &mut Eval<'_>,
     mut a: f64,
     mut b: f64,
     ga: f64,
     settings: &RootSettings,
-    t: Interval<f64>,
+    mut budget: Budget,
 ) -> RootResult {
-    let mut budget = Budget::new(settings, t);
     loop {
         let m = 0.5 * (a + b);
         if b - a <= settings.epsilon || !(a < m && m < b) {

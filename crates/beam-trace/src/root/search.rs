@@ -81,6 +81,22 @@ impl<'a> Eval<'a> {
     }
 }
 
+/// The prologue every search over `t` shares: an empty `t` holds no root (`None`: the
+/// search answers [`RootResult::NoRoot`] without evaluating anything); otherwise the counted
+/// evaluations of `g` and the step budget of the search.
+#[inline]
+pub(crate) fn begin<'a>(
+    g: &'a mut dyn RayFn,
+    t: Interval<f64>,
+    settings: &RootSettings,
+    counters: &'a mut RootCounters,
+) -> Option<(Eval<'a>, Budget)> {
+    if t.is_empty() {
+        return None;
+    }
+    Some((Eval::new(g, counters), Budget::new(settings, t)))
+}
+
 /// The pieces of `T` still to be searched, leftmost on top (see the module documentation).
 /// An explicit stack: no finder recurses.
 pub(crate) struct Stack<I> {
