@@ -21,7 +21,7 @@ pub enum Choice {
 ///
 /// Implementations exist for `f64`, `f32`, `Interval<f64>`, `Interval<f32>`,
 /// `Modal<f64, Outer>`, `Modal<f64, Inner>`, `Modal<f32, Outer>`, `Modal<f32, Inner>` and
-/// [`Grad<N>`] over the four first. Each operation must be an inclusion (for set types:
+/// [`Grad<N>`](crate::eval::Grad) over the four first. Each operation must be an inclusion (for set types:
 /// the result encloses every real result of the operation on members of the arguments).
 pub trait Number: Copy + Send + Sync + std::fmt::Debug + 'static {
     /// The value standing for constant `c` (for set types: an enclosure of the real constant).

@@ -101,7 +101,7 @@ impl RootCounters {
 
 /// A method that finds the first root of `g` in a parameter interval.
 pub trait RootFinder: Send + Sync + fmt::Debug {
-    /// The method's name, as accepted by [`RootMethod::from_str`](super::RootMethod::from_str).
+    /// The method's name, as accepted by [`RootMethod`](super::RootMethod)'s `FromStr`.
     fn name(&self) -> &'static str;
 
     /// Whether "no root" and root enclosures are proofs: `true` unless the method says

@@ -289,7 +289,7 @@ impl Scene {
     ///   those `f64` coefficients (exact at multiples of 90°), and its world box is proven to
     ///   enclose it (see `transform.rs`).
     /// * `material = { color, specular, shininess }`: Phong material; `specular` in `[0, 1]`,
-    ///   `shininess` positive (defaults: [`Material::default`]).
+    ///   `shininess` positive (defaults: [`Material::default`](super::Material::default)).
     /// * `visible` (default `true`): `false` keeps the surface out of the picture unless a csg
     ///   node uses it. A surface that a csg node uses is never drawn on its own.
     ///
@@ -334,6 +334,9 @@ impl Scene {
     /// ```
     ///
     /// [`is_clipped`]: implicit_expr::catalog::Surface::is_clipped
+    /// [`AaMode`]: super::AaMode
+    /// [`PrimaryMode`]: super::PrimaryMode
+    /// [`FromStr`]: std::str::FromStr
     /// [`RootMethod`]: crate::root::RootMethod
     pub fn from_toml(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Scene, Error> {
         let mut doc = Doc {
