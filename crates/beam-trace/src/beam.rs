@@ -21,9 +21,11 @@
 
 use interval_core::Interval;
 
-use crate::ray::{Beam, IBox, ipoint};
+use crate::ibox::{IBox, ipoint};
+use crate::ray::{Beam, RayFn};
+use crate::root::RootCounters;
+pub use crate::root::search::sign_change;
 use crate::root::search::{Eval, may_vanish, sign_change_ahead};
-use crate::root::{RayFn, RootCounters};
 
 /// Where the rendered surface lives along a beam: the scene bounds, outside which rays do
 /// not search. An inclusion proof must place every ray's root inside them, so its two end
@@ -89,20 +91,6 @@ impl Default for BeamSettings {
             refine_steps: 12,
         }
     }
-}
-
-/// The meet test of eq. 5.6 on outer enclosures `ra`, `rb` of `g` at two parameters: `true`
-/// when `ra ∧ rb ⊆ [0, 0]` as modal intervals, i.e. `max(inf) ≥ 0 ≥ min(sup)`: one is `≥ 0`
-/// and the other `≤ 0` for every ray (then, for a continuous `g`, every ray has a root
-/// between the two parameters). Equivalently `g(a) · g(b) ≤ 0` for every value of the two
-/// enclosures; `false` if either is empty. The root finders use the same test.
-pub fn sign_change(ra: Interval<f64>, rb: Interval<f64>) -> bool {
-    let (Some((a0, a1)), Some((b0, b1))) = (ra.bounds(), rb.bounds()) else {
-        return false;
-    };
-    // The bounds of the (improper where they are disjoint) modal meet [max(a0, b0),
-    // min(a1, b1)], and its inclusion in [0, 0].
-    a0.max(b0) >= 0.0 && a1.min(b1) <= 0.0
 }
 
 /// The rejection test (Fig. 5.6): `true` when every range of `ranges` is proven free of

@@ -9,7 +9,8 @@ use glam::DVec3;
 use interval_core::Interval;
 
 use crate::error::Error;
-use crate::ray::{Beam, IBox, Ray, ipoint, ival, point_box};
+use crate::ibox::{IBox, ipoint, ival, point_box};
+use crate::ray::{Beam, Ray};
 
 /// A pinhole camera with its image size. Pixel coordinates are continuous: pixel `(i, j)`
 /// covers `[i, i+1] × [j, j+1]`, `x` to the right and `y` down.

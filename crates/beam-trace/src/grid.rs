@@ -92,11 +92,12 @@
 use std::collections::HashMap;
 use std::ops::ControlFlow;
 
-use implicit_expr::{Context, Evaluator, Node, NodeId, Number, RayFunction, Tape};
+use implicit_expr::{Context, Evaluator, NodeId, RayFunction, Tape};
 use interval_core::Interval;
 use rayon::prelude::*;
 
-use crate::ray::{Beam, BeamEval, IBox, Precision, Ray};
+use crate::ibox::IBox;
+use crate::ray::{Beam, BeamEval, Precision, Ray};
 use crate::root::{RootCounters, RootFinder, RootResult, RootSettings};
 use crate::scene::{Csg, Geometry};
 
@@ -338,20 +339,6 @@ fn reduce(csg: &Csg, class: &dyn Fn(usize) -> u8) -> Reduced {
     }
 }
 
-/// Whether every node reachable from `node` is an operation defined on the whole line.
-fn is_total(ctx: &Context, node: NodeId) -> bool {
-    ctx.reachable(&[node])
-        .into_iter()
-        .all(|id| match *ctx.get(id) {
-            Node::Var(_) | Node::Const(_) => true,
-            Node::Unary(op, _) => Interval::<f64>::defined_unary(op, Interval::ENTIRE),
-            Node::Binary(op, _, _) => {
-                Interval::<f64>::defined_binary(op, Interval::ENTIRE, Interval::ENTIRE)
-            }
-            Node::Pown(_, n) => n >= 0,
-        })
-}
-
 /// The class of a leaf whose enclosure over the cell is `f`.
 fn classify(f: Interval<f64>, defined: bool) -> u8 {
     if f.is_empty() {
@@ -549,7 +536,7 @@ impl Grid {
         let partial_tapes: Vec<Option<Tape>> = used_nodes
             .iter()
             .map(|&node| {
-                (!is_total(ctx, node))
+                (!ctx.is_total(node))
                     .then(|| Tape::new(ctx, &[node]).expect("a leaf's tape builds"))
             })
             .collect();

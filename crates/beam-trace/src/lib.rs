@@ -64,6 +64,7 @@ pub mod beam;
 pub mod camera;
 pub mod error;
 pub mod grid;
+pub mod ibox;
 pub mod image;
 pub mod plan;
 pub mod progress;

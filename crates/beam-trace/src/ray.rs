@@ -4,6 +4,9 @@
 //! origin lies in a box and whose direction lies in a box (the eye and a screen area for a
 //! primary beam, a surface patch and a light for a shadow beam). Points on a ray are
 //! `origin + t · dir`; for a beam, `origin + T · dir` encloses the points of every ray.
+//!
+//! [`RayFn`] is `g(t) = f(origin + t · dir)` and `g'(t)` of one ray or beam, all that the
+//! root finders see; [`BeamEval`] implements it over a scene function.
 
 use std::fmt;
 use std::str::FromStr;
@@ -12,27 +15,28 @@ use glam::DVec3;
 use implicit_expr::{RayEvaluator, RayFunction};
 use interval_core::Interval;
 
-use crate::root::RayFn;
+pub use crate::ibox::{IBox, ipoint, ival, point_box};
 
-/// A box in space: one interval per axis.
-pub type IBox = [Interval<f64>; 3];
+/// `g` and `g'` of one ray or beam, as inclusion functions of the ray parameter.
+///
+/// The renderer implements it over implicit-expr's ray evaluators; tests implement it with
+/// closures. Implementations must be sound: for every `t` in `T` (and every ray of the
+/// beam), `g(t) ∈ g(T)` and `g'(t) ∈ g'(T)` wherever `g` is defined.
+pub trait RayFn {
+    /// An enclosure of `g` over `t` (every ray of the beam).
+    fn g(&mut self, t: Interval<f64>) -> Interval<f64>;
 
-/// The degenerate interval `[x, x]` (`x` finite).
-#[inline]
-pub fn ipoint(x: f64) -> Interval<f64> {
-    Interval::new_unchecked(x, x)
-}
+    /// Enclosures of `g` and `g'` over `t`. A derivative that is undefined somewhere in
+    /// the region is the whole line, never empty.
+    fn g_dg(&mut self, t: Interval<f64>) -> (Interval<f64>, Interval<f64>);
 
-/// `[lo, hi]` (the caller guarantees `lo <= hi`, both not NaN).
-#[inline]
-pub fn ival(lo: f64, hi: f64) -> Interval<f64> {
-    debug_assert!(lo <= hi, "[{lo}, {hi}]");
-    Interval::new_unchecked(lo, hi)
-}
+    /// `g` over `t` and whether `g` is proven continuous there (every operation defined on
+    /// all of its arguments, no step function). A sign change proves a root only then.
+    fn g_checked(&mut self, t: Interval<f64>) -> (Interval<f64>, bool);
 
-/// A box of one point.
-pub fn point_box(p: DVec3) -> IBox {
-    [ipoint(p.x), ipoint(p.y), ipoint(p.z)]
+    /// The floating-point value of `g` at the point `t` for the central ray, rounded to
+    /// nearest: for the unreliable baselines only.
+    fn g_point(&mut self, t: f64) -> f64;
 }
 
 /// A ray `origin + t · dir`.

@@ -11,7 +11,7 @@ use std::fmt;
 
 use crate::constant::Constant;
 use crate::error::Error;
-use crate::eval::Number;
+use crate::number::Number;
 use crate::op::{BinaryOp, UnaryOp};
 use interval_core::Interval;
 
@@ -434,6 +434,21 @@ impl Context {
             .filter(|&i| live[i])
             .map(|i| NodeId(i as u32))
             .collect()
+    }
+
+    /// Whether every node `root` depends on is an operation defined on the whole real line
+    /// ([`UnaryOp::is_total`], [`BinaryOp::is_total`], non-negative integer powers): the
+    /// formula is then defined at every point, and its interval evaluation on every box.
+    /// [`Tape::is_total`](crate::Tape::is_total) answers the same for a compiled tape.
+    pub fn is_total(&self, root: NodeId) -> bool {
+        self.reachable(&[root])
+            .into_iter()
+            .all(|id| match self.nodes[id.index()] {
+                Node::Var(_) | Node::Const(_) => true,
+                Node::Unary(op, _) => op.is_total(),
+                Node::Binary(op, _, _) => op.is_total(),
+                Node::Pown(_, n) => n >= 0,
+            })
     }
 
     /// `root` with each variable of `map` replaced by its node (for example a parameter

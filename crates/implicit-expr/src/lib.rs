@@ -116,6 +116,7 @@ pub mod context;
 mod deriv;
 pub mod error;
 pub mod eval;
+pub mod number;
 pub mod op;
 pub mod parse;
 pub mod print;

@@ -100,6 +100,22 @@ impl UnaryOp {
         UnaryOp::SlopeNot,
     ];
 
+    /// Whether the operation is defined on the whole real line (`√`, `1/a`, the logarithms,
+    /// `tan`, `asin` and `acos` are not): an interval evaluation of it is then defined on
+    /// every box.
+    pub fn is_total(self) -> bool {
+        !matches!(
+            self,
+            UnaryOp::Sqrt
+                | UnaryOp::Recip
+                | UnaryOp::Ln
+                | UnaryOp::Log10
+                | UnaryOp::Tan
+                | UnaryOp::Asin
+                | UnaryOp::Acos
+        )
+    }
+
     /// Whether the operation jumps somewhere inside its domain (the step functions and their
     /// slopes). Every other unary operation is continuous wherever it is defined.
     pub fn is_discontinuous(self) -> bool {
@@ -187,6 +203,12 @@ impl BinaryOp {
             BinaryOp::Max => "max",
             BinaryOp::Pow => "pow",
         }
+    }
+
+    /// Whether the operation is defined for every pair of reals (`a / b` and `a ^ b` are
+    /// not).
+    pub fn is_total(self) -> bool {
+        !matches!(self, BinaryOp::Div | BinaryOp::Pow)
     }
 
     /// Whether `op(a, b) == op(b, a)` for all values (used to share `a + b` and `b + a`).

@@ -181,3 +181,54 @@ fn slice_traces_match_scalar_traces() {
             .is_err()
     );
 }
+
+#[test]
+fn total_operations_are_those_defined_on_the_whole_line() {
+    use implicit_expr::{BinaryOp, Number, UnaryOp};
+    let all = Interval::<f64>::ENTIRE;
+    for op in UnaryOp::ALL {
+        assert_eq!(
+            op.is_total(),
+            Interval::<f64>::defined_unary(op, all),
+            "{op:?}"
+        );
+    }
+    for op in BinaryOp::ALL {
+        assert_eq!(
+            op.is_total(),
+            Interval::<f64>::defined_binary(op, all, all),
+            "{op:?}"
+        );
+    }
+}
+
+#[test]
+fn total_and_continuous_formulas() {
+    use implicit_expr::parse::parse;
+    // (formula, total, total and continuous)
+    let cases = [
+        ("x^2 + y^2 + z^2 - 1", true, true),
+        (
+            "min(abs(x) - 1, max(y, -z)) * exp(sin(x) + cos(y)) + atan(z)",
+            true,
+            true,
+        ),
+        ("x^3 + sqr(y) - z", true, true),
+        ("floor(x) + y", true, false),
+        ("round(x) - not(y)", true, false),
+        ("sqrt(x^2 + y^2) - 1", false, false),
+        ("x / y", false, false),
+        ("x^-2 - 1", false, false),
+        ("ln(x) + tan(y)", false, false),
+        ("asin(x) + acos(y) + log(z)", false, false),
+        ("x ^ y", false, false),
+    ];
+    for (text, total, total_and_continuous) in cases {
+        let mut c = Context::new();
+        let f = parse(&mut c, text, &[]).unwrap();
+        let t = Tape::new(&c, &[f]).unwrap();
+        assert_eq!(c.is_total(f), total, "{text}");
+        assert_eq!(t.is_total(), total, "{text}");
+        assert_eq!(t.is_total_and_continuous(), total_and_continuous, "{text}");
+    }
+}

@@ -11,8 +11,9 @@
 
 use interval_core::Interval;
 
+use super::finder::{RootCounters, RootFinder, RootResult, RootSettings};
 use super::newton::newton_search;
-use super::{RayFn, RootCounters, RootFinder, RootResult, RootSettings};
+use crate::ray::RayFn;
 
 /// Interval Newton plus the Alefeld–Hansen extended-division step.
 #[derive(Copy, Clone, Debug, Default)]

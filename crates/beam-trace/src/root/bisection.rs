@@ -19,8 +19,9 @@
 
 use interval_core::Interval;
 
-use super::search::{Budget, Eval, Stack, is_small, may_vanish, settle_piece};
-use super::{RayFn, RootCounters, RootFinder, RootResult, RootSettings};
+use super::finder::{RootCounters, RootFinder, RootResult, RootSettings};
+use super::search::{Stack, begin, is_small, may_vanish, settle_piece};
+use crate::ray::RayFn;
 
 /// Classic interval bisection: reject by `0 ∉ G(X)`, otherwise halve, to width `ε`.
 #[derive(Copy, Clone, Debug, Default)]
@@ -38,11 +39,9 @@ impl RootFinder for Bisection {
         settings: &RootSettings,
         counters: &mut RootCounters,
     ) -> RootResult {
-        if t.is_empty() {
+        let Some((mut ev, mut budget)) = begin(g, t, settings, counters) else {
             return RootResult::NoRoot;
-        }
-        let mut ev = Eval::new(g, counters);
-        let mut budget = Budget::new(settings, t);
+        };
         let mut stack = Stack::new(t);
         while let Some(x) = stack.pop() {
             if is_small(x, settings.epsilon) {

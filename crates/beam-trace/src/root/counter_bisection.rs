@@ -51,9 +51,10 @@
 
 use interval_core::Interval;
 
-use super::search::{Budget, Eval, is_small, may_vanish, settle_piece};
-use super::{Proof, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
-use crate::ray::ival;
+use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
+use super::search::{begin, is_small, may_vanish, settle_piece};
+use crate::ibox::ival;
+use crate::ray::RayFn;
 
 /// The deepest level: sections of level 60 are `2^−60` of `T`, below the resolution of
 /// `f64` for any `T` whose ends are of similar size to its width.
@@ -88,10 +89,9 @@ impl RootFinder for CounterBisection {
         settings: &RootSettings,
         counters: &mut RootCounters,
     ) -> RootResult {
-        if t.is_empty() {
+        let Some((mut ev, mut budget)) = begin(g, t, settings, counters) else {
             return RootResult::NoRoot;
-        }
-        let mut ev = Eval::new(g, counters);
+        };
         if !t.is_common_interval() {
             return if may_vanish(ev.g(t)) {
                 RootResult::Undecided { t }
@@ -100,7 +100,6 @@ impl RootFinder for CounterBisection {
             };
         }
         let (lo, hi) = (t.inf(), t.sup());
-        let mut budget = Budget::new(settings, t);
         let mut ns: u32 = 0;
         let mut k: u64 = 0;
         loop {

@@ -21,12 +21,13 @@
 
 use interval_core::Interval;
 
+use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
 use super::search::{
-    Budget, Eval, Stack, excludes_zero, is_small, may_vanish, newton, same_sign, settle, sign,
-    sign_change,
+    Budget, Eval, Stack, begin, excludes_zero, is_small, may_vanish, newton, same_sign, settle,
+    sign, sign_change,
 };
-use super::{Proof, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
-use crate::ray::{ipoint, ival};
+use crate::ibox::{ipoint, ival};
+use crate::ray::RayFn;
 
 /// Mitchell's method: rejection by `G`, isolation by `0 ∉ G'` and a sign change, then
 /// reliable refinement of the isolated root.
@@ -45,11 +46,9 @@ impl RootFinder for Mitchell {
         settings: &RootSettings,
         counters: &mut RootCounters,
     ) -> RootResult {
-        if t.is_empty() {
+        let Some((mut ev, mut budget)) = begin(g, t, settings, counters) else {
             return RootResult::NoRoot;
-        }
-        let mut ev = Eval::new(g, counters);
-        let mut budget = Budget::new(settings, t);
+        };
         let mut stack = Stack::new(t);
         while let Some(x) = stack.pop() {
             let (gx, cont) = ev.checked(x);

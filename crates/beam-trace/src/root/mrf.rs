@@ -40,10 +40,11 @@
 
 use interval_core::Interval;
 
+use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
 use super::search::{
-    Budget, Eval, Stack, excludes_zero, is_small, may_vanish, newton, settle, shrunk, sign_change,
+    Eval, Stack, begin, excludes_zero, is_small, may_vanish, newton, settle, shrunk, sign_change,
 };
-use super::{Proof, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
+use crate::ray::RayFn;
 
 /// MRF: interval bisection that drops everything after the midpoint once the left half
 /// is proven to hold a root.
@@ -67,11 +68,9 @@ impl RootFinder for Mrf {
         settings: &RootSettings,
         counters: &mut RootCounters,
     ) -> RootResult {
-        if t.is_empty() {
+        let Some((mut ev, mut budget)) = begin(g, t, settings, counters) else {
             return RootResult::NoRoot;
-        }
-        let mut ev = Eval::new(g, counters);
-        let mut budget = Budget::new(settings, t);
+        };
         let ga = ev.at(t.inf());
         let mut stack = Stack::new((t, ga));
         while let Some((x, ga)) = stack.pop() {
@@ -139,11 +138,9 @@ pub(crate) fn mrfro_search(
     counters: &mut RootCounters,
     with_newton: bool,
 ) -> RootResult {
-    if t.is_empty() {
+    let Some((mut ev, mut budget)) = begin(g, t, settings, counters) else {
         return RootResult::NoRoot;
-    }
-    let mut ev = Eval::new(g, counters);
-    let mut budget = Budget::new(settings, t);
+    };
     let mut stack = Stack::new(Piece {
         t,
         ga: None,

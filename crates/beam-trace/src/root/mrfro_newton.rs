@@ -11,8 +11,9 @@
 
 use interval_core::Interval;
 
+use super::finder::{RootCounters, RootFinder, RootResult, RootSettings};
 use super::mrf::mrfro_search;
-use super::{RayFn, RootCounters, RootFinder, RootResult, RootSettings};
+use crate::ray::RayFn;
 
 /// MRFro conditions plus interval Newton steps where `0 ∉ G'(X)`.
 #[derive(Copy, Clone, Debug, Default)]

@@ -19,11 +19,12 @@
 
 use interval_core::Interval;
 
+use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
 use super::search::{
-    Budget, Eval, Stack, excludes_zero, is_small, may_vanish, newton, settle_piece, shrunk,
+    Eval, Stack, begin, excludes_zero, is_small, may_vanish, newton, settle_piece, shrunk,
 };
-use super::{Proof, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
-use crate::ray::ipoint;
+use crate::ibox::ipoint;
+use crate::ray::RayFn;
 
 /// Interval Newton with bisection where `0 ∈ G'(X)`.
 #[derive(Copy, Clone, Debug, Default)]
@@ -68,11 +69,9 @@ pub(crate) fn newton_search(
     counters: &mut RootCounters,
     extended: bool,
 ) -> RootResult {
-    if t.is_empty() {
+    let Some((mut ev, mut budget)) = begin(g, t, settings, counters) else {
         return RootResult::NoRoot;
-    }
-    let mut ev = Eval::new(g, counters);
-    let mut budget = Budget::new(settings, t);
+    };
     let mut stack = Stack::new(Piece::open(t));
     while let Some(p) = stack.pop() {
         let x = p.t;

@@ -12,9 +12,10 @@
 
 use interval_core::Interval;
 
-use super::search::{Budget, Eval};
-use super::{Proof, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
-use crate::ray::ival;
+use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
+use super::search::{Budget, Eval, begin};
+use crate::ibox::ival;
+use crate::ray::RayFn;
 
 /// The most samples one search takes, whatever `sampling_step` says.
 const MAX_SAMPLES: u64 = 1 << 24;
@@ -39,10 +40,12 @@ impl RootFinder for PointSampling {
         settings: &RootSettings,
         counters: &mut RootCounters,
     ) -> RootResult {
+        let Some((mut ev, budget)) = begin(g, t, settings, counters) else {
+            return RootResult::NoRoot;
+        };
         if !t.is_common_interval() {
             return RootResult::NoRoot;
         }
-        let mut ev = Eval::new(g, counters);
         let (lo, hi) = (t.inf(), t.sup());
         let samples = if settings.sampling_step > 0.0 {
             (1.0 / settings.sampling_step)
@@ -71,7 +74,7 @@ impl RootFinder for PointSampling {
                 };
             }
             if (ga < 0.0) != (gb < 0.0) && !ga.is_nan() && !gb.is_nan() {
-                return refine(&mut ev, a, b, ga, settings, t);
+                return refine(&mut ev, a, b, ga, settings, budget);
             }
             (a, ga) = (b, gb);
         }
@@ -79,16 +82,16 @@ impl RootFinder for PointSampling {
     }
 }
 
-/// Point bisection of `[a, b]`, where `g(a)` (`ga`) and `g(b)` have opposite signs.
+/// Point bisection of `[a, b]`, where `g(a)` (`ga`) and `g(b)` have opposite signs, within
+/// the search's `budget`.
 fn refine(
     ev: &mut Eval<'_>,
     mut a: f64,
     mut b: f64,
     ga: f64,
     settings: &RootSettings,
-    t: Interval<f64>,
+    mut budget: Budget,
 ) -> RootResult {
-    let mut budget = Budget::new(settings, t);
     loop {
         let m = 0.5 * (a + b);
         if b - a <= settings.epsilon || !(a < m && m < b) {

@@ -21,8 +21,9 @@
 
 use interval_core::Interval;
 
-use super::{Proof, RayFn, RootCounters, RootResult, RootSettings};
-use crate::ray::{ipoint, ival};
+use super::finder::{Proof, RootCounters, RootResult, RootSettings};
+use crate::ibox::{ipoint, ival};
+use crate::ray::RayFn;
 
 /// A [`RayFn`] with the evaluations it does counted in [`RootCounters`].
 pub(crate) struct Eval<'a> {
@@ -78,6 +79,22 @@ impl<'a> Eval<'a> {
         self.counters.bisections += 1;
         x.bisect()
     }
+}
+
+/// The prologue every search over `t` shares: an empty `t` holds no root (`None`: the
+/// search answers [`RootResult::NoRoot`] without evaluating anything); otherwise the counted
+/// evaluations of `g` and the step budget of the search.
+#[inline]
+pub(crate) fn begin<'a>(
+    g: &'a mut dyn RayFn,
+    t: Interval<f64>,
+    settings: &RootSettings,
+    counters: &'a mut RootCounters,
+) -> Option<(Eval<'a>, Budget)> {
+    if t.is_empty() {
+        return None;
+    }
+    Some((Eval::new(g, counters), Budget::new(settings, t)))
 }
 
 /// The pieces of `T` still to be searched, leftmost on top (see the module documentation).
@@ -172,9 +189,20 @@ pub(crate) fn excludes_zero(v: Interval<f64>) -> bool {
     !v.is_empty() && (v.inf() > 0.0 || v.sup() < 0.0)
 }
 
-/// `g(a) · g(b) ≤ 0` for every value of the enclosures `ga`, `gb`: with `g` continuous on
-/// `[a, b]` a root lies in `[a, b]` (ends included). The beams' meet test.
-pub(crate) use crate::beam::sign_change;
+/// The meet test of eq. 5.6 on outer enclosures `ra`, `rb` of `g` at two parameters: `true`
+/// when `ra ∧ rb ⊆ [0, 0]` as modal intervals, i.e. `max(inf) ≥ 0 ≥ min(sup)`: one is `≥ 0`
+/// and the other `≤ 0` for every ray (then, for a continuous `g`, every ray has a root
+/// between the two parameters). Equivalently `g(a) · g(b) ≤ 0` for every value of the two
+/// enclosures; `false` if either is empty. The beams' inclusion test and the root finders'
+/// sign tests both use it.
+pub fn sign_change(ra: Interval<f64>, rb: Interval<f64>) -> bool {
+    let (Some((a0, a1)), Some((b0, b1))) = (ra.bounds(), rb.bounds()) else {
+        return false;
+    };
+    // The bounds of the (improper where they are disjoint) modal meet [max(a0, b0),
+    // min(a1, b1)], and its inclusion in [0, 0].
+    a0.max(b0) >= 0.0 && a1.min(b1) <= 0.0
+}
 
 /// `ga` and `gb` are both `> 0` or both `< 0`.
 #[inline]

@@ -11,9 +11,10 @@
 
 use interval_core::Interval;
 
-use super::search::{Budget, Eval};
-use super::{Proof, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
-use crate::ray::ival;
+use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
+use super::search::begin;
+use crate::ibox::ival;
+use crate::ray::RayFn;
 
 /// Sphere tracing with the Lipschitz bound of the settings.
 #[derive(Copy, Clone, Debug, Default)]
@@ -35,11 +36,9 @@ impl RootFinder for SphereTracing {
         settings: &RootSettings,
         counters: &mut RootCounters,
     ) -> RootResult {
-        if t.is_empty() {
+        let Some((mut ev, mut budget)) = begin(g, t, settings, counters) else {
             return RootResult::NoRoot;
-        }
-        let mut ev = Eval::new(g, counters);
-        let mut budget = Budget::new(settings, t);
+        };
         let (lo, hi) = (t.inf(), t.sup());
         let eps = settings.epsilon;
         let lip = settings.lipschitz;

@@ -5,7 +5,8 @@ use implicit_expr::{Context, Evaluator, Grad, NodeId, RayFunction, Tape};
 use interval_core::Interval;
 
 use crate::error::Error;
-use crate::ray::{BeamEval, IBox};
+use crate::ibox::IBox;
+use crate::ray::BeamEval;
 use crate::scene::Material;
 
 /// A leaf surface `f(x, y, z) = 0` (parameters bound, transform applied), with the solid

@@ -8,8 +8,15 @@
 //! `max`, difference `a − b` = `max(a, −b)`: the point-set operations of thesis 6.3), and
 //! the scene function the union of the top-level objects.
 
+mod camera;
+mod csg;
+mod diagnostics;
 mod file;
 pub mod geometry;
+mod lights;
+mod schema;
+mod settings;
+mod surface;
 mod transform;
 
 pub use file::DEFAULT_SCENE;

@@ -14,11 +14,18 @@
 //! `R = I − M · A` and `δ = ‖R‖∞ < 1`, `A⁻¹ = (I − R)⁻¹ · M`, so
 //! `‖(A⁻¹ − M) · v‖∞ ≤ δ · ‖M‖∞ / (1 − δ) · ‖v‖∞` for every `v`; every quantity is bounded
 //! with outward rounding.
+//!
+//! The scene file's `transform` tables are read into an [`Affine`] here ([`transform`]),
+//! and the map is applied to a surface's graph here ([`local_coordinates`]).
 
 use glam::DVec3;
+use implicit_expr::{Context, NodeId};
 use interval_core::Interval;
 
-use crate::ray::{IBox, ipoint};
+use super::diagnostics::Doc;
+use super::schema::{RawRotate, RawScale, RawTransform};
+use crate::error::Error;
+use crate::ibox::{IBox, ipoint};
 
 type Mat3 = [[f64; 3]; 3];
 
@@ -173,10 +180,85 @@ impl Affine {
     }
 }
 
+pub(super) fn transform(doc: &Doc<'_>, path: &str, t: &RawTransform) -> Result<Affine, Error> {
+    let translate = match t.translate {
+        Some(v) => doc.vec3(&format!("{path}.translate"), v)?.to_array(),
+        None => [0.0; 3],
+    };
+    let rp = format!("{path}.rotate");
+    let rotate = match &t.rotate {
+        None => None,
+        Some(RawRotate::Euler(a)) => Some(Rotation::Euler(doc.vec3(&rp, *a)?.to_array())),
+        Some(RawRotate::Axis(aa)) => {
+            let axis = doc.vec3(&format!("{rp}.axis"), aa.axis)?;
+            if axis == DVec3::ZERO {
+                return Err(doc.err(&format!("{rp}.axis"), "must not be zero"));
+            }
+            let angle = doc.finite(&format!("{rp}.angle"), aa.angle)?;
+            Some(Rotation::Axis(axis.to_array(), angle))
+        }
+    };
+    let sp = format!("{path}.scale");
+    let scale = match t.scale {
+        None => [1.0; 3],
+        Some(RawScale::Uniform(s)) => [doc.finite(&sp, s)?; 3],
+        Some(RawScale::Axes(s)) => doc.vec3(&sp, s)?.to_array(),
+    };
+    if scale.contains(&0.0) {
+        return Err(doc.err(&sp, "scale factors must not be zero"));
+    }
+    Affine::new(translate, rotate, scale).ok_or_else(|| {
+        doc.err(
+            path,
+            "the transform cannot be inverted in floating point (a scale factor too small \
+             or too large)",
+        )
+    })
+}
+
+/// The local coordinates `A · p + b` as nodes of `ctx`.
+pub(super) fn local_coordinates(ctx: &mut Context, aff: &Affine) -> Result<[NodeId; 3], Error> {
+    let xyz = [ctx.x(), ctx.y(), ctx.z()];
+    if aff.is_identity() {
+        return Ok(xyz);
+    }
+    let mut out = xyz;
+    for (i, o) in out.iter_mut().enumerate() {
+        let mut acc: Option<NodeId> = None;
+        for (j, &v) in xyz.iter().enumerate() {
+            let c = aff.a[i][j];
+            let term = if c == 0.0 {
+                continue;
+            } else if c == 1.0 {
+                v
+            } else if c == -1.0 {
+                ctx.neg(v)
+            } else {
+                let k = ctx.constant(c)?;
+                ctx.mul(k, v)
+            };
+            acc = Some(match acc {
+                None => term,
+                Some(a) => ctx.add(a, term),
+            });
+        }
+        let mut e = match acc {
+            Some(e) => e,
+            None => ctx.constant(0.0)?,
+        };
+        if aff.b[i] != 0.0 {
+            let k = ctx.constant(aff.b[i])?;
+            e = ctx.add(e, k);
+        }
+        *o = e;
+    }
+    Ok(out)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::ray::ival;
+    use crate::ibox::ival;
 
     #[test]
     fn right_angles_are_exact() {

@@ -18,8 +18,9 @@
 //! range differently and can differ on a few grazing cells; each fraction is a proven lower
 //! bound of the true one.
 
+use super::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
+use super::spec::ShadowSpec;
 pub use super::spec::Strategy;
-use super::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowSpec, ShadowWork};
 use crate::beam::BoxClass;
 
 /// The beam method with `n × n` sub-beams.

@@ -18,11 +18,10 @@
 //! * **Penumbra**: neither; only these points get the fine method, stochastic samples or
 //!   `n × n` sub-beams.
 
-use super::{
-    Fine, LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowSpec, ShadowWork,
-    beam::{cleared, sub_beams},
-    stochastic,
-};
+use super::beam::{cleared, sub_beams};
+use super::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
+use super::spec::{Fine, ShadowSpec};
+use super::stochastic;
 use crate::beam::BoxClass;
 
 /// The Minkowski method with its fine step.

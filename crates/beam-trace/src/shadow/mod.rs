@@ -22,195 +22,30 @@
 
 pub mod beam;
 pub mod hard;
+mod method;
 pub mod minkowski;
 mod patch;
 pub mod rounds;
 mod spec;
 pub mod stochastic;
 
+pub use method::{
+    LightVisibility, Occluders, Occlusion, ShadowClass, ShadowMethod, ShadowQuery, ShadowWork,
+};
 pub use patch::Patch;
 pub use spec::{Fine, ShadowSpec, Strategy};
 
-use glam::DVec3;
+use beam::BeamShadows;
+use minkowski::Minkowski;
+use stochastic::Stochastic;
 
-use crate::beam::BoxClass;
-use crate::root::RootCounters;
-use hard::Visibility;
-
-/// The proven class of a point's view of a light.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, serde::Serialize)]
-pub enum ShadowClass {
-    /// Proven: every point of the light is visible.
-    Lit,
-    /// Proven: no point of the light is visible.
-    Umbra,
-    /// Neither was proven; the visible fraction is an estimate.
-    Penumbra,
-    /// The whole light is behind the surface's tangent plane: the point gets no direct
-    /// light from it whatever the occluders (no shadow test runs, and nothing is claimed
-    /// about occlusion).
-    BackFacing,
-}
-
-/// The visible fraction of a light from a point, with proven bounds.
-#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
-pub struct LightVisibility {
-    /// The estimate that shades the point.
-    pub fraction: f32,
-    /// Proven lower bound of the visible fraction.
-    pub lower: f32,
-    /// Proven upper bound of the visible fraction.
-    pub upper: f32,
-}
-
-impl ShadowClass {
-    /// The class of a pixel holding a part of class `a` (if any) and one of class `b`: the
-    /// common class, or penumbra where they differ.
-    pub fn merge(a: Option<ShadowClass>, b: ShadowClass) -> ShadowClass {
-        match a {
-            Some(a) if a != b => ShadowClass::Penumbra,
-            _ => b,
+impl ShadowSpec {
+    /// The method.
+    pub fn method(&self) -> Box<dyn ShadowMethod> {
+        match *self {
+            ShadowSpec::Stochastic { samples, cache } => Box::new(Stochastic { samples, cache }),
+            ShadowSpec::Beam { n, strategy } => Box::new(BeamShadows { n, strategy }),
+            ShadowSpec::Minkowski { fine } => Box::new(Minkowski { fine }),
         }
     }
-}
-
-impl LightVisibility {
-    /// Proven fully lit.
-    pub const LIT: LightVisibility = LightVisibility {
-        fraction: 1.0,
-        lower: 1.0,
-        upper: 1.0,
-    };
-    /// Proven in the umbra.
-    pub const UMBRA: LightVisibility = LightVisibility {
-        fraction: 0.0,
-        lower: 0.0,
-        upper: 0.0,
-    };
-
-    /// An estimate with no proven bounds.
-    pub fn estimate(fraction: f32) -> LightVisibility {
-        LightVisibility {
-            fraction,
-            lower: 0.0,
-            upper: 1.0,
-        }
-    }
-
-    /// What the bounds prove.
-    pub fn class(&self) -> ShadowClass {
-        if self.lower >= 1.0 {
-            ShadowClass::Lit
-        } else if self.upper <= 0.0 {
-            ShadowClass::Umbra
-        } else {
-            ShadowClass::Penumbra
-        }
-    }
-}
-
-/// One shadow query: the visible fraction of `light` from `origin`.
-#[derive(Copy, Clone, Debug, PartialEq)]
-pub struct ShadowQuery {
-    /// The shaded point, already moved off its surface.
-    pub origin: DVec3,
-    /// The light.
-    pub light: Patch,
-    /// Seed of the query's random numbers (the same seed gives the same samples).
-    pub seed: u64,
-}
-
-/// The answer of an occluder segment query.
-#[derive(Copy, Clone, Debug, PartialEq)]
-pub struct Occlusion {
-    /// Whether the segment is free.
-    pub visibility: Visibility,
-    /// The segment parameter of the surface the search met, when it met one.
-    pub at: Option<f64>,
-}
-
-/// The queries a shadow method asks of the scene's occluders.
-pub trait Occluders {
-    /// The segment from `from` to `to` for `t ∈ [start, 1]` (the caller knows it free
-    /// before `start`), searched by the renderer's root finder: [`Visibility::Lit`] is a
-    /// proof with a reliable finder.
-    fn segment(&mut self, from: DVec3, to: DVec3, start: f64, c: &mut RootCounters) -> Occlusion;
-
-    /// The top-level object whose surface passes nearest `p`.
-    fn object_at(&mut self, p: DVec3) -> u32;
-
-    /// Whether the segment from `from` to `to` proven meets the top-level object `object`
-    /// alone (a proven root of that object's function): then it meets the scene's solid,
-    /// so the segment is occluded. `false` says nothing.
-    fn segment_meets_object(
-        &mut self,
-        object: u32,
-        from: DVec3,
-        to: DVec3,
-        c: &mut RootCounters,
-    ) -> bool;
-
-    /// The shadow beam from `from` over every point of `light`, for `t ∈ [start, 1]` (the
-    /// caller knows every ray free before `start`): [`BoxClass::Miss`] proves that no ray
-    /// of it meets a surface (the light is fully visible); with `inclusion`,
-    /// [`BoxClass::Hit`] proves that every ray of it meets one (the light is fully hidden).
-    /// Anything else is [`BoxClass::Undecided`] with the first range not cleared: every ray
-    /// is free before it, which sub-beams and segments of the same light may start from.
-    fn beam(
-        &mut self,
-        from: DVec3,
-        light: &Patch,
-        start: f64,
-        inclusion: bool,
-        c: &mut RootCounters,
-    ) -> BoxClass;
-}
-
-/// Work counters of soft shadows (the columns of the soft-shadow paper's Table 1 and more).
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
-pub struct ShadowWork {
-    /// Queries (shaded point × light).
-    pub queries: u64,
-    /// Initial shadow beams over a whole light.
-    pub initial_beams: u64,
-    /// Initial beams that could not be rejected (possibly occluded).
-    pub initial_occluded: u64,
-    /// Initial beams proven to be blocked for every ray (umbra).
-    pub umbra_proofs: u64,
-    /// Sub-beams over parts of a light.
-    pub sub_beams: u64,
-    /// Shadow segments (stochastic samples).
-    pub rays: u64,
-    /// Samples decided by the last-occluder cache.
-    pub cache_hits: u64,
-    /// Root-search counters of every test.
-    pub root: RootCounters,
-}
-
-impl ShadowWork {
-    /// Adds `o` into `self`.
-    pub fn add(&mut self, o: &ShadowWork) {
-        self.queries += o.queries;
-        self.initial_beams += o.initial_beams;
-        self.initial_occluded += o.initial_occluded;
-        self.umbra_proofs += o.umbra_proofs;
-        self.sub_beams += o.sub_beams;
-        self.rays += o.rays;
-        self.cache_hits += o.cache_hits;
-        self.root.add(&o.root);
-    }
-}
-
-/// A way to compute the visible fraction of an area light.
-pub trait ShadowMethod: Send + Sync {
-    /// The method and its settings, as the command line writes them (`beam:7`).
-    fn name(&self) -> String;
-
-    /// The visible fraction of `q.light` from `q.origin`.
-    fn visibility(
-        &self,
-        occluders: &mut dyn Occluders,
-        q: &ShadowQuery,
-        work: &mut ShadowWork,
-    ) -> LightVisibility;
 }

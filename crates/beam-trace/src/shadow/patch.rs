@@ -1,7 +1,7 @@
 //! The shape of an area light: a parallelogram, and the pieces the shadow methods split it
 //! into (an `n × n` grid of cells, quadrants, sample points).
 
-use crate::ray::{IBox, ipoint, ival, point_box};
+use crate::ibox::{IBox, ipoint, ival, point_box};
 use glam::DVec3;
 
 /// The parallelogram `corner + u · edge_u + v · edge_v`, `u, v ∈ [0, 1]`. Either edge may be

@@ -3,11 +3,6 @@
 use std::fmt;
 use std::str::FromStr;
 
-use super::ShadowMethod;
-use super::beam::BeamShadows;
-use super::minkowski::Minkowski;
-use super::stochastic::Stochastic;
-
 /// How the beam method spends its sub-beams.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 pub enum Strategy {
@@ -77,15 +72,6 @@ impl ShadowSpec {
     pub const MAX_SAMPLES: u32 = 65_536;
     /// Largest number of sub-beams per side.
     pub const MAX_SIDE: u32 = 64;
-
-    /// The method.
-    pub fn method(&self) -> Box<dyn ShadowMethod> {
-        match *self {
-            ShadowSpec::Stochastic { samples, cache } => Box::new(Stochastic { samples, cache }),
-            ShadowSpec::Beam { n, strategy } => Box::new(BeamShadows { n, strategy }),
-            ShadowSpec::Minkowski { fine } => Box::new(Minkowski { fine }),
-        }
-    }
 }
 
 impl Default for ShadowSpec {

@@ -12,8 +12,9 @@
 //! tested against the top-level object that blocked the previous one; only a proven root
 //! of that object decides, so the cache changes the cost, never the answer.
 
-use super::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
-use crate::shadow::hard::Visibility;
+use super::hard::Visibility;
+use super::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
+use super::spec::ShadowSpec;
 
 /// Stochastic sampling of the light with `samples` shadow segments.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -26,7 +27,7 @@ pub struct Stochastic {
 
 impl ShadowMethod for Stochastic {
     fn name(&self) -> String {
-        super::ShadowSpec::Stochastic {
+        ShadowSpec::Stochastic {
             samples: self.samples,
             cache: self.cache,
         }

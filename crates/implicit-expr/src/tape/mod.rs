@@ -201,6 +201,28 @@ impl Tape {
         })
     }
 
+    /// Whether every operation of the tape is defined on the whole real line
+    /// ([`UnaryOp::is_total`], [`BinaryOp::is_total`], non-negative integer powers): the
+    /// tape is then defined at every point and its interval evaluation on every box. Agrees
+    /// with [`Context::is_total`] on the nodes the tape was compiled from.
+    pub fn is_total(&self) -> bool {
+        self.instrs().iter().all(|ins| match ins.op {
+            Opcode::Var | Opcode::Const | Opcode::Copy => true,
+            Opcode::Unary(op) => op.is_total(),
+            Opcode::Binary(op) => op.is_total(),
+            Opcode::Pown => (ins.b as i32) >= 0,
+        })
+    }
+
+    /// Whether the tape is [total](Self::is_total) and [continuous](Self::is_continuous):
+    /// defined and continuous everywhere (`+ − ×`, `min`, `max`, `abs`, `sqr`, `−a`,
+    /// non-negative integer powers, `exp`, `sin`, `cos`, `atan`). A sign change of such a
+    /// function between two points then proves a root between them (intermediate value
+    /// theorem).
+    pub fn is_total_and_continuous(&self) -> bool {
+        self.is_total() && self.is_continuous()
+    }
+
     /// Number of `min`/`max` operations: the length of a choice trace.
     pub fn choice_count(&self) -> usize {
         self.0.choice_count as usize

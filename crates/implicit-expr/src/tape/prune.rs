@@ -11,7 +11,7 @@
 use super::regalloc::operands;
 use super::{Opcode, SsaOp, Tape};
 use crate::error::Error;
-use crate::eval::Choice;
+use crate::number::Choice;
 use crate::op::BinaryOp;
 
 /// Buffers of [`Tape::simplify`], kept per thread: a renderer prunes once per tile.

@@ -1,0 +1,26 @@
+//! Interval boxes: [`IBox`], one interval per axis, and the small constructors of
+//! intervals and boxes that rays, beams, root finders and shadows share.
+
+use glam::DVec3;
+use interval_core::Interval;
+
+/// A box in space: one interval per axis.
+pub type IBox = [Interval<f64>; 3];
+
+/// The degenerate interval `[x, x]` (`x` finite).
+#[inline]
+pub fn ipoint(x: f64) -> Interval<f64> {
+    Interval::new_unchecked(x, x)
+}
+
+/// `[lo, hi]` (the caller guarantees `lo <= hi`, both not NaN).
+#[inline]
+pub fn ival(lo: f64, hi: f64) -> Interval<f64> {
+    debug_assert!(lo <= hi, "[{lo}, {hi}]");
+    Interval::new_unchecked(lo, hi)
+}
+
+/// A box of one point.
+pub fn point_box(p: DVec3) -> IBox {
+    [ipoint(p.x), ipoint(p.y), ipoint(p.z)]
+}

@@ -1,0 +1,132 @@
+//! Render settings of a scene file (`[render]` and the primary mode), and the parsing of
+//! settings from strings (also for command lines).
+
+use std::str::FromStr;
+
+use implicit_expr::parse::suggest;
+
+use super::MAX_GRID_RESOLUTION;
+use super::diagnostics::Doc;
+use super::schema::RawRender;
+use super::{AaMode, PrimaryMode, RenderSettings};
+use crate::error::Error;
+
+impl FromStr for PrimaryMode {
+    type Err = String;
+
+    /// `screen-boxes` or `per-pixel`.
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "screen-boxes" => Ok(PrimaryMode::ScreenBoxes),
+            "per-pixel" => Ok(PrimaryMode::PerPixel),
+            _ => {
+                let names = ["screen-boxes", "per-pixel"];
+                let hint = suggest::did_you_mean(s, names)
+                    .map(|h| format!("; {h}"))
+                    .unwrap_or_default();
+                Err(format!(
+                    "unknown primary mode '{s}'{hint} (one of: screen-boxes, per-pixel)"
+                ))
+            }
+        }
+    }
+}
+
+pub(super) fn render_settings(doc: &Doc<'_>, r: &RawRender) -> Result<RenderSettings, Error> {
+    let mut s = RenderSettings::default();
+    if let Some(name) = &r.root_finder {
+        s.root_finder = name.parse().map_err(|m| doc.err("render.root_finder", m))?;
+    }
+    if let Some(v) = r.epsilon {
+        s.root.epsilon = doc.positive("render.epsilon", v)?;
+    }
+    if let Some(v) = r.max_steps {
+        if v < 1 {
+            return Err(doc.err("render.max_steps", format!("must be at least 1, got {v}")));
+        }
+        s.root.max_steps = v as u64;
+    }
+    if let Some(v) = r.sampling_step {
+        let v = doc.positive("render.sampling_step", v)?;
+        if v > 1.0 {
+            return Err(doc.err(
+                "render.sampling_step",
+                format!("must be at most 1, got {v}"),
+            ));
+        }
+        s.root.sampling_step = v;
+    }
+    if let Some(v) = r.lipschitz {
+        s.root.lipschitz = doc.positive("render.lipschitz", v)?;
+    }
+    if let Some(a) = &r.aa {
+        s.aa = a.parse().map_err(|m| doc.err("render.aa", m))?;
+    }
+    let depth = match r.iaa_depth {
+        Some(v) => doc.int_in("render.iaa_depth", v, 1, 8)?,
+        None => AaMode::IAA_DEPTH,
+    };
+    let threshold = match r.iaa_threshold {
+        Some(v) => doc.positive("render.iaa_threshold", v)?,
+        None => AaMode::IAA_THRESHOLD,
+    };
+    if let AaMode::Iaa { .. } = s.aa {
+        s.aa = AaMode::Iaa {
+            max_depth: depth,
+            threshold,
+        };
+    }
+    if let Some(p) = &r.primary {
+        s.primary = p.parse().map_err(|m| doc.err("render.primary", m))?;
+    }
+    if let Some(v) = r.rays_per_undecided {
+        s.rays_per_undecided = doc.square("render.rays_per_undecided", v)?;
+    }
+    if let Some(v) = r.rays_per_pixel {
+        s.rays_per_pixel = doc.square("render.rays_per_pixel", v)?;
+    }
+    if let Some(v) = r.t_final_width {
+        s.t_final_width = doc.positive("render.t_final_width", v)?;
+    }
+    if let Some(v) = r.grid {
+        s.grid_resolution = doc.int_in("render.grid", v, 0, i64::from(MAX_GRID_RESOLUTION))?;
+    }
+    if let Some(v) = r.shadows {
+        s.shadows = v;
+    }
+    if let Some(m) = &r.shadow_method {
+        s.shadow_method = m.parse().map_err(|m| doc.err("render.shadow_method", m))?;
+    }
+    if let Some(p) = &r.precision {
+        s.precision = p.parse().map_err(|m| doc.err("render.precision", m))?;
+    }
+    Ok(s)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn aa_strings() {
+        assert_eq!("none".parse::<AaMode>(), Ok(AaMode::None));
+        assert_eq!("ss:3".parse::<AaMode>(), Ok(AaMode::Supersample(3)));
+        assert!("ss:0".parse::<AaMode>().is_err());
+        assert!("ss:17".parse::<AaMode>().is_err());
+        assert!("ss:".parse::<AaMode>().is_err());
+        assert!(matches!(
+            "iaa".parse::<AaMode>(),
+            Ok(AaMode::Iaa { max_depth: 4, .. })
+        ));
+        assert_eq!(
+            "per-pixel".parse::<PrimaryMode>(),
+            Ok(PrimaryMode::PerPixel)
+        );
+        assert!(
+            "per_pixel"
+                .parse::<PrimaryMode>()
+                .unwrap_err()
+                .contains("'per-pixel'")
+        );
+    }
+}
