@@ -12,7 +12,8 @@ use super::plots::Family;
 use super::{BASELINE, CLASS_IMAGE, ERROR_MAPS, Options};
 
 /// The command that reproduces the report.
-pub(crate) const COMMAND: &str = "cargo run --release -p examples --bin accuracy-cost";
+pub(crate) const COMMAND: &str =
+    "cargo run --release -p examples --features plots --bin accuracy-cost";
 
 /// Largest errors (RMSE) of the "cheapest setting at each error level" table.
 pub(crate) const LEVELS: [f64; 5] = [0.1, 0.05, 0.02, 0.01, 0.005];
