@@ -1,4 +1,4 @@
-//! Times the 2D renderer of the `render2d` example (`examples::render2d`) against fidget's
+//! Times the 2D renderer of the `render2d` crate (the `render2d` example's) against fidget's
 //! 2D rasterizer with its VM and JIT evaluators, on the same `.vm` expressions, image size
 //! and thread count, and counts the pixels on which the images differ.
 //!
@@ -18,13 +18,13 @@ use std::process::ExitCode;
 use std::time::{Duration, Instant};
 
 use benches::expr::{CSG2D_VM, Expr};
-use examples::render2d::{self, Image, Settings};
 use fidget::eval::Function;
 use fidget::jit::JitFunction;
 use fidget::raster::pixel::{EvalConfig, RenderConfig, render};
 use fidget::render::{CancelToken, RenderHints, ThreadPool};
 use fidget::shape::Shape;
 use fidget::vm::VmFunction;
+use render2d::{Image, Settings};
 
 struct Options {
     size: usize,

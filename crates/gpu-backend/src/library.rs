@@ -10,6 +10,7 @@
 //! repository lists the bound used for each operation.
 
 use bytemuck::{Pod, Zeroable};
+use implicit_expr::{BinaryOp, Op, UnaryOp, wgsl};
 
 use crate::device::Gpu;
 use crate::dispatch::Kernel;
@@ -23,7 +24,8 @@ pub const INTERVAL_LIBRARY: &str = concat!(
     include_str!("wgsl/elementary.wgsl")
 );
 
-/// The kernel that applies one library function to an array of inputs.
+/// The kernel that applies one library function to an array of inputs (through `run_op`,
+/// written by `dispatch_source`).
 const OPS_KERNEL: &str = include_str!("wgsl/ops.wgsl");
 
 /// The largest finite `f32`: as a bound, it stands for infinity.
@@ -40,7 +42,10 @@ pub fn bound_to_f64(x: f32) -> f64 {
     }
 }
 
-/// The library functions the op kernel runs.
+/// The library functions the op kernel runs: one per operation of implicit-expr's tapes
+/// ([`Op`]), named as the operations are. [`LibraryOp::of`] matches every operation, so the
+/// compiler names one missing here; the order ([`LibraryOp::ALL`]), the WGSL names and the
+/// kernel's dispatch follow from [`Op::ALL`] and [`wgsl::function`].
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub enum LibraryOp {
     /// `i_add(a, b)`.
@@ -104,94 +109,106 @@ pub enum LibraryOp {
 }
 
 impl LibraryOp {
-    /// Every operation, in the kernel's order.
-    pub const ALL: [LibraryOp; 29] = [
-        LibraryOp::Add,
-        LibraryOp::Sub,
-        LibraryOp::Mul,
-        LibraryOp::Div,
-        LibraryOp::Min,
-        LibraryOp::Max,
-        LibraryOp::Pown,
-        LibraryOp::Neg,
-        LibraryOp::Abs,
-        LibraryOp::Sqr,
-        LibraryOp::Sqrt,
-        LibraryOp::Recip,
-        LibraryOp::Floor,
-        LibraryOp::Ceil,
-        LibraryOp::Exp,
-        LibraryOp::Ln,
-        LibraryOp::Log10,
-        LibraryOp::Sin,
-        LibraryOp::Cos,
-        LibraryOp::Tan,
-        LibraryOp::Asin,
-        LibraryOp::Acos,
-        LibraryOp::Atan,
-        LibraryOp::Pow,
-        LibraryOp::Round,
-        LibraryOp::Not,
-        LibraryOp::SlopeFloor,
-        LibraryOp::SlopeRound,
-        LibraryOp::SlopeNot,
-    ];
+    /// Every operation, in [`Op::ALL`] order (the kernel's).
+    pub const ALL: [LibraryOp; Op::ALL.len()] = {
+        let mut all = [LibraryOp::Add; Op::ALL.len()];
+        let mut i = 0;
+        while i < Op::ALL.len() {
+            all[i] = LibraryOp::of(Op::ALL[i]);
+            i += 1;
+        }
+        all
+    };
+
+    /// The library function of `op`.
+    pub const fn of(op: Op) -> LibraryOp {
+        match op {
+            Op::Binary(b) => match b {
+                BinaryOp::Add => LibraryOp::Add,
+                BinaryOp::Sub => LibraryOp::Sub,
+                BinaryOp::Mul => LibraryOp::Mul,
+                BinaryOp::Div => LibraryOp::Div,
+                BinaryOp::Min => LibraryOp::Min,
+                BinaryOp::Max => LibraryOp::Max,
+                BinaryOp::Pow => LibraryOp::Pow,
+            },
+            Op::Pown => LibraryOp::Pown,
+            Op::Unary(u) => match u {
+                UnaryOp::Neg => LibraryOp::Neg,
+                UnaryOp::Abs => LibraryOp::Abs,
+                UnaryOp::Sqr => LibraryOp::Sqr,
+                UnaryOp::Sqrt => LibraryOp::Sqrt,
+                UnaryOp::Recip => LibraryOp::Recip,
+                UnaryOp::Exp => LibraryOp::Exp,
+                UnaryOp::Ln => LibraryOp::Ln,
+                UnaryOp::Log10 => LibraryOp::Log10,
+                UnaryOp::Sin => LibraryOp::Sin,
+                UnaryOp::Cos => LibraryOp::Cos,
+                UnaryOp::Tan => LibraryOp::Tan,
+                UnaryOp::Asin => LibraryOp::Asin,
+                UnaryOp::Acos => LibraryOp::Acos,
+                UnaryOp::Atan => LibraryOp::Atan,
+                UnaryOp::Floor => LibraryOp::Floor,
+                UnaryOp::Ceil => LibraryOp::Ceil,
+                UnaryOp::Round => LibraryOp::Round,
+                UnaryOp::Not => LibraryOp::Not,
+                UnaryOp::SlopeFloor => LibraryOp::SlopeFloor,
+                UnaryOp::SlopeRound => LibraryOp::SlopeRound,
+                UnaryOp::SlopeNot => LibraryOp::SlopeNot,
+            },
+        }
+    }
+
+    /// The operation whose library function this is.
+    pub fn op(self) -> Op {
+        Op::ALL[self.index()]
+    }
 
     /// The WGSL function's name.
     pub fn name(self) -> &'static str {
-        match self {
-            LibraryOp::Add => "i_add",
-            LibraryOp::Sub => "i_sub",
-            LibraryOp::Mul => "i_mul",
-            LibraryOp::Div => "i_div",
-            LibraryOp::Min => "i_min",
-            LibraryOp::Max => "i_max",
-            LibraryOp::Pown => "i_pown",
-            LibraryOp::Neg => "i_neg",
-            LibraryOp::Abs => "i_abs",
-            LibraryOp::Sqr => "i_sqr",
-            LibraryOp::Sqrt => "i_sqrt",
-            LibraryOp::Recip => "i_recip",
-            LibraryOp::Floor => "i_floor",
-            LibraryOp::Ceil => "i_ceil",
-            LibraryOp::Exp => "i_exp",
-            LibraryOp::Ln => "i_ln",
-            LibraryOp::Log10 => "i_log10",
-            LibraryOp::Sin => "i_sin",
-            LibraryOp::Cos => "i_cos",
-            LibraryOp::Tan => "i_tan",
-            LibraryOp::Asin => "i_asin",
-            LibraryOp::Acos => "i_acos",
-            LibraryOp::Atan => "i_atan",
-            LibraryOp::Pow => "i_pow",
-            LibraryOp::Round => "i_round",
-            LibraryOp::Not => "i_not",
-            LibraryOp::SlopeFloor => "i_slope_floor",
-            LibraryOp::SlopeRound => "i_slope_round",
-            LibraryOp::SlopeNot => "i_slope_not",
-        }
+        wgsl::function(self.op())
     }
 
     /// Whether it takes a second interval.
     pub fn is_binary(self) -> bool {
-        matches!(
-            self,
-            LibraryOp::Add
-                | LibraryOp::Sub
-                | LibraryOp::Mul
-                | LibraryOp::Div
-                | LibraryOp::Min
-                | LibraryOp::Max
-                | LibraryOp::Pow
-        )
+        self.op().is_binary()
     }
 
-    fn index(self) -> u32 {
+    /// The position in [`LibraryOp::ALL`]: the kernel's number of the operation.
+    fn index(self) -> usize {
         LibraryOp::ALL
             .iter()
             .position(|&o| o == self)
-            .expect("every op is in ALL") as u32
+            .expect("every op is in ALL")
     }
+}
+
+impl From<Op> for LibraryOp {
+    fn from(op: Op) -> Self {
+        LibraryOp::of(op)
+    }
+}
+
+/// The WGSL function `run_op(op, a, b, n)` that the op kernel calls: a `switch` over the
+/// kernel's operation numbers ([`LibraryOp::ALL`] order), each calling its library function
+/// with `a`, with `a, b` for a binary one, and with `a, n` for `i_pown`.
+fn dispatch_source() -> String {
+    let mut s = String::from(
+        "fn run_op(op: u32, a: Interval, b: Interval, n: i32) -> Interval {\n    var r = i_entire();\n    switch op {\n",
+    );
+    for (k, op) in Op::ALL.into_iter().enumerate() {
+        let args = match op {
+            Op::Binary(_) => "a, b",
+            Op::Pown => "a, n",
+            Op::Unary(_) => "a",
+        };
+        s.push_str(&format!(
+            "        case {k}u: {{ r = {}({args}); }}\n",
+            wgsl::function(op)
+        ));
+    }
+    s.push_str("        default: {}\n    }\n    return r;\n}\n");
+    s
 }
 
 /// One input of the op kernel: the bit patterns of `a.lo, a.hi, b.lo, b.hi` (for
@@ -220,7 +237,7 @@ impl OpRunner {
     ///
     /// [`GpuError::Validation`] if the adapter rejects the shader.
     pub fn new(gpu: &Gpu, flush_subnormals: bool) -> Result<OpRunner, GpuError> {
-        let source = format!("{INTERVAL_LIBRARY}\n{OPS_KERNEL}");
+        let source = format!("{INTERVAL_LIBRARY}\n{}\n{OPS_KERNEL}", dispatch_source());
         let flush = [("FLUSH_SUBNORMALS", if flush_subnormals { 1.0 } else { 0.0 })];
         Ok(OpRunner {
             kernel: Kernel::new(gpu, "interval library op kernel", source, &flush)?,
@@ -240,7 +257,7 @@ impl OpRunner {
     ) -> Result<Vec<[f32; 2]>, GpuError> {
         self.kernel.map(gpu, inputs, |count| {
             bytemuck::bytes_of(&Params {
-                op: op.index(),
+                op: op.index() as u32,
                 count: count as u32,
             })
             .to_vec()

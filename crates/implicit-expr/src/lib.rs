@@ -130,7 +130,7 @@ pub use constant::Constant;
 pub use context::{Context, Node, NodeId, Var};
 pub use error::Error;
 pub use eval::{Choice, Evaluator, Grad, Number, SliceEvaluator};
-pub use op::{BinaryOp, UnaryOp};
+pub use op::{BinaryOp, Op, UnaryOp};
 pub use ray::{RayEvaluator, RayFunction};
 pub use semantics::{SemanticResult, Theorem, analyze};
 pub use tape::Tape;

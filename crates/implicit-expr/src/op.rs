@@ -231,3 +231,71 @@ impl fmt::Display for BinaryOp {
         f.write_str(self.name())
     }
 }
+
+/// Any operation that computes an instruction's value from other values: a binary or unary
+/// operation, or the integer power `a^n` (whose exponent `n` is part of the instruction).
+///
+/// [`Op::ALL`] lists them all, derived from [`BinaryOp::ALL`] and [`UnaryOp::ALL`]: code
+/// that must cover every operation (the WGSL interval library's contract, its kernels and
+/// tests) iterates over it instead of keeping a list of its own.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum Op {
+    /// A two-argument operation.
+    Binary(BinaryOp),
+    /// `a^n` for an integer `n`.
+    Pown,
+    /// A one-argument operation.
+    Unary(UnaryOp),
+}
+
+impl Op {
+    /// Every operation: the binary ones (in [`BinaryOp::ALL`] order), [`Op::Pown`], then the
+    /// unary ones (in [`UnaryOp::ALL`] order).
+    pub const ALL: [Op; BinaryOp::ALL.len() + 1 + UnaryOp::ALL.len()] = {
+        let mut all = [Op::Pown; BinaryOp::ALL.len() + 1 + UnaryOp::ALL.len()];
+        let mut i = 0;
+        while i < BinaryOp::ALL.len() {
+            all[i] = Op::Binary(BinaryOp::ALL[i]);
+            i += 1;
+        }
+        let mut k = 0;
+        while k < UnaryOp::ALL.len() {
+            all[BinaryOp::ALL.len() + 1 + k] = Op::Unary(UnaryOp::ALL[k]);
+            k += 1;
+        }
+        all
+    };
+
+    /// The name in printed graphs: the operation's own, `pown` for the integer power.
+    pub fn name(self) -> &'static str {
+        match self {
+            Op::Binary(b) => b.name(),
+            Op::Pown => "pown",
+            Op::Unary(u) => u.name(),
+        }
+    }
+
+    /// Whether the operation takes a second value (an interval or a real number, not the
+    /// integer exponent of [`Op::Pown`]).
+    pub fn is_binary(self) -> bool {
+        matches!(self, Op::Binary(_))
+    }
+}
+
+impl From<UnaryOp> for Op {
+    fn from(op: UnaryOp) -> Self {
+        Op::Unary(op)
+    }
+}
+
+impl From<BinaryOp> for Op {
+    fn from(op: BinaryOp) -> Self {
+        Op::Binary(op)
+    }
+}
+
+impl fmt::Display for Op {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}

@@ -16,63 +16,27 @@ use implicit_expr::wgsl::{
 };
 use implicit_expr::{BinaryOp, Constant, Context, Error, NodeId, Tape, UnaryOp};
 
-/// Type-checking prelude with `Interval` as a struct. NOT a sound interval library.
-const STRUCT_PRELUDE: &str = "
-struct Interval { lo: f32, hi: f32 }
-
-fn i_add(a: Interval, b: Interval) -> Interval { return Interval(a.lo + b.lo, a.hi + b.hi); }
-fn i_sub(a: Interval, b: Interval) -> Interval { return Interval(a.lo - b.hi, a.hi - b.lo); }
-fn i_mul(a: Interval, b: Interval) -> Interval {
-    let p = vec4<f32>(a.lo * b.lo, a.lo * b.hi, a.hi * b.lo, a.hi * b.hi);
-    return Interval(min(min(p.x, p.y), min(p.z, p.w)), max(max(p.x, p.y), max(p.z, p.w)));
-}
-fn i_div(a: Interval, b: Interval) -> Interval { return i_mul(a, i_recip(b)); }
-fn i_min(a: Interval, b: Interval) -> Interval { return Interval(min(a.lo, b.lo), min(a.hi, b.hi)); }
-fn i_max(a: Interval, b: Interval) -> Interval { return Interval(max(a.lo, b.lo), max(a.hi, b.hi)); }
-fn i_pow(a: Interval, b: Interval) -> Interval { return i_exp(i_mul(b, i_ln(a))); }
-fn i_pown(a: Interval, n: i32) -> Interval {
-    var r = Interval(1.0f, 1.0f);
-    for (var i = 0; i < abs(n); i++) { r = i_mul(r, a); }
-    if (n < 0) { r = i_recip(r); }
-    return r;
-}
-fn i_neg(a: Interval) -> Interval { return Interval(-a.hi, -a.lo); }
-fn i_abs(a: Interval) -> Interval { return Interval(0.0f, max(abs(a.lo), abs(a.hi))); }
-fn i_sqr(a: Interval) -> Interval { return i_mul(a, a); }
-fn i_sqrt(a: Interval) -> Interval { return Interval(sqrt(a.lo), sqrt(a.hi)); }
-fn i_recip(a: Interval) -> Interval { return Interval(1.0f / a.hi, 1.0f / a.lo); }
-fn i_exp(a: Interval) -> Interval { return Interval(exp(a.lo), exp(a.hi)); }
-fn i_ln(a: Interval) -> Interval { return Interval(log(a.lo), log(a.hi)); }
-fn i_log10(a: Interval) -> Interval { return Interval(log2(a.lo), log2(a.hi)); }
-fn i_sin(a: Interval) -> Interval { return Interval(-1.0f, 1.0f); }
-fn i_cos(a: Interval) -> Interval { return Interval(-1.0f, 1.0f); }
-fn i_tan(a: Interval) -> Interval { return Interval(tan(a.lo), tan(a.hi)); }
-fn i_asin(a: Interval) -> Interval { return Interval(asin(a.lo), asin(a.hi)); }
-fn i_acos(a: Interval) -> Interval { return Interval(acos(a.hi), acos(a.lo)); }
-fn i_atan(a: Interval) -> Interval { return Interval(atan(a.lo), atan(a.hi)); }
-fn i_floor(a: Interval) -> Interval { return Interval(floor(a.lo), floor(a.hi)); }
-fn i_ceil(a: Interval) -> Interval { return Interval(ceil(a.lo), ceil(a.hi)); }
-fn i_round(a: Interval) -> Interval { return Interval(round(a.lo), round(a.hi)); }
-fn i_not(a: Interval) -> Interval { return Interval(0.0f, 1.0f); }
-fn i_slope_floor(a: Interval) -> Interval { return i_entire(); }
-fn i_slope_round(a: Interval) -> Interval { return i_entire(); }
-fn i_slope_not(a: Interval) -> Interval { return i_entire(); }
-fn i_entire() -> Interval { return Interval(-0x1.fffffep127f, 0x1.fffffep127f); }
-fn i_at_least(lo: f32) -> Interval { return Interval(lo, 0x1.fffffep127f); }
-fn i_at_most(hi: f32) -> Interval { return Interval(-0x1.fffffep127f, hi); }
-";
-
-/// Type-checking prelude with `Interval` as `vec2<f32>`, built from the contract's
-/// signatures with placeholder bodies. NOT a sound interval library.
-fn alias_prelude() -> String {
-    let mut s = String::from("alias Interval = vec2<f32>;\n");
+/// Type-checking prelude: the `Interval` declaration, then every function of the contract
+/// with its signature and a placeholder body. NOT a sound interval library.
+fn prelude(interval: &str) -> String {
+    let mut s = format!("{interval}\n");
     for f in LIBRARY {
         s.push_str(&format!(
             "{} {{ return Interval(0.0f, 0.0f); }}\n",
-            f.signature
+            f.signature()
         ));
     }
     s
+}
+
+/// The prelude with `Interval` as a struct.
+fn struct_prelude() -> String {
+    prelude("struct Interval { lo: f32, hi: f32 }")
+}
+
+/// The prelude with `Interval` as `vec2<f32>`.
+fn alias_prelude() -> String {
+    prelude("alias Interval = vec2<f32>;")
 }
 
 /// Parses and validates `source` with naga; panics with naga's report on failure.
@@ -131,7 +95,8 @@ fn check(g: &Generator) -> f64 {
     let interval = g.interval_source();
     let start = Instant::now();
     validate(&format!(
-        "{STRUCT_PRELUDE}\n{interval}\n{}",
+        "{}\n{interval}\n{}",
+        struct_prelude(),
         interval_caller(g)
     ));
     let secs = start.elapsed().as_secs_f64();
@@ -143,7 +108,7 @@ fn check(g: &Generator) -> f64 {
     // The point function needs no library.
     validate(&format!("{}\n{}", g.point_source(), point_caller(g)));
     // Both in one module, as a backend would paste them.
-    validate(&format!("{STRUCT_PRELUDE}\n{}", g.source()));
+    validate(&format!("{}\n{}", struct_prelude(), g.source()));
     secs
 }
 
@@ -289,7 +254,8 @@ fn ray_functions_multi_output() {
         .unwrap();
     assert_eq!(g_only.output_count(), 1);
     validate(&format!(
-        "{STRUCT_PRELUDE}\n{}\n{}",
+        "{}\n{}\n{}",
+        struct_prelude(),
         g.source(),
         g_only.source()
     ));
@@ -448,14 +414,15 @@ fn library_functions_match_the_generator() {
 
 #[test]
 fn prelude_declares_the_contract() {
+    let prelude = struct_prelude();
     for f in LIBRARY {
         assert!(
-            STRUCT_PRELUDE.contains(&format!("{} {{", f.signature)),
+            prelude.contains(&format!("{} {{", f.signature())),
             "prelude lacks {}",
-            f.signature
+            f.signature()
         );
     }
-    validate(STRUCT_PRELUDE);
+    validate(&prelude);
     validate(&alias_prelude());
 }
 

@@ -1,7 +1,8 @@
 //! Renders a planar implicit region `f(x, y) < 0` to a PNG, reliably: tiles proven inside or
 //! outside by interval arithmetic are filled whole, with the tape pruned per tile, and only
-//! the pixels that no interval decides are evaluated as points (see
-//! `examples::render2d` for why the image equals plain per-pixel evaluation).
+//! the pixels that no interval decides are evaluated as points. A command line over the
+//! `render2d` crate (see its documentation for why the image equals plain per-pixel
+//! evaluation).
 //!
 //! ```text
 //! cargo run --release -p examples --bin render2d -- --formula "x^2 + y^2 - 0.5" --out disc.png
@@ -13,8 +14,8 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use clap::{Parser, ValueEnum};
-use examples::render2d::{self, Image, Pixel, Region, Settings, Stats};
 use implicit_expr::{Context, Error, Tape};
+use render2d::{Image, Pixel, Region, Settings, Stats};
 
 /// Renders f(x, y) < 0 (inside) by interval subdivision with tape pruning.
 #[derive(Parser, Debug)]

@@ -73,8 +73,9 @@
 //!   the argument interval (and `b` in the second one) where the operation is defined,
 //!   following the definitions of [`UnaryOp`] and [`BinaryOp`] (IEEE 1788 domains: `sqrt`
 //!   and `ln` on `a >= 0`, `pow` on `a > 0` and `a = 0, b > 0`, and so on, and the slope
-//!   operations as documented on [`UnaryOp`]). [`Generator::required_functions`] tells
-//!   which of them one tape needs.
+//!   operations as documented on [`UnaryOp`]). [`function`] names the function of each
+//!   [`Op`], and [`Op::ALL`] lists the operations; [`Generator::required_functions`] tells
+//!   which of the functions one tape needs.
 //!
 //! Constants are folded into the text as `f32` enclosures of the tape's `f64` enclosures,
 //! rounded outward ([`enclose_f32`]) and written exactly ([`f32_literal`]):
@@ -98,7 +99,7 @@ use std::fmt::Write;
 
 use crate::constant::Constant;
 use crate::error::Error;
-use crate::op::{BinaryOp, UnaryOp};
+use crate::op::{BinaryOp, Op, UnaryOp};
 use crate::tape::{Opcode, Tape};
 
 pub use literal::{enclose_f32, f32_literal};
@@ -108,104 +109,151 @@ pub use literal::{enclose_f32, f32_literal};
 pub struct LibraryFunction {
     /// The function's name, e.g. `i_add`.
     pub name: &'static str,
-    /// Its WGSL declaration without the body, e.g.
-    /// `fn i_add(a: Interval, b: Interval) -> Interval`.
-    pub signature: &'static str,
+    /// Its parameters as WGSL declares them, e.g. `a: Interval, b: Interval`.
+    pub params: &'static str,
     /// What its result must contain.
     pub encloses: &'static str,
 }
 
-macro_rules! library {
-    ($( $name:literal ( $($params:literal)? ) => $encloses:literal ),* $(,)?) => {
-        /// Every function the generated interval code may call, in a fixed order: the
-        /// binary operations (in [`BinaryOp::ALL`] order), `i_pown`, the unary operations
-        /// (in [`UnaryOp::ALL`] order), then the constructors of unbounded constants.
-        pub const LIBRARY: &[LibraryFunction] = &[$(
-            LibraryFunction {
-                name: $name,
-                signature: concat!("fn ", $name, "(", $($params,)? ") -> Interval"),
-                encloses: $encloses,
-            },
-        )*];
+impl LibraryFunction {
+    /// The function of the operation `op`.
+    pub const fn of(op: Op) -> Self {
+        let (name, params, encloses) = match op {
+            Op::Binary(b) => (
+                binary_entry(b).0,
+                "a: Interval, b: Interval",
+                binary_entry(b).1,
+            ),
+            Op::Pown => (
+                POWN_FUNCTION,
+                "a: Interval, n: i32",
+                "a^n for the integer n (a^0 = 1; a != 0 when n < 0)",
+            ),
+            Op::Unary(u) => (unary_entry(u).0, "a: Interval", unary_entry(u).1),
+        };
+        LibraryFunction {
+            name,
+            params,
+            encloses,
+        }
+    }
 
-        /// The names of [`LIBRARY`], in the same order.
-        pub const LIBRARY_FUNCTIONS: &[&str] = &[$($name,)*];
-    };
+    /// Its WGSL declaration without the body, e.g.
+    /// `fn i_add(a: Interval, b: Interval) -> Interval`.
+    pub fn signature(&self) -> String {
+        format!("fn {}({}) -> Interval", self.name, self.params)
+    }
 }
 
-library! {
-    "i_add"("a: Interval, b: Interval") => "a + b",
-    "i_sub"("a: Interval, b: Interval") => "a - b",
-    "i_mul"("a: Interval, b: Interval") => "a * b",
-    "i_div"("a: Interval, b: Interval") => "a / b (b != 0)",
-    "i_min"("a: Interval, b: Interval") => "min(a, b)",
-    "i_max"("a: Interval, b: Interval") => "max(a, b)",
-    "i_pow"("a: Interval, b: Interval") => "a^b for a > 0, and for a = 0 when b > 0",
-    "i_pown"("a: Interval, n: i32") => "a^n for the integer n (a^0 = 1; a != 0 when n < 0)",
-    "i_neg"("a: Interval") => "-a",
-    "i_abs"("a: Interval") => "|a|",
-    "i_sqr"("a: Interval") => "a^2",
-    "i_sqrt"("a: Interval") => "sqrt(a) for a >= 0",
-    "i_recip"("a: Interval") => "1 / a (a != 0)",
-    "i_exp"("a: Interval") => "e^a",
-    "i_ln"("a: Interval") => "ln(a) for a > 0",
-    "i_log10"("a: Interval") => "log10(a) for a > 0",
-    "i_sin"("a: Interval") => "sin(a)",
-    "i_cos"("a: Interval") => "cos(a)",
-    "i_tan"("a: Interval") => "tan(a) away from the poles",
-    "i_asin"("a: Interval") => "asin(a) for -1 <= a <= 1",
-    "i_acos"("a: Interval") => "acos(a) for -1 <= a <= 1",
-    "i_atan"("a: Interval") => "atan(a)",
-    "i_floor"("a: Interval") => "floor(a)",
-    "i_ceil"("a: Interval") => "ceil(a)",
-    "i_round"("a: Interval") => "round(a), halves away from zero",
-    "i_not"("a: Interval") => "1 where a = 0, else 0",
-    "i_slope_floor"("a: Interval") => "0 if a holds no integer, else [-inf, +inf]",
-    "i_slope_round"("a: Interval") => "0 if a holds no half-integer, else [-inf, +inf]",
-    "i_slope_not"("a: Interval") => "0 if a does not hold 0, else [-inf, +inf]",
-    "i_entire"() => "every real: [-inf, +inf]",
-    "i_at_least"("lo: f32") => "[lo, +inf]",
-    "i_at_most"("hi: f32") => "[-inf, hi]",
-}
+/// The constructors of constants beyond the `f32` range, after the operations' functions in
+/// [`LIBRARY`].
+const CONSTRUCTORS: [LibraryFunction; 3] = [
+    LibraryFunction {
+        name: "i_entire",
+        params: "",
+        encloses: "every real: [-inf, +inf]",
+    },
+    LibraryFunction {
+        name: "i_at_least",
+        params: "lo: f32",
+        encloses: "[lo, +inf]",
+    },
+    LibraryFunction {
+        name: "i_at_most",
+        params: "hi: f32",
+        encloses: "[-inf, hi]",
+    },
+];
 
-/// The library function that the interval code calls for `op`.
-pub fn unary_function(op: UnaryOp) -> &'static str {
+/// Every function the generated interval code may call, in a fixed order: one per
+/// operation (in [`Op::ALL`] order: the binary operations, `i_pown`, the unary operations),
+/// then the constructors of unbounded constants (`i_entire`, `i_at_least`, `i_at_most`).
+pub const LIBRARY: [LibraryFunction; Op::ALL.len() + CONSTRUCTORS.len()] = {
+    let mut all = [CONSTRUCTORS[0]; Op::ALL.len() + CONSTRUCTORS.len()];
+    let mut i = 0;
+    while i < Op::ALL.len() {
+        all[i] = LibraryFunction::of(Op::ALL[i]);
+        i += 1;
+    }
+    let mut k = 0;
+    while k < CONSTRUCTORS.len() {
+        all[Op::ALL.len() + k] = CONSTRUCTORS[k];
+        k += 1;
+    }
+    all
+};
+
+/// The names of [`LIBRARY`], in the same order.
+pub const LIBRARY_FUNCTIONS: [&str; LIBRARY.len()] = {
+    let mut names = [""; LIBRARY.len()];
+    let mut i = 0;
+    while i < LIBRARY.len() {
+        names[i] = LIBRARY[i].name;
+        i += 1;
+    }
+    names
+};
+
+/// The library function of a unary operation and what its result must contain: the one
+/// table of the unary operations' part of the contract.
+const fn unary_entry(op: UnaryOp) -> (&'static str, &'static str) {
     match op {
-        UnaryOp::Neg => "i_neg",
-        UnaryOp::Abs => "i_abs",
-        UnaryOp::Sqr => "i_sqr",
-        UnaryOp::Sqrt => "i_sqrt",
-        UnaryOp::Recip => "i_recip",
-        UnaryOp::Exp => "i_exp",
-        UnaryOp::Ln => "i_ln",
-        UnaryOp::Log10 => "i_log10",
-        UnaryOp::Sin => "i_sin",
-        UnaryOp::Cos => "i_cos",
-        UnaryOp::Tan => "i_tan",
-        UnaryOp::Asin => "i_asin",
-        UnaryOp::Acos => "i_acos",
-        UnaryOp::Atan => "i_atan",
-        UnaryOp::Floor => "i_floor",
-        UnaryOp::Ceil => "i_ceil",
-        UnaryOp::Round => "i_round",
-        UnaryOp::Not => "i_not",
-        UnaryOp::SlopeFloor => "i_slope_floor",
-        UnaryOp::SlopeRound => "i_slope_round",
-        UnaryOp::SlopeNot => "i_slope_not",
+        UnaryOp::Neg => ("i_neg", "-a"),
+        UnaryOp::Abs => ("i_abs", "|a|"),
+        UnaryOp::Sqr => ("i_sqr", "a^2"),
+        UnaryOp::Sqrt => ("i_sqrt", "sqrt(a) for a >= 0"),
+        UnaryOp::Recip => ("i_recip", "1 / a (a != 0)"),
+        UnaryOp::Exp => ("i_exp", "e^a"),
+        UnaryOp::Ln => ("i_ln", "ln(a) for a > 0"),
+        UnaryOp::Log10 => ("i_log10", "log10(a) for a > 0"),
+        UnaryOp::Sin => ("i_sin", "sin(a)"),
+        UnaryOp::Cos => ("i_cos", "cos(a)"),
+        UnaryOp::Tan => ("i_tan", "tan(a) away from the poles"),
+        UnaryOp::Asin => ("i_asin", "asin(a) for -1 <= a <= 1"),
+        UnaryOp::Acos => ("i_acos", "acos(a) for -1 <= a <= 1"),
+        UnaryOp::Atan => ("i_atan", "atan(a)"),
+        UnaryOp::Floor => ("i_floor", "floor(a)"),
+        UnaryOp::Ceil => ("i_ceil", "ceil(a)"),
+        UnaryOp::Round => ("i_round", "round(a), halves away from zero"),
+        UnaryOp::Not => ("i_not", "1 where a = 0, else 0"),
+        UnaryOp::SlopeFloor => (
+            "i_slope_floor",
+            "0 if a holds no integer, else [-inf, +inf]",
+        ),
+        UnaryOp::SlopeRound => (
+            "i_slope_round",
+            "0 if a holds no half-integer, else [-inf, +inf]",
+        ),
+        UnaryOp::SlopeNot => ("i_slope_not", "0 if a does not hold 0, else [-inf, +inf]"),
+    }
+}
+
+/// The library function of a binary operation and what its result must contain.
+const fn binary_entry(op: BinaryOp) -> (&'static str, &'static str) {
+    match op {
+        BinaryOp::Add => ("i_add", "a + b"),
+        BinaryOp::Sub => ("i_sub", "a - b"),
+        BinaryOp::Mul => ("i_mul", "a * b"),
+        BinaryOp::Div => ("i_div", "a / b (b != 0)"),
+        BinaryOp::Min => ("i_min", "min(a, b)"),
+        BinaryOp::Max => ("i_max", "max(a, b)"),
+        BinaryOp::Pow => ("i_pow", "a^b for a > 0, and for a = 0 when b > 0"),
     }
 }
 
 /// The library function that the interval code calls for `op`.
-pub fn binary_function(op: BinaryOp) -> &'static str {
-    match op {
-        BinaryOp::Add => "i_add",
-        BinaryOp::Sub => "i_sub",
-        BinaryOp::Mul => "i_mul",
-        BinaryOp::Div => "i_div",
-        BinaryOp::Min => "i_min",
-        BinaryOp::Max => "i_max",
-        BinaryOp::Pow => "i_pow",
-    }
+pub const fn function(op: Op) -> &'static str {
+    LibraryFunction::of(op).name
+}
+
+/// The library function that the interval code calls for `op`.
+pub const fn unary_function(op: UnaryOp) -> &'static str {
+    unary_entry(op).0
+}
+
+/// The library function that the interval code calls for `op`.
+pub const fn binary_function(op: BinaryOp) -> &'static str {
+    binary_entry(op).0
 }
 
 /// The library function that the interval code calls for an integer power.
@@ -625,9 +673,9 @@ pub fn required_functions(tape: &Tape) -> Vec<&'static str> {
     };
     for op in tape.ssa() {
         match op.op {
-            Opcode::Unary(u) => mark(unary_function(u)),
-            Opcode::Binary(b) => mark(binary_function(b)),
-            Opcode::Pown => mark(POWN_FUNCTION),
+            Opcode::Unary(u) => mark(function(Op::Unary(u))),
+            Opcode::Binary(b) => mark(function(Op::Binary(b))),
+            Opcode::Pown => mark(function(Op::Pown)),
             Opcode::Const => {
                 let form = tape.consts().get(op.a as usize).map(ConstForm::of);
                 match form {
@@ -672,27 +720,34 @@ mod tests {
 
     #[test]
     fn library_tables_agree() {
-        assert_eq!(LIBRARY.len(), LIBRARY_FUNCTIONS.len());
+        assert_eq!(LIBRARY.len(), Op::ALL.len() + 3);
         for (f, n) in LIBRARY.iter().zip(LIBRARY_FUNCTIONS) {
-            assert_eq!(f.name, *n);
-            assert!(f.signature.starts_with(&format!("fn {n}(")));
-            assert!(f.signature.ends_with(") -> Interval"));
+            assert_eq!(f.name, n);
+            assert!(f.signature().starts_with(&format!("fn {n}(")));
+            assert!(f.signature().ends_with(") -> Interval"));
         }
-        for op in UnaryOp::ALL {
-            assert!(LIBRARY_FUNCTIONS.contains(&unary_function(op)), "{op}");
+        for (op, f) in Op::ALL.into_iter().zip(LIBRARY) {
+            assert_eq!(function(op), f.name, "{op}");
         }
-        for op in BinaryOp::ALL {
-            assert!(LIBRARY_FUNCTIONS.contains(&binary_function(op)), "{op}");
-        }
-        assert!(LIBRARY_FUNCTIONS.contains(&POWN_FUNCTION));
+        let mut names = LIBRARY_FUNCTIONS.to_vec();
+        names.sort_unstable();
+        names.dedup();
         assert_eq!(
-            LIBRARY[0].signature,
+            names.len(),
+            LIBRARY.len(),
+            "every function has a name of its own"
+        );
+        assert_eq!(
+            LIBRARY[0].signature(),
             "fn i_add(a: Interval, b: Interval) -> Interval"
         );
         let pown = LIBRARY.iter().find(|f| f.name == "i_pown").unwrap();
-        assert_eq!(pown.signature, "fn i_pown(a: Interval, n: i32) -> Interval");
         assert_eq!(
-            LIBRARY.last().unwrap().signature,
+            pown.signature(),
+            "fn i_pown(a: Interval, n: i32) -> Interval"
+        );
+        assert_eq!(
+            LIBRARY.last().unwrap().signature(),
             "fn i_at_most(hi: f32) -> Interval"
         );
     }

@@ -1,6 +1,28 @@
+//! # render2d
+//!
 //! Reliable rendering of a planar implicit region `f(x, y) < 0` into a pixel grid by
-//! interval subdivision with tape pruning: the core of the `render2d` example, shared with
-//! the benchmarks that time it against other renderers.
+//! interval subdivision with tape pruning. The `render2d` example program is a command line
+//! over this crate, and the benchmarks time it against other 2D renderers.
+//!
+//! ```
+//! use implicit_expr::{Context, Tape, parse::parse};
+//! use render2d::{Settings, render, render_points, count_differences};
+//!
+//! // The unit disc, on a 64 x 64 image of [-1, 1]².
+//! let mut ctx = Context::new();
+//! let f = parse(&mut ctx, "x^2 + y^2 - 1", &[])?;
+//! let tape = Tape::new(&ctx, &[f])?;
+//! let settings = Settings::square(64);
+//! let (image, stats) = render::<f64>(&tape, &settings)?;
+//!
+//! // Most pixels are decided by whole tiles; the image equals per-pixel evaluation.
+//! assert!(stats.point_pixels < 64 * 64 / 2);
+//! let reference = render_points::<f64>(&tape, &settings)?;
+//! assert_eq!(count_differences(&image, &reference), 0);
+//! # Ok::<(), implicit_expr::Error>(())
+//! ```
+//!
+//! # How
 //!
 //! The image is cut into square top-level tiles (rayon schedules them), and each tile into
 //! smaller tiles, level by level ([`Settings::tiles`], e.g. 64, 16, 4 pixels). For every
@@ -40,8 +62,8 @@
 //! `sqrt`, `ln` or `/` is undefined, while the point evaluation gives `NaN` (or a signed
 //! infinity for `1/0`) there. Tapes of total operations (`+ - * min max neg abs square exp
 //! sin cos ...`, the usual CSG and signed-distance expressions) satisfy it everywhere;
-//! otherwise [`render_points`] is the reference, and the `--check` option of the example
-//! counts any differing pixel.
+//! otherwise [`render_points`] is the reference, and [`count_differences`] (the `--check`
+//! option of the `render2d` example) counts any differing pixel.
 //!
 //! Results do not depend on the number of threads: each top-level tile is a pure function
 //! of the tape, the settings and its position.
@@ -608,7 +630,7 @@ fn top_tiles(s: &Settings) -> Vec<Tile> {
 
 /// Renders `tape` (its first output is `f`) by interval subdivision with pruning, in
 /// precision `T` (`f32` or `f64`), on rayon's current thread pool. See the
-/// [module documentation](self).
+/// [crate documentation](crate).
 ///
 /// Returns an error for invalid settings or a tape with variables besides `x`, `y`, `z`.
 pub fn render<T: Float + Number>(tape: &Tape, settings: &Settings) -> Result<(Image, Stats), Error>
