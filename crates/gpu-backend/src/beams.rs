@@ -6,13 +6,12 @@
 //!
 //! The inclusion test needs `g` continuous and defined along every ray; the kernel has no
 //! definedness tracking, so it runs only for surfaces built from total continuous
-//! operations ([`is_total_and_continuous`]); for the others every beam that is not rejected
+//! operations ([`Tape::is_total_and_continuous`]); for the others every beam that is not rejected
 //! is reported undecided, which is sound.
 
 use beam_trace::ray::{Beam, IBox};
 use bytemuck::{Pod, Zeroable};
-use implicit_expr::tape::Opcode;
-use implicit_expr::{BinaryOp, Tape, UnaryOp, wgsl};
+use implicit_expr::{Tape, wgsl};
 use interval_core::Interval;
 
 use crate::device::Gpu;
@@ -96,30 +95,6 @@ struct SceneParams {
     ints: [u32; 4],
 }
 
-/// Whether every operation of `tape` is defined and continuous everywhere (`+ − ×`, `min`,
-/// `max`, `abs`, `sqr`, `−x`, non-negative integer powers, `exp`, `sin`, `cos`, `atan`):
-/// then a sign change of `g` between two parameters proves a root between them.
-pub fn is_total_and_continuous(tape: &Tape) -> bool {
-    tape.instrs().iter().all(|ins| match ins.op {
-        Opcode::Var | Opcode::Const | Opcode::Copy => true,
-        Opcode::Binary(op) => matches!(
-            op,
-            BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Min | BinaryOp::Max
-        ),
-        Opcode::Pown => (ins.b as i32) >= 0,
-        Opcode::Unary(op) => matches!(
-            op,
-            UnaryOp::Neg
-                | UnaryOp::Abs
-                | UnaryOp::Sqr
-                | UnaryOp::Exp
-                | UnaryOp::Sin
-                | UnaryOp::Cos
-                | UnaryOp::Atan
-        ),
-    })
-}
-
 /// The beam kernel of one scene function.
 #[derive(Debug)]
 pub struct BeamKernel {
@@ -144,7 +119,7 @@ impl BeamKernel {
         );
         Ok(BeamKernel {
             kernel: Kernel::new(gpu, "beam kernel", source, &[])?,
-            continuous: is_total_and_continuous(tape),
+            continuous: tape.is_total_and_continuous(),
             bounds,
         })
     }

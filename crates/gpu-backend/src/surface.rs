@@ -11,7 +11,7 @@ use crate::error::GpuError;
 use crate::library::{INTERVAL_LIBRARY, bound_to_f64};
 
 /// A box in space, as the CPU renderer writes it.
-pub type IBox = [Interval<f64>; 3];
+pub use beam_trace::ray::IBox;
 
 const BOXES_KERNEL: &str = include_str!("wgsl/boxes.wgsl");
 
