@@ -195,7 +195,7 @@ pub fn render_on<'a>(
 
 /// Rows of pixels a pass hands the backend per batch: batches big enough to keep every
 /// core (or the GPU) busy, small enough to show progress and bound memory.
-const ROWS_PER_BATCH: u32 = 64;
+const ROWS_PER_BATCH: u32 = 256;
 
 /// The per-pixel samples of a pass, the cost of each pixel, and the pass's statistics.
 type PixelSamples = (Vec<Vec<Sample>>, Vec<f32>, PassStats);

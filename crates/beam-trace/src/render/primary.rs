@@ -3,10 +3,13 @@
 
 use std::time::Instant;
 
+use rayon::prelude::*;
+
 use super::{PixelSamples, ROWS_PER_BATCH};
 use crate::backend::cpu::{child_window, forward};
 use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery};
 use crate::beam::BoxClass;
+use crate::camera::Camera;
 use crate::error::Error;
 use crate::plan::{Pass, Plan};
 use crate::progress::Progress;
@@ -93,13 +96,55 @@ fn pixel_offsets(n: u32) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// One ray of a pixel: the pixel (in the batch), its weight, the query, and whether its
-/// window is a Hit box's `T_final`, where a root is known to exist.
+/// One ray of a pixel: its weight, the query, and whether its window is a Hit box's
+/// `T_final`, where a root is known to exist.
+#[derive(Copy, Clone)]
 struct PixelRay {
-    pixel: usize,
     weight: f32,
     query: RayQuery,
     in_t_final: bool,
+}
+
+/// The rays of pixel `i` (row-major in a `w`-wide image) under its box class: the central
+/// ray searched in a Hit box's `T_final`; `offsets.len()` stratified rays from where an
+/// Undecided box (or no box) left them open; none in a Miss box.
+fn pixel_rays<'a>(
+    cam: &'a Camera,
+    i: usize,
+    w: u32,
+    class: Option<(BoxClass, bool)>,
+    offsets: &'a [(f64, f64)],
+) -> impl Iterator<Item = PixelRay> + 'a {
+    let (fx, fy) = (f64::from(i as u32 % w), f64::from(i as u32 / w));
+    let class = class.map(|c| c.0);
+    let central = match class {
+        Some(BoxClass::Hit { t_final }) => Some(PixelRay {
+            weight: 1.0,
+            query: RayQuery {
+                ray: cam.ray(fx + 0.5, fy + 0.5),
+                window: t_final,
+            },
+            in_t_final: true,
+        }),
+        _ => None,
+    };
+    // The pixel's beam proved its rays root-free before its undecided range.
+    let stratified: &[(f64, f64)] = match class {
+        Some(BoxClass::Undecided { .. }) | None => offsets,
+        Some(BoxClass::Miss | BoxClass::Hit { .. }) => &[],
+    };
+    let window = child_window(class.as_ref());
+    let weight = 1.0 / offsets.len() as f32;
+    central
+        .into_iter()
+        .chain(stratified.iter().map(move |&(ox, oy)| PixelRay {
+            weight,
+            query: RayQuery {
+                ray: cam.ray(fx + ox, fy + oy),
+                window,
+            },
+            in_t_final: false,
+        }))
 }
 
 /// The primary-rays pass: in a Hit box one central ray per pixel searched in `T_final`
@@ -127,47 +172,27 @@ pub(super) fn primary_rays(
         let y1 = (y0 + ROWS_PER_BATCH).min(h);
         let first = (y0 * w) as usize;
         let n = ((y1 - y0) * w) as usize;
-        // The rays of every pixel of the batch.
-        let mut batch: Vec<PixelRay> = Vec::new();
-        for k in 0..n {
-            let i = first + k;
-            let (fx, fy) = (f64::from(i as u32 % w), f64::from(i as u32 / w));
-            match classes[i].map(|c| c.0) {
-                Some(BoxClass::Miss) => {}
-                Some(BoxClass::Hit { t_final }) => batch.push(PixelRay {
-                    pixel: k,
-                    weight: 1.0,
-                    query: RayQuery {
-                        ray: cam.ray(fx + 0.5, fy + 0.5),
-                        window: t_final,
-                    },
-                    in_t_final: true,
-                }),
-                class @ (Some(BoxClass::Undecided { .. }) | None) => {
-                    // The pixel's beam proved its rays root-free before its undecided range.
-                    let window = child_window(class.as_ref());
-                    let weight = 1.0 / offsets.len() as f32;
-                    batch.extend(offsets.iter().map(|&(ox, oy)| PixelRay {
-                        pixel: k,
-                        weight,
-                        query: RayQuery {
-                            ray: cam.ray(fx + ox, fy + oy),
-                            window,
-                        },
-                        in_t_final: false,
-                    }));
-                }
-            }
+        // The rays of every pixel of the batch, built in parallel; pixel `k` owns the rays
+        // `first_ray[k]..first_ray[k + 1]` of the flat batch.
+        let counts: Vec<usize> = (0..n)
+            .into_par_iter()
+            .map(|k| pixel_rays(cam, first + k, w, classes[first + k], &offsets).count())
+            .collect();
+        let mut first_ray = Vec::with_capacity(n + 1);
+        first_ray.push(0);
+        for count in &counts {
+            first_ray.push(first_ray[first_ray.len() - 1] + count);
         }
-        let mut pixel_cost = vec![0f32; n];
-        let queries: Vec<RayQuery> = batch.iter().map(|r| r.query).collect();
+        let batch: Vec<PixelRay> = (0..n)
+            .into_par_iter()
+            .flat_map_iter(|k| pixel_rays(cam, first + k, w, classes[first + k], &offsets))
+            .collect();
+        let queries: Vec<RayQuery> = batch.par_iter().map(|r| r.query).collect();
         let first_try = q.roots(&queries)?;
         c.rays += queries.len() as u64;
         c.search.add(&first_try.search);
         let mut results = first_try.values;
-        for (r, t) in batch.iter().zip(&first_try.cost) {
-            pixel_cost[r.pixel] += t;
-        }
+        let mut ray_cost = first_try.cost;
         // A limit inside T_final: search the whole ray.
         let retry: Vec<usize> = (0..batch.len())
             .filter(|&j| batch[j].in_t_final && !matches!(results[j], RootResult::Root { .. }))
@@ -184,58 +209,76 @@ pub(super) fn primary_rays(
             c.search.add(&again.search);
             for ((&j, r), t) in retry.iter().zip(again.values).zip(&again.cost) {
                 results[j] = r;
-                pixel_cost[batch[j].pixel] += t;
+                ray_cost[j] += t;
             }
         }
-        // The shading points of the rays that meet (or may meet) a surface.
-        let mut hit_rays = Vec::new();
-        let mut hit_queries = Vec::new();
-        for (j, r) in results.iter().enumerate() {
-            let t = match *r {
-                RootResult::Root { t, proof } => {
+        for r in &results {
+            match *r {
+                RootResult::Root { proof, .. } => {
                     c.hits += 1;
                     match proof {
                         Proof::Unique => c.proven_unique += 1,
                         Proof::Possible => c.possible += 1,
                         Proof::Exists => {}
                     }
-                    t
                 }
-                RootResult::Undecided { t } => {
-                    c.undecided += 1;
-                    t
-                }
-                RootResult::NoRoot => continue,
-            };
-            hit_rays.push(j);
-            hit_queries.push(HitQuery {
-                ray: batch[j].query.ray,
-                t,
-            });
-        }
-        let hits = q.hit_points(&hit_queries)?;
-        c.search.add(&hits.search);
-        let mut hit_of = vec![None; batch.len()];
-        for ((&j, hit), t) in hit_rays.iter().zip(hits.values).zip(&hits.cost) {
-            hit_of[j] = Some(hit);
-            pixel_cost[batch[j].pixel] += t;
-        }
-        // Each pixel's samples, in the order of its rays.
-        let mut pixels: Vec<Vec<Sample>> = vec![Vec::new(); n];
-        for (r, hit) in batch.iter().zip(hit_of) {
-            pixels[r.pixel].push(Sample {
-                weight: r.weight,
-                hit,
-            });
-        }
-        for px in &mut pixels {
-            if px.is_empty() {
-                px.push(Sample {
-                    weight: 1.0,
-                    hit: None,
-                });
+                RootResult::Undecided { .. } => c.undecided += 1,
+                RootResult::NoRoot => {}
             }
         }
+        // The shading points of the rays that meet (or may meet) a surface.
+        let (hit_rays, hit_queries): (Vec<usize>, Vec<HitQuery>) = results
+            .par_iter()
+            .enumerate()
+            .filter_map(|(j, r)| match *r {
+                RootResult::Root { t, .. } | RootResult::Undecided { t } => Some((
+                    j,
+                    HitQuery {
+                        ray: batch[j].query.ray,
+                        t,
+                    },
+                )),
+                RootResult::NoRoot => None,
+            })
+            .unzip();
+        let hits = q.hit_points(&hit_queries)?;
+        c.search.add(&hits.search);
+        // The hit of ray `j` is `hits.values[hit_rank[j]]` when it has one.
+        let mut hit_rank = Vec::with_capacity(batch.len());
+        let mut rank = 0;
+        for r in &results {
+            hit_rank.push(rank);
+            rank += usize::from(!matches!(r, RootResult::NoRoot));
+        }
+        for (&j, t) in hit_rays.iter().zip(&hits.cost) {
+            ray_cost[j] += t;
+        }
+        let hit_of = |j: usize| match results[j] {
+            RootResult::NoRoot => None,
+            _ => Some(hits.values[hit_rank[j]]),
+        };
+        // Each pixel's samples, in the order of its rays (background without a ray).
+        let (pixels, pixel_cost): (Vec<Vec<Sample>>, Vec<f32>) = (0..n)
+            .into_par_iter()
+            .map(|k| {
+                let rays = first_ray[k]..first_ray[k + 1];
+                if rays.is_empty() {
+                    let miss = Sample {
+                        weight: 1.0,
+                        hit: None,
+                    };
+                    return (vec![miss], 0.0);
+                }
+                let samples = rays
+                    .clone()
+                    .map(|j| Sample {
+                        weight: batch[j].weight,
+                        hit: hit_of(j),
+                    })
+                    .collect();
+                (samples, ray_cost[rays].iter().sum())
+            })
+            .unzip();
         samples.extend(pixels);
         cost.extend(pixel_cost);
         progress.advance(u64::from(y1 - y0));

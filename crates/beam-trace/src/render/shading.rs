@@ -21,9 +21,8 @@ pub(super) fn normals(
 ) -> Result<PassStats, Error> {
     let t0 = Instant::now();
     let points: Vec<_> = samples
-        .iter()
-        .flatten()
-        .filter_map(|s| s.hit.map(|h| h.point))
+        .par_iter()
+        .flat_map_iter(|px| px.iter().filter_map(|s| s.hit.map(|h| h.point)))
         .collect();
     progress.begin(Pass::Normals.name(), 1);
     let answers = q.normals(&points)?;
@@ -66,24 +65,24 @@ pub(super) fn shading(
                 color: l.color(),
             })
             .collect();
-        let shade: Vec<ShadeSample> = hits()
-            .map(|h| ShadeSample {
-                point: h.point,
-                normal: h.normal,
-                to_eye: h.to_eye,
-                material: leaves[h.leaf as usize].material,
-            })
-            .collect();
-        let fractions: Vec<f32> = samples
-            .iter()
-            .zip(vis)
-            .flat_map(|(px, v)| {
-                px.iter()
-                    .enumerate()
-                    .filter(|(_, s)| s.hit.is_some())
-                    .flat_map(move |(si, _)| v[si * nl..(si + 1) * nl].iter().copied())
-            })
-            .collect();
+        let count: usize = samples
+            .par_iter()
+            .map(|px| px.iter().filter(|s| s.hit.is_some()).count())
+            .sum();
+        let mut shade: Vec<ShadeSample> = Vec::with_capacity(count);
+        let mut fractions: Vec<f32> = Vec::with_capacity(count * nl);
+        for (px, v) in samples.iter().zip(vis) {
+            for (si, s) in px.iter().enumerate() {
+                let Some(h) = s.hit else { continue };
+                shade.push(ShadeSample {
+                    point: h.point,
+                    normal: h.normal,
+                    to_eye: h.to_eye,
+                    material: leaves[h.leaf as usize].material,
+                });
+                fractions.extend_from_slice(&v[si * nl..(si + 1) * nl]);
+            }
+        }
         q.shade(&ShadeBatch {
             lights: &lights,
             ambient: scene.ambient,

@@ -141,26 +141,35 @@ impl CpuQueries<'_> {
         queries: &[Q],
         f: impl Fn(&mut Evals, &Q, &mut RootCounters) -> T + Sync,
     ) -> Answers<T> {
-        let answers: Vec<(T, f32, RootCounters)> = queries
-            .par_iter()
+        /// Queries per piece of work: one set of counters and vectors per piece.
+        const PIECE: usize = 256;
+        let pieces: Vec<(Vec<T>, Vec<f32>, RootCounters)> = queries
+            .par_chunks(PIECE)
             .map_init(
                 || self.evals(),
-                |ev, q| {
-                    let t0 = Instant::now();
+                |ev, chunk| {
                     let mut c = RootCounters::default();
-                    let v = f(ev, q, &mut c);
-                    (v, t0.elapsed().as_secs_f32(), c)
+                    let mut values = Vec::with_capacity(chunk.len());
+                    let mut cost = Vec::with_capacity(chunk.len());
+                    let mut t0 = Instant::now();
+                    for q in chunk {
+                        values.push(f(ev, q, &mut c));
+                        let t1 = Instant::now();
+                        cost.push((t1 - t0).as_secs_f32());
+                        t0 = t1;
+                    }
+                    (values, cost, c)
                 },
             )
             .collect();
         let mut out = Answers {
-            values: Vec::with_capacity(answers.len()),
-            cost: Vec::with_capacity(answers.len()),
+            values: Vec::with_capacity(queries.len()),
+            cost: Vec::with_capacity(queries.len()),
             search: RootCounters::default(),
         };
-        for (v, cost, c) in answers {
-            out.values.push(v);
-            out.cost.push(cost);
+        for (v, cost, c) in pieces {
+            out.values.extend(v);
+            out.cost.extend(cost);
             out.search.add(&c);
         }
         out
