@@ -14,14 +14,15 @@
 //!
 //! ```no_run
 //! use gpu_backend::Gpu;
-//! use gpu_backend::library::{LibraryOp, OpRunner};
+//! use gpu_backend::library::OpRunner;
+//! use implicit_expr::{BinaryOp, Op};
 //!
 //! let gpu = Gpu::new()?;
 //! println!("adapter: {}", gpu.name());
 //! let runner = OpRunner::new(&gpu, false)?;
 //! // [1, 2] + [0.1, 0.1] as bit patterns.
 //! let input = [1f32.to_bits(), 2f32.to_bits(), 0.1f32.to_bits(), 0.1f32.to_bits()];
-//! let [lo, hi] = runner.run(&gpu, LibraryOp::Add, &[input])?[0];
+//! let [lo, hi] = runner.run(&gpu, Op::Binary(BinaryOp::Add), &[input])?[0];
 //! assert!(lo <= 1.1 && 2.1 <= hi);
 //! # Ok::<(), gpu_backend::GpuError>(())
 //! ```

@@ -10,7 +10,7 @@
 //! repository lists the bound used for each operation.
 
 use bytemuck::{Pod, Zeroable};
-use implicit_expr::{BinaryOp, Op, UnaryOp, wgsl};
+use implicit_expr::{Op, wgsl};
 
 use crate::device::Gpu;
 use crate::dispatch::Kernel;
@@ -42,155 +42,16 @@ pub fn bound_to_f64(x: f32) -> f64 {
     }
 }
 
-/// The library functions the op kernel runs: one per operation of implicit-expr's tapes
-/// ([`Op`]), named as the operations are. [`LibraryOp::of`] matches every operation, so the
-/// compiler names one missing here; the order ([`LibraryOp::ALL`]), the WGSL names and the
-/// kernel's dispatch follow from [`Op::ALL`] and [`wgsl::function`].
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
-pub enum LibraryOp {
-    /// `i_add(a, b)`.
-    Add,
-    /// `i_sub(a, b)`.
-    Sub,
-    /// `i_mul(a, b)`.
-    Mul,
-    /// `i_div(a, b)`.
-    Div,
-    /// `i_min(a, b)`.
-    Min,
-    /// `i_max(a, b)`.
-    Max,
-    /// `i_pown(a, n)`, `n` in the bits of the second input's lower bound.
-    Pown,
-    /// `i_neg(a)`.
-    Neg,
-    /// `i_abs(a)`.
-    Abs,
-    /// `i_sqr(a)`.
-    Sqr,
-    /// `i_sqrt(a)`.
-    Sqrt,
-    /// `i_recip(a)`.
-    Recip,
-    /// `i_floor(a)`.
-    Floor,
-    /// `i_ceil(a)`.
-    Ceil,
-    /// `i_exp(a)`.
-    Exp,
-    /// `i_ln(a)`.
-    Ln,
-    /// `i_log10(a)`.
-    Log10,
-    /// `i_sin(a)`.
-    Sin,
-    /// `i_cos(a)`.
-    Cos,
-    /// `i_tan(a)`.
-    Tan,
-    /// `i_asin(a)`.
-    Asin,
-    /// `i_acos(a)`.
-    Acos,
-    /// `i_atan(a)`.
-    Atan,
-    /// `i_pow(a, b)`.
-    Pow,
-    /// `i_round(a)`.
-    Round,
-    /// `i_not(a)`.
-    Not,
-    /// `i_slope_floor(a)`.
-    SlopeFloor,
-    /// `i_slope_round(a)`.
-    SlopeRound,
-    /// `i_slope_not(a)`.
-    SlopeNot,
-}
-
-impl LibraryOp {
-    /// Every operation, in [`Op::ALL`] order (the kernel's).
-    pub const ALL: [LibraryOp; Op::ALL.len()] = {
-        let mut all = [LibraryOp::Add; Op::ALL.len()];
-        let mut i = 0;
-        while i < Op::ALL.len() {
-            all[i] = LibraryOp::of(Op::ALL[i]);
-            i += 1;
-        }
-        all
-    };
-
-    /// The library function of `op`.
-    pub const fn of(op: Op) -> LibraryOp {
-        match op {
-            Op::Binary(b) => match b {
-                BinaryOp::Add => LibraryOp::Add,
-                BinaryOp::Sub => LibraryOp::Sub,
-                BinaryOp::Mul => LibraryOp::Mul,
-                BinaryOp::Div => LibraryOp::Div,
-                BinaryOp::Min => LibraryOp::Min,
-                BinaryOp::Max => LibraryOp::Max,
-                BinaryOp::Pow => LibraryOp::Pow,
-            },
-            Op::Pown => LibraryOp::Pown,
-            Op::Unary(u) => match u {
-                UnaryOp::Neg => LibraryOp::Neg,
-                UnaryOp::Abs => LibraryOp::Abs,
-                UnaryOp::Sqr => LibraryOp::Sqr,
-                UnaryOp::Sqrt => LibraryOp::Sqrt,
-                UnaryOp::Recip => LibraryOp::Recip,
-                UnaryOp::Exp => LibraryOp::Exp,
-                UnaryOp::Ln => LibraryOp::Ln,
-                UnaryOp::Log10 => LibraryOp::Log10,
-                UnaryOp::Sin => LibraryOp::Sin,
-                UnaryOp::Cos => LibraryOp::Cos,
-                UnaryOp::Tan => LibraryOp::Tan,
-                UnaryOp::Asin => LibraryOp::Asin,
-                UnaryOp::Acos => LibraryOp::Acos,
-                UnaryOp::Atan => LibraryOp::Atan,
-                UnaryOp::Floor => LibraryOp::Floor,
-                UnaryOp::Ceil => LibraryOp::Ceil,
-                UnaryOp::Round => LibraryOp::Round,
-                UnaryOp::Not => LibraryOp::Not,
-                UnaryOp::SlopeFloor => LibraryOp::SlopeFloor,
-                UnaryOp::SlopeRound => LibraryOp::SlopeRound,
-                UnaryOp::SlopeNot => LibraryOp::SlopeNot,
-            },
-        }
-    }
-
-    /// The operation whose library function this is.
-    pub fn op(self) -> Op {
-        Op::ALL[self.index()]
-    }
-
-    /// The WGSL function's name.
-    pub fn name(self) -> &'static str {
-        wgsl::function(self.op())
-    }
-
-    /// Whether it takes a second interval.
-    pub fn is_binary(self) -> bool {
-        self.op().is_binary()
-    }
-
-    /// The position in [`LibraryOp::ALL`]: the kernel's number of the operation.
-    fn index(self) -> usize {
-        LibraryOp::ALL
-            .iter()
-            .position(|&o| o == self)
-            .expect("every op is in ALL")
-    }
-}
-
-impl From<Op> for LibraryOp {
-    fn from(op: Op) -> Self {
-        LibraryOp::of(op)
-    }
+/// The kernel's number of `op`: its position in [`Op::ALL`].
+fn op_index(op: Op) -> usize {
+    Op::ALL
+        .iter()
+        .position(|&o| o == op)
+        .expect("every op is in Op::ALL")
 }
 
 /// The WGSL function `run_op(op, a, b, n)` that the op kernel calls: a `switch` over the
-/// kernel's operation numbers ([`LibraryOp::ALL`] order), each calling its library function
+/// kernel's operation numbers ([`Op::ALL`] order), each calling its library function
 /// with `a`, with `a, b` for a binary one, and with `a, n` for `i_pown`.
 fn dispatch_source() -> String {
     let mut s = String::from(
@@ -212,7 +73,7 @@ fn dispatch_source() -> String {
 }
 
 /// One input of the op kernel: the bit patterns of `a.lo, a.hi, b.lo, b.hi` (for
-/// [`LibraryOp::Pown`], `b.lo` holds the exponent as `i32` bits).
+/// [`Op::Pown`], `b.lo` holds the exponent as `i32` bits).
 pub type OpInput = [u32; 4];
 
 #[repr(C)]
@@ -249,15 +110,10 @@ impl OpRunner {
     /// # Errors
     ///
     /// [`GpuError`] if the GPU rejects the work or the results cannot be read back.
-    pub fn run(
-        &self,
-        gpu: &Gpu,
-        op: LibraryOp,
-        inputs: &[OpInput],
-    ) -> Result<Vec<[f32; 2]>, GpuError> {
+    pub fn run(&self, gpu: &Gpu, op: Op, inputs: &[OpInput]) -> Result<Vec<[f32; 2]>, GpuError> {
         self.kernel.map(gpu, inputs, |count| {
             bytemuck::bytes_of(&Params {
-                op: op.index() as u32,
+                op: op_index(op) as u32,
                 count: count as u32,
             })
             .to_vec()

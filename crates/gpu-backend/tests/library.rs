@@ -10,8 +10,9 @@
 //! environment variable set, a missing adapter fails them; elsewhere they are skipped with
 //! the reason printed.
 
-use gpu_backend::library::{BIG, LibraryOp, OpInput, OpRunner, bound_to_f64};
+use gpu_backend::library::{BIG, OpInput, OpRunner, bound_to_f64};
 use gpu_backend::{Gpu, GpuError};
+use implicit_expr::{BinaryOp, Op, UnaryOp};
 use interval_core::Interval;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};
@@ -90,13 +91,13 @@ fn random_interval(rng: &mut StdRng, specials: &[f32]) -> [u32; 2] {
 }
 
 /// The inputs of one operation: every pair of special point intervals, then random ones.
-fn inputs(op: LibraryOp, n: usize, seed: u64) -> Vec<OpInput> {
+fn inputs(op: Op, n: usize, seed: u64) -> Vec<OpInput> {
     let sp = specials();
     let mut out = Vec::with_capacity(n);
     for &x in &sp {
         for &y in &sp {
             let b = match op {
-                LibraryOp::Pown => [0, 0],
+                Op::Pown => [0, 0],
                 _ => [y.to_bits(), y.to_bits()],
             };
             out.push([x.to_bits(), x.max(y).to_bits(), b[0], b[1]]);
@@ -108,7 +109,7 @@ fn inputs(op: LibraryOp, n: usize, seed: u64) -> Vec<OpInput> {
         let b = random_interval(&mut rng, &sp);
         out.push([a[0], a[1], b[0], b[1]]);
     }
-    if op == LibraryOp::Pown {
+    if op == Op::Pown {
         for (i, input) in out.iter_mut().enumerate() {
             // Small exponents, and the extremes (|i32::MIN| does not fit an i32).
             let n = match i % 100 {
@@ -156,7 +157,7 @@ fn interval(lo: u32, hi: u32) -> Interval<f64> {
 }
 
 /// The exact range of `op` on the input, enclosed in `f64`.
-fn reference(op: LibraryOp, v: &OpInput) -> Interval<f64> {
+fn reference(op: Op, v: &OpInput) -> Interval<f64> {
     let a = interval(v[0], v[1]);
     let b = interval(v[2], v[3]);
     let exact = |f: fn(f64) -> f64| match a.bounds() {
@@ -170,41 +171,41 @@ fn reference(op: LibraryOp, v: &OpInput) -> Interval<f64> {
         Some(_) => Interval::new(0.0, 0.0).unwrap(),
     };
     match op {
-        LibraryOp::Add => a.add(b),
-        LibraryOp::Sub => a.sub(b),
-        LibraryOp::Mul => a.mul(b),
-        LibraryOp::Div => a.div(b),
-        LibraryOp::Min => a.min(b),
-        LibraryOp::Max => a.max(b),
-        LibraryOp::Pown => a.pown(v[2] as i32),
-        LibraryOp::Neg => a.neg(),
-        LibraryOp::Abs => a.abs(),
-        LibraryOp::Sqr => a.sqr(),
-        LibraryOp::Sqrt => a.sqrt(),
-        LibraryOp::Recip => a.recip(),
-        LibraryOp::Floor => exact(f64::floor),
-        LibraryOp::Ceil => exact(f64::ceil),
-        LibraryOp::Exp => a.exp(),
-        LibraryOp::Ln => a.ln(),
-        LibraryOp::Log10 => a.log10(),
-        LibraryOp::Sin => a.sin(),
-        LibraryOp::Cos => a.cos(),
-        LibraryOp::Tan => a.tan(),
-        LibraryOp::Asin => a.asin(),
-        LibraryOp::Acos => a.acos(),
-        LibraryOp::Atan => a.atan(),
-        LibraryOp::Pow => a.pow(b),
+        Op::Binary(BinaryOp::Add) => a.add(b),
+        Op::Binary(BinaryOp::Sub) => a.sub(b),
+        Op::Binary(BinaryOp::Mul) => a.mul(b),
+        Op::Binary(BinaryOp::Div) => a.div(b),
+        Op::Binary(BinaryOp::Min) => a.min(b),
+        Op::Binary(BinaryOp::Max) => a.max(b),
+        Op::Pown => a.pown(v[2] as i32),
+        Op::Unary(UnaryOp::Neg) => a.neg(),
+        Op::Unary(UnaryOp::Abs) => a.abs(),
+        Op::Unary(UnaryOp::Sqr) => a.sqr(),
+        Op::Unary(UnaryOp::Sqrt) => a.sqrt(),
+        Op::Unary(UnaryOp::Recip) => a.recip(),
+        Op::Unary(UnaryOp::Floor) => exact(f64::floor),
+        Op::Unary(UnaryOp::Ceil) => exact(f64::ceil),
+        Op::Unary(UnaryOp::Exp) => a.exp(),
+        Op::Unary(UnaryOp::Ln) => a.ln(),
+        Op::Unary(UnaryOp::Log10) => a.log10(),
+        Op::Unary(UnaryOp::Sin) => a.sin(),
+        Op::Unary(UnaryOp::Cos) => a.cos(),
+        Op::Unary(UnaryOp::Tan) => a.tan(),
+        Op::Unary(UnaryOp::Asin) => a.asin(),
+        Op::Unary(UnaryOp::Acos) => a.acos(),
+        Op::Unary(UnaryOp::Atan) => a.atan(),
+        Op::Binary(BinaryOp::Pow) => a.pow(b),
         // f64::round rounds halves away from zero, as the library's round does.
-        LibraryOp::Round => exact(f64::round),
-        LibraryOp::Not => match a.bounds() {
+        Op::Unary(UnaryOp::Round) => exact(f64::round),
+        Op::Unary(UnaryOp::Not) => match a.bounds() {
             None => Interval::EMPTY,
             Some((0.0, 0.0)) => Interval::new(1.0, 1.0).unwrap(),
             Some((lo, hi)) if lo > 0.0 || hi < 0.0 => Interval::new(0.0, 0.0).unwrap(),
             Some(_) => Interval::new(0.0, 1.0).unwrap(),
         },
-        LibraryOp::SlopeFloor => slope(|lo, hi| lo.ceil() <= hi),
-        LibraryOp::SlopeRound => slope(holds_half_integer),
-        LibraryOp::SlopeNot => slope(|lo, hi| lo <= 0.0 && 0.0 <= hi),
+        Op::Unary(UnaryOp::SlopeFloor) => slope(|lo, hi| lo.ceil() <= hi),
+        Op::Unary(UnaryOp::SlopeRound) => slope(holds_half_integer),
+        Op::Unary(UnaryOp::SlopeNot) => slope(|lo, hi| lo <= 0.0 && 0.0 <= hi),
     }
 }
 
@@ -224,13 +225,13 @@ fn holds_half_integer(lo: f64, hi: f64) -> bool {
 }
 
 /// Why a GPU result is wrong, if it is.
-fn violation(op: LibraryOp, v: &OpInput, [lo, hi]: [f32; 2]) -> Option<String> {
+fn violation(op: Op, v: &OpInput, [lo, hi]: [f32; 2]) -> Option<String> {
     let bad_bound = |x: f32| x.is_nan() || x.is_infinite() || (x != 0.0 && x.abs() < TINY);
     let r = reference(op, v);
     let show = || {
         format!(
             "{}([{:e}, {:e}], [{:e}, {:e}]) = [{lo:e}, {hi:e}], exact range {r:?}",
-            op.name(),
+            implicit_expr::wgsl::function(op),
             f32::from_bits(v[0]),
             f32::from_bits(v[1]),
             f32::from_bits(v[2]),
@@ -257,7 +258,7 @@ fn check_library(flush: bool) -> Result<(), GpuError> {
     };
     let runner = OpRunner::new(&gpu, flush)?;
     let mut failures = Vec::new();
-    for (k, op) in LibraryOp::ALL.into_iter().enumerate() {
+    for (k, op) in Op::ALL.into_iter().enumerate() {
         let input = inputs(op, 100_000, 1000 + k as u64);
         let output = runner.run(&gpu, op, &input)?;
         assert_eq!(output.len(), input.len());
@@ -268,7 +269,7 @@ fn check_library(flush: bool) -> Result<(), GpuError> {
             .collect();
         eprintln!(
             "{} (flush {flush}): {} inputs, {} violations",
-            op.name(),
+            implicit_expr::wgsl::function(op),
             input.len(),
             bad.len()
         );
@@ -300,14 +301,14 @@ fn arithmetic_is_tight_on_moderate_inputs() -> Result<(), GpuError> {
     let a = p(1.0 / 3.0);
     let b = p(7.25);
     for (op, ulps) in [
-        (LibraryOp::Add, 2),
-        (LibraryOp::Mul, 2),
-        (LibraryOp::Div, 12),
-        (LibraryOp::Sqr, 2),
-        (LibraryOp::Sqrt, 20),
-        (LibraryOp::Exp, 2 * (2 * (3 + 2) + 1)),
-        (LibraryOp::Ln, 2 * 7 + 2),
-        (LibraryOp::Atan, 2 * 8193),
+        (Op::Binary(BinaryOp::Add), 2),
+        (Op::Binary(BinaryOp::Mul), 2),
+        (Op::Binary(BinaryOp::Div), 12),
+        (Op::Unary(UnaryOp::Sqr), 2),
+        (Op::Unary(UnaryOp::Sqrt), 20),
+        (Op::Unary(UnaryOp::Exp), 2 * (2 * (3 + 2) + 1)),
+        (Op::Unary(UnaryOp::Ln), 2 * 7 + 2),
+        (Op::Unary(UnaryOp::Atan), 2 * 8193),
     ] {
         let [lo, hi] = runner.run(&gpu, op, &[[a[0], a[1], b[0], b[1]]])?[0];
         // ULPs between the bounds, from the ordered integer images of the floats.
@@ -319,7 +320,7 @@ fn arithmetic_is_tight_on_moderate_inputs() -> Result<(), GpuError> {
         assert!(
             width <= ulps,
             "{}: [{lo:e}, {hi:e}] is {width} ULPs wide",
-            op.name()
+            implicit_expr::wgsl::function(op)
         );
     }
     Ok(())
