@@ -1,6 +1,7 @@
 //! # beam-trace
 //!
-//! Reliable CPU ray and beam tracing of implicit surfaces with interval arithmetic.
+//! Reliable ray and beam tracing of implicit surfaces with interval arithmetic: one render
+//! pipeline, its queries answered by the CPU backend here or by another backend (a GPU).
 //!
 //! The pipeline (see `docs/` of the repository for the method's papers):
 //!
@@ -13,7 +14,12 @@
 //! 5. [`aa`], [`shading`], [`shadow`]: anti-aliasing, Phong shading, hard shadows from
 //!    point lights and soft shadows from area lights (stochastic, beam and Minkowski
 //!    methods behind one [`shadow::ShadowMethod`] trait).
-//! 6. [`render()`](mod@render): the passes in parallel, an image and per-pass statistics.
+//! 6. [`render()`](mod@render): the one render pipeline. Its passes turn their work into
+//!    batches of plain-data queries that a [`backend::Backend`] answers: the CPU backend
+//!    ([`Cpu`], rayon through the grid) here, a GPU backend in the `gpu-backend` crate; the
+//!    [`Routing`] says which backend answers which query, and sends to the CPU what a
+//!    backend cannot answer. The result is an image and per-pass statistics (named counters
+//!    per [`Pass`]).
 //!
 //! ## A first render
 //!
