@@ -1,6 +1,6 @@
 //! Render backends: what answers the pipeline's queries.
 //!
-//! The render pipeline ([`render`](crate::render)) is written once. Each pass turns its
+//! The render pipeline ([`render`](mod@crate::render)) is written once. Each pass turns its
 //! work into batches of plain-data queries (classify these beams, find the first root on
 //! these rays, place the shading points of these hits, test these shadow segments, the
 //! visible fraction of a light from these points, shade these samples) and asks a
