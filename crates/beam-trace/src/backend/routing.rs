@@ -6,10 +6,11 @@ use std::fmt;
 use glam::DVec3;
 
 use super::cpu::Cpu;
-use super::{
-    Answers, Backend, BeamQuery, HitQuery, Prepared, Queries, QueryKind, RayQuery, SegmentQuery,
-    ShadeBatch, SoftAnswers, Support, VariationQuery,
+use super::query::{
+    Answers, BeamQuery, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch, SoftAnswers,
+    Support, VariationQuery,
 };
+use super::traits::{Backend, Prepared, Queries};
 use crate::beam::BoxClass;
 use crate::error::Error;
 use crate::plan::{Pass, Plan};

@@ -5,8 +5,8 @@ use std::collections::HashMap;
 
 use implicit_expr::parse::suggest;
 
-use super::Csg;
 use super::diagnostics::Doc;
+use super::geometry::Csg;
 use super::schema::{CsgOp, RawCsg};
 use crate::error::Error;
 

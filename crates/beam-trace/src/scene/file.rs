@@ -23,13 +23,14 @@ use toml::de::DeTable;
 use super::camera::camera;
 use super::csg::{Ref, csg_tree, ref_path, resolve_csg};
 use super::diagnostics::Doc;
+use super::geometry::{Csg, Geometry, Leaf};
 use super::lights::lights;
+use super::model::{Light, PointLight, Scene};
 use super::schema::{RawCamera, RawRender, RawScene, RawSurface};
 use super::settings::render_settings;
 use super::surface::{build_surface, material, place};
 use super::transform::Affine;
 use super::transform::transform;
-use super::{Csg, Geometry, Leaf, Light, PointLight, Scene};
 use crate::error::Error;
 
 /// The built-in default scene (TOML): the catalog's chubs, a sphere and a cube with a

@@ -4,10 +4,10 @@ use glam::DVec3;
 use implicit_expr::{Context, Evaluator, Grad, NodeId, RayFunction, Tape};
 use interval_core::Interval;
 
+use super::material::Material;
 use crate::error::Error;
 use crate::ibox::IBox;
 use crate::ray::BeamEval;
-use crate::scene::Material;
 
 /// A leaf surface `f(x, y, z) = 0` (parameters bound, transform applied), with the solid
 /// `f < 0` on its inside.

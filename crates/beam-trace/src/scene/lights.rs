@@ -1,8 +1,8 @@
 //! The lights of a scene file: point lights and area lights (squares or parallelograms).
 
 use super::diagnostics::Doc;
+use super::model::{AreaLight, Light, PointLight};
 use super::schema::RawLight;
-use super::{AreaLight, Light, PointLight};
 use crate::error::Error;
 use crate::shadow::Patch;
 

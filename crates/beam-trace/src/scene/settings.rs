@@ -5,10 +5,10 @@ use std::str::FromStr;
 
 use implicit_expr::parse::suggest;
 
-use super::MAX_GRID_RESOLUTION;
 use super::diagnostics::Doc;
+use super::model::MAX_GRID_RESOLUTION;
+use super::model::{AaMode, PrimaryMode, RenderSettings};
 use super::schema::RawRender;
-use super::{AaMode, PrimaryMode, RenderSettings};
 use crate::error::Error;
 
 impl FromStr for PrimaryMode {

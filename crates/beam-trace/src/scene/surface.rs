@@ -8,8 +8,8 @@ use implicit_expr::parse::{is_valid_param, parse, suggest};
 use implicit_expr::vm::import_vm;
 use implicit_expr::{Context, NodeId, catalog};
 
-use super::Material;
 use super::diagnostics::{Doc, fmt3};
+use super::material::Material;
 use super::schema::{RawMaterial, RawSurface};
 use super::transform::Affine;
 use super::transform::local_coordinates;

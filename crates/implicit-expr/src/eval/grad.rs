@@ -7,8 +7,8 @@
 
 use interval_core::{Float, Interval};
 
-use super::{Choice, Number};
 use crate::constant::Constant;
+use crate::number::{Choice, Number};
 use crate::op::{BinaryOp, UnaryOp};
 
 /// A value and its gradient with respect to the variable slots 0, 1, 2 (`x`, `y`, `z`).

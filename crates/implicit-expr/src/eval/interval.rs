@@ -5,8 +5,8 @@
 use interval_core::interval::batch;
 use interval_core::{Float, Interval};
 
-use super::{Choice, Number};
 use crate::constant::Constant;
+use crate::number::{Choice, Number};
 use crate::op::{BinaryOp, UnaryOp};
 
 /// `[lo, hi]` without checks; callers pass ordered, non-NaN bounds.
@@ -193,7 +193,7 @@ impl<T: Float> Number for Interval<T> {
             _ => false,
         };
         if !done {
-            super::unary_slice_by_element(op, a, out);
+            crate::number::unary_slice_by_element(op, a, out);
         }
     }
 
@@ -206,7 +206,7 @@ impl<T: Float> Number for Interval<T> {
             _ => false,
         };
         if !done {
-            super::binary_slice_by_element(op, a, b, out);
+            crate::number::binary_slice_by_element(op, a, b, out);
         }
     }
 }

@@ -26,8 +26,8 @@
 
 use interval_core::{Float, Interval, Modal, Rounding};
 
-use super::Number;
 use crate::constant::Constant;
+use crate::number::Number;
 use crate::op::{BinaryOp, UnaryOp};
 
 /// Enclosure of `f` at the end `x` of a modal interval (a half-line near ±∞).

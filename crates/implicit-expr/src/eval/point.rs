@@ -2,8 +2,8 @@
 //! functions correctly rounded (CORE-MATH), so a point value always lies inside the interval
 //! value of any box that holds the point.
 
-use super::{Choice, Number};
 use crate::constant::Constant;
+use crate::number::{Choice, Number};
 use crate::op::{BinaryOp, UnaryOp};
 
 macro_rules! point_number {

@@ -1,8 +1,8 @@
 //! The walk over a register tape, for one point (or box) at a time and for slices.
 
-use super::{Choice, Number};
 use crate::constant::Constant;
 use crate::error::Error;
+use crate::number::{Choice, Number};
 use crate::op::BinaryOp;
 use crate::tape::{Instr, Opcode, Tape};
 

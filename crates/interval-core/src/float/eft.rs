@@ -3,7 +3,7 @@
 //! An error-free transformation returns the rounded result of an operation together with
 //! its rounding error, both as floating-point numbers whose exact sum is the exact result.
 
-use super::Float;
+use super::traits::Float;
 
 /// Error-free sum: `(s, e)` with `s = RN(a + b)` and `s + e = a + b` exactly, for all
 /// finite `a`, `b` whose sum does not overflow, in any binary format (subnormal results are

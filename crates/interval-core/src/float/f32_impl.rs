@@ -5,8 +5,8 @@
 //! so the exact result is compared with the `f32` round-to-nearest result in `f64`. Sums use
 //! TwoSum in `f32`, which is exact for every pair whose sum does not overflow.
 
-use super::Float;
 use super::eft::{down_by_sign, two_sum, up_by_sign};
+use super::traits::Float;
 
 /// The largest `f32` ≤ `x`.
 #[inline(always)]

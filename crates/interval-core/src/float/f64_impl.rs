@@ -6,8 +6,8 @@
 //! the error term is exactly representable; the `*_slow` functions handle the rest by
 //! scaling with powers of two (exact) so the error term is again exact.
 
-use super::Float;
 use super::eft::{down_by_sign, two_prod, two_sum, up_by_sign};
+use super::traits::Float;
 
 /// `2^k` for `-1022 <= k <= 1023`, built from its bit pattern.
 #[inline(always)]

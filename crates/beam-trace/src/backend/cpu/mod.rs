@@ -2,6 +2,9 @@
 //! when the plan builds one, with the plan's root finder and beam tests.
 
 mod occluders;
+mod queries;
+
+pub use queries::{CpuQueries, child_window, forward};
 
 use std::time::Instant;
 
@@ -9,20 +12,20 @@ use glam::DVec3;
 use interval_core::Interval;
 use rayon::prelude::*;
 
-use super::{
-    Answers, Backend, BeamQuery, HitQuery, Prepared, Queries, QueryKind, RayQuery, SegmentQuery,
-    ShadeBatch, SoftAnswers, Support, VariationQuery,
+use super::query::{
+    Answers, BeamQuery, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch, SoftAnswers,
+    Support, VariationQuery,
 };
+use super::traits::{Backend, Prepared, Queries};
 use crate::aa::normal_variation;
-use crate::beam::{BoxClass, Extent, evaluate_box};
+use crate::beam::BoxClass;
 use crate::error::Error;
-use crate::grid::{Grid, GridEval};
+use crate::grid::Grid;
 use crate::plan::{Pass, Plan};
-use crate::ray::{Beam, BeamEval, Ray};
-use crate::root::{RayFn, RootCounters, RootFinder, RootResult};
+use crate::ray::Ray;
+use crate::root::RootResult;
 use crate::sample::Hit;
 use crate::scene::Scene;
-use crate::scene::geometry::GeometryEval;
 use crate::shading::{Incoming, phong};
 use crate::shadow::hard::{Visibility, segment_visibility};
 use crate::shadow::{ShadowQuery, ShadowSpec, ShadowWork};
@@ -80,186 +83,6 @@ impl Backend for Cpu {
             }),
             passes: vec![stats],
         })
-    }
-}
-
-/// The CPU's queries for one scene.
-pub struct CpuQueries<'a> {
-    scene: &'a Scene,
-    plan: &'a Plan,
-    grid: Option<Grid>,
-    finder: &'static dyn RootFinder,
-}
-
-/// Per-thread evaluators.
-pub(crate) struct Evals {
-    geo: GeometryEval,
-    grid: Option<GridEval>,
-}
-
-/// The parameters a beam lying inside a classified parent beam needs to search: every ray
-/// of an Undecided parent is root-free before the parent's undecided range, and every ray
-/// of a Hit parent has its first root in the parent's `T_final`. A part of a beam has a
-/// subset of its rays, so the same holds for it. For an Undecided parent the window starts
-/// a few widths of its undecided range earlier (still in the rejected prefix), so that `g`
-/// has one strict sign at the window's start, which the inclusion test needs.
-pub fn child_window(parent: Option<&BoxClass>) -> Interval<f64> {
-    match parent {
-        None => forward(),
-        Some(BoxClass::Hit { t_final }) => *t_final,
-        Some(BoxClass::Undecided { t }) => {
-            let start = (t.inf() - 8.0 * t.wid()).max(0.0);
-            Interval::new_unchecked(start, f64::INFINITY)
-        }
-        Some(BoxClass::Miss) => Interval::EMPTY,
-    }
-}
-
-/// `[0, +∞]`: rays start at their origin.
-pub fn forward() -> Interval<f64> {
-    Interval::new_unchecked(0.0, f64::INFINITY)
-}
-
-impl CpuQueries<'_> {
-    /// Per-thread evaluators; every evaluator of `g` and `g'` runs in the plan's precision.
-    fn evals(&self) -> Evals {
-        let precision = self.plan.precision;
-        let mut geo = self.scene.geometry.evaluator();
-        geo.beam.set_precision(precision);
-        for e in &mut geo.objects {
-            e.set_precision(precision);
-        }
-        Evals {
-            geo,
-            grid: self.grid.as_ref().map(|g| g.evaluator_with(precision)),
-        }
-    }
-
-    /// Answers `queries` in parallel, each with `f`, timing each answer.
-    fn map<Q: Sync, T: Send>(
-        &self,
-        queries: &[Q],
-        f: impl Fn(&mut Evals, &Q, &mut RootCounters) -> T + Sync,
-    ) -> Answers<T> {
-        /// Queries per piece of work: one set of counters and vectors per piece.
-        const PIECE: usize = 256;
-        let pieces: Vec<(Vec<T>, Vec<f32>, RootCounters)> = queries
-            .par_chunks(PIECE)
-            .map_init(
-                || self.evals(),
-                |ev, chunk| {
-                    let mut c = RootCounters::default();
-                    let mut values = Vec::with_capacity(chunk.len());
-                    let mut cost = Vec::with_capacity(chunk.len());
-                    let mut t0 = Instant::now();
-                    for q in chunk {
-                        values.push(f(ev, q, &mut c));
-                        let t1 = Instant::now();
-                        cost.push((t1 - t0).as_secs_f32());
-                        t0 = t1;
-                    }
-                    (values, cost, c)
-                },
-            )
-            .collect();
-        let mut out = Answers {
-            values: Vec::with_capacity(queries.len()),
-            cost: Vec::with_capacity(queries.len()),
-            search: RootCounters::default(),
-        };
-        for (v, cost, c) in pieces {
-            out.values.extend(v);
-            out.cost.extend(cost);
-            out.search.add(&c);
-        }
-        out
-    }
-
-    /// The parameter ranges a beam must search inside `window`: the grid's non-empty
-    /// cells, or the scene bounds, from the origin on.
-    fn beam_ranges(&self, beam: &Beam, window: Interval<f64>) -> Vec<Interval<f64>> {
-        let window = window.intersection(forward());
-        if window.is_empty() {
-            return Vec::new();
-        }
-        match &self.grid {
-            Some(g) => g.beam_t_ranges_within(beam, window),
-            None => beam
-                .t_range_within(&self.scene.geometry.bounds(), window)
-                .into_iter()
-                .collect(),
-        }
-    }
-
-    /// EvaluateBox of a beam against the whole scene function. A beam lying inside a
-    /// classified `parent` beam searches only what the parent left open (see
-    /// [`child_window`]); inside a Hit parent, exactly the parent's `T_final`, whose ends
-    /// already have one strict sign for every ray.
-    fn classify(
-        &self,
-        ev: &mut Evals,
-        beam: &Beam,
-        parent: Option<&BoxClass>,
-        c: &mut RootCounters,
-    ) -> BoxClass {
-        let ranges = match parent {
-            Some(BoxClass::Hit { t_final }) => vec![*t_final],
-            _ => self.beam_ranges(beam, child_window(parent)),
-        };
-        if ranges.is_empty() {
-            return BoxClass::Miss;
-        }
-        ev.geo.beam.set_beam(beam);
-        let bounds = self.scene.geometry.bounds();
-        let extent = Extent {
-            beam,
-            bounds: &bounds,
-        };
-        evaluate_box(&mut ev.geo.beam, &ranges, Some(&extent), &self.plan.beam, c)
-    }
-
-    /// The first root along `ray` for parameters in `t` (clipped to `t ≥ 0`): through the
-    /// grid's cells when there is a grid (each with its reduced function), else with the
-    /// whole scene function inside the scene bounds.
-    fn cast(
-        &self,
-        ev: &mut Evals,
-        ray: &Ray,
-        t: Interval<f64>,
-        c: &mut RootCounters,
-    ) -> RootResult {
-        let root = &self.plan.root;
-        let t = t.intersection(forward());
-        if t.is_empty() {
-            return RootResult::NoRoot;
-        }
-        match (&self.grid, ev.grid.as_mut()) {
-            (Some(g), Some(gev)) => g.first_root_within(gev, ray, t, self.finder, root, c),
-            _ => match ray.beam().t_range_within(&self.scene.geometry.bounds(), t) {
-                Some(t) => {
-                    ev.geo.beam.set_ray(ray);
-                    self.finder.first_root(&mut ev.geo.beam, t, root, c)
-                }
-                None => RootResult::NoRoot,
-            },
-        }
-    }
-
-    /// A hit record for the first root `t` of `ray` (or the first undecided range).
-    ///
-    /// The point is placed inside `t` where the floating-point values of `g` change sign
-    /// (bisection on point values, for shading only: the proof is `t`), on the side of the
-    /// ray's origin, so that shadow segments start outside the surface they leave.
-    fn hit(&self, ev: &mut Evals, ray: &Ray, t: Interval<f64>, c: &mut RootCounters) -> Hit {
-        let tm = shading_parameter(&mut ev.geo.beam, ray, t, c);
-        let point = ray.at(tm);
-        Hit {
-            t,
-            point,
-            to_eye: (-ray.dir).normalize_or_zero(),
-            leaf: ev.geo.leaf_at(point) as u32,
-            normal: -ray.dir.normalize_or_zero(),
-        }
     }
 }
 
@@ -357,46 +180,4 @@ impl Queries for CpuQueries<'_> {
             .collect();
         Ok(Answers::free(colors))
     }
-}
-
-/// The parameter of the shading point of a hit with enclosure `t`: the end on the origin's
-/// side of a floating-point sign change of `g` inside `t`, narrowed by bisection on point
-/// values; the midpoint where `g` shows no sign change (a tangent, a possible root).
-fn shading_parameter(
-    eval: &mut BeamEval,
-    ray: &Ray,
-    t: Interval<f64>,
-    c: &mut RootCounters,
-) -> f64 {
-    let (mut a, mut b) = (t.inf(), t.sup());
-    if !(a.is_finite() && b.is_finite()) {
-        return t.mid();
-    }
-    eval.set_ray(ray);
-    let ga = eval.g_point(a);
-    let gb = eval.g_point(b);
-    c.point_evals += 2;
-    if ga == 0.0 {
-        return a;
-    }
-    if ga.is_nan() || gb.is_nan() || (ga > 0.0) == (gb > 0.0) && gb != 0.0 {
-        return t.mid();
-    }
-    for _ in 0..64 {
-        let m = 0.5 * (a + b);
-        if m <= a || m >= b {
-            break;
-        }
-        let gm = eval.g_point(m);
-        c.point_evals += 1;
-        if gm.is_nan() {
-            break;
-        }
-        if gm != 0.0 && (gm > 0.0) == (ga > 0.0) {
-            a = m;
-        } else {
-            b = m;
-        }
-    }
-    a
 }

@@ -4,7 +4,7 @@
 use glam::DVec3;
 use interval_core::Interval;
 
-use super::{CpuQueries, Evals};
+use super::queries::{CpuQueries, Evals};
 use crate::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
 use crate::ray::{Beam, Ray, point_box};
 use crate::root::{Proof, RootCounters, RootResult};

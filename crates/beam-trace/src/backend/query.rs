@@ -1,0 +1,194 @@
+//! The queries a pass asks a backend, and the answers it gets back: plain data.
+
+use std::fmt;
+
+use glam::DVec3;
+use interval_core::Interval;
+
+use crate::beam::BoxClass;
+use crate::ray::{Beam, Ray};
+use crate::root::RootCounters;
+use crate::scene::Material;
+use crate::shadow::{LightVisibility, ShadowWork};
+
+/// The kinds of query a pass asks.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+pub enum QueryKind {
+    /// Classify primary beams (rejection and inclusion tests):
+    /// [`Queries::beams`](super::Queries::beams).
+    Beams,
+    /// First roots on rays inside windows: [`Queries::roots`](super::Queries::roots).
+    Roots,
+    /// Shading points of hits: [`Queries::hit_points`](super::Queries::hit_points).
+    HitPoints,
+    /// The normal-variation estimator over a hit region:
+    /// [`Queries::normal_variation`](super::Queries::normal_variation).
+    NormalVariation,
+    /// Unit normals at points: [`Queries::normals`](super::Queries::normals).
+    Normals,
+    /// Hard-shadow segments: [`Queries::segments`](super::Queries::segments).
+    Segments,
+    /// The visible fraction of an area light by the plan's method:
+    /// [`Queries::soft_shadows`](super::Queries::soft_shadows).
+    SoftShadows,
+    /// Phong shading of samples: [`Queries::shade`](super::Queries::shade).
+    Shade,
+}
+
+impl QueryKind {
+    /// Every kind.
+    pub const ALL: [QueryKind; 8] = [
+        QueryKind::Beams,
+        QueryKind::Roots,
+        QueryKind::HitPoints,
+        QueryKind::NormalVariation,
+        QueryKind::Normals,
+        QueryKind::Segments,
+        QueryKind::SoftShadows,
+        QueryKind::Shade,
+    ];
+
+    /// The kind's name in routing tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            QueryKind::Beams => "beams",
+            QueryKind::Roots => "roots",
+            QueryKind::HitPoints => "hit-points",
+            QueryKind::NormalVariation => "normal-variation",
+            QueryKind::Normals => "normals",
+            QueryKind::Segments => "segments",
+            QueryKind::SoftShadows => "soft-shadows",
+            QueryKind::Shade => "shade",
+        }
+    }
+}
+
+impl fmt::Display for QueryKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// Whether a backend answers a kind of query under a plan.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Support {
+    /// It does.
+    Yes,
+    /// It does not, and why.
+    No(String),
+}
+
+/// A beam to classify: every ray of `beam`, searched where its `parent` beam (the beam it
+/// was split from, if any) left the rays open (see
+/// [`cpu::child_window`](super::cpu::child_window)).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct BeamQuery {
+    /// The beam.
+    pub beam: Beam,
+    /// The class of the beam it lies in.
+    pub parent: Option<BoxClass>,
+}
+
+/// A ray whose first root is wanted for parameters in `window` (clipped to `t ≥ 0`).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct RayQuery {
+    /// The ray.
+    pub ray: Ray,
+    /// The parameter window.
+    pub window: Interval<f64>,
+}
+
+/// A hit whose shading point is wanted: the ray and the enclosure `t` of its first root.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct HitQuery {
+    /// The ray.
+    pub ray: Ray,
+    /// The root enclosure.
+    pub t: Interval<f64>,
+}
+
+/// A hit region whose normal variation (thesis eq. 5.10) is wanted: the beam and its proven
+/// section `T_final`.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct VariationQuery {
+    /// The beam.
+    pub beam: Beam,
+    /// Its proven section.
+    pub t_final: Interval<f64>,
+}
+
+/// A hard-shadow segment from a point (already off its surface) to a point light.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct SegmentQuery {
+    /// Start.
+    pub from: DVec3,
+    /// End (the light).
+    pub to: DVec3,
+}
+
+/// A light as shading sees it: where it is (an area light's centre) and its colour.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ShadeLight {
+    /// Position.
+    pub position: DVec3,
+    /// Colour times intensity.
+    pub color: [f32; 3],
+}
+
+/// A sample to shade.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ShadeSample {
+    /// The surface point.
+    pub point: DVec3,
+    /// Its unit normal.
+    pub normal: DVec3,
+    /// Unit vector to the eye.
+    pub to_eye: DVec3,
+    /// Its material.
+    pub material: Material,
+}
+
+/// A batch of samples to shade under the same lights.
+#[derive(Copy, Clone, Debug)]
+pub struct ShadeBatch<'a> {
+    /// The lights.
+    pub lights: &'a [ShadeLight],
+    /// The ambient term.
+    pub ambient: f32,
+    /// The samples.
+    pub samples: &'a [ShadeSample],
+    /// The visible fraction of each light from each sample (sample-major, light-minor).
+    pub fractions: &'a [f32],
+}
+
+/// The answers to a batch, in the order of the queries, with what they cost.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Answers<T> {
+    /// One answer per query.
+    pub values: Vec<T>,
+    /// The cost of each answer in the backend's unit (seconds on the CPU, sections
+    /// evaluated on the GPU): the cost map shows it.
+    pub cost: Vec<f32>,
+    /// The search counters of the whole batch.
+    pub search: RootCounters,
+}
+
+impl<T> Answers<T> {
+    /// Answers that cost nothing to report.
+    pub fn free(values: Vec<T>) -> Self {
+        Self {
+            cost: vec![0.0; values.len()],
+            values,
+            search: RootCounters::default(),
+        }
+    }
+}
+
+/// The answers to a batch of soft-shadow queries.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SoftAnswers {
+    /// The visible fraction of the light from each query's point, with proven bounds.
+    pub visibility: Vec<LightVisibility>,
+    /// The work of the whole batch (its search counters included).
+    pub work: ShadowWork,
+}

@@ -1,0 +1,214 @@
+//! What a scene is: its lights, render settings and the [`Scene`] itself.
+
+use glam::DVec3;
+
+use super::geometry::Geometry;
+use crate::camera::Camera;
+use crate::ray::Precision;
+use crate::root::{RootMethod, RootSettings};
+use crate::shadow::{Patch, ShadowSpec};
+
+/// A point light.
+#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
+pub struct PointLight {
+    /// Position.
+    pub position: DVec3,
+    /// Colour times intensity (`c_l` per channel).
+    pub color: [f32; 3],
+}
+
+/// An area light: a parallelogram of uniform emission (soft shadows).
+#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
+pub struct AreaLight {
+    /// Its shape.
+    pub patch: Patch,
+    /// Colour times intensity (`c_l` per channel), for the whole light.
+    pub color: [f32; 3],
+}
+
+/// A light source.
+#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
+pub enum Light {
+    /// A point light: hard shadows.
+    Point(PointLight),
+    /// An area light: soft shadows.
+    Area(AreaLight),
+}
+
+impl Light {
+    /// The light as a point light: a point light, or an area light of size zero (which
+    /// behaves exactly as a point light at its corner).
+    pub fn as_point(&self) -> Option<PointLight> {
+        match self {
+            Light::Point(p) => Some(*p),
+            Light::Area(a) if a.patch.is_point() => Some(PointLight {
+                position: a.patch.corner,
+                color: a.color,
+            }),
+            Light::Area(_) => None,
+        }
+    }
+
+    /// The light as an area light of non-zero size.
+    pub fn as_area(&self) -> Option<AreaLight> {
+        match self {
+            Light::Area(a) if !a.patch.is_point() => Some(*a),
+            _ => None,
+        }
+    }
+
+    /// The point shading takes the light's direction from (an area light's centre).
+    pub fn center(&self) -> DVec3 {
+        match self {
+            Light::Point(p) => p.position,
+            Light::Area(a) => a.patch.center(),
+        }
+    }
+
+    /// Colour times intensity.
+    pub fn color(&self) -> [f32; 3] {
+        match self {
+            Light::Point(p) => p.color,
+            Light::Area(a) => a.color,
+        }
+    }
+}
+
+/// Anti-aliasing mode.
+#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
+pub enum AaMode {
+    /// One ray per pixel (the screen box structure traces more in undecided boxes).
+    None,
+    /// Interval anti-aliasing (thesis 5.5.2): one beam per pixel, split in four where the
+    /// beam is undecided or the normals vary, to `max_depth`.
+    Iaa {
+        /// Largest subdivision depth (thesis: 4).
+        max_depth: u32,
+        /// Largest width of the normal-variation estimator for a sub-pixel to be shaded once.
+        threshold: f64,
+    },
+    /// `n × n` stratified rays per pixel (point-sampling supersampling).
+    Supersample(u32),
+}
+
+impl AaMode {
+    /// Default IAA depth limit (thesis 5.5.2: 4).
+    pub const IAA_DEPTH: u32 = 4;
+    /// Default IAA normal-variation threshold.
+    pub const IAA_THRESHOLD: f64 = 0.05;
+}
+
+impl std::str::FromStr for AaMode {
+    type Err = String;
+
+    /// `none`, `iaa`, or `ss:N` (`N × N` rays per pixel, `1 <= N <= 16`).
+    fn from_str(s: &str) -> Result<Self, String> {
+        match s {
+            "none" => Ok(AaMode::None),
+            "iaa" => Ok(AaMode::Iaa {
+                max_depth: AaMode::IAA_DEPTH,
+                threshold: AaMode::IAA_THRESHOLD,
+            }),
+            _ => match s.strip_prefix("ss:").map(str::parse::<u32>) {
+                Some(Ok(n)) if (1..=16).contains(&n) => Ok(AaMode::Supersample(n)),
+                Some(_) => Err(format!(
+                    "'{s}': the supersampling count must be an integer from 1 to 16"
+                )),
+                None => Err(format!(
+                    "unknown anti-aliasing mode '{s}' (one of: none, iaa, ss:N)"
+                )),
+            },
+        }
+    }
+}
+
+/// How primary visibility is computed.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub enum PrimaryMode {
+    /// The screen box structure of thesis 5.4 (beams classify boxes; 1 ray per pixel in
+    /// Hit boxes, `rays_per_undecided` in Undecided ones).
+    ScreenBoxes,
+    /// Classic interval ray casting: `rays_per_pixel` rays in every pixel.
+    PerPixel,
+}
+
+/// Largest regular grid resolution (cells along the longest side): at most 256³ ≈ 16.8
+/// million cells, a few hundred megabytes.
+pub const MAX_GRID_RESOLUTION: u32 = 256;
+
+/// Render settings.
+#[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
+pub struct RenderSettings {
+    /// Root finder of every ray search.
+    #[serde(serialize_with = "serialize_display")]
+    pub root_finder: RootMethod,
+    /// Tolerances and limits of the root finder.
+    #[serde(skip)]
+    pub root: RootSettings,
+    /// Primary visibility mode.
+    pub primary: PrimaryMode,
+    /// Anti-aliasing mode.
+    pub aa: AaMode,
+    /// Rays per pixel in Undecided screen boxes (a square number; thesis: 9).
+    pub rays_per_undecided: u32,
+    /// Rays per pixel of [`PrimaryMode::PerPixel`] (a square number).
+    pub rays_per_pixel: u32,
+    /// Largest width of `T_final` (relative to the scene diagonal) for a Hit box not to be
+    /// split further (aliasing regions, thesis 5.5.1).
+    pub t_final_width: f64,
+    /// Cells of the regular grid along the longest side of the scene bounds (0: no grid).
+    pub grid_resolution: u32,
+    /// Whether lights cast shadows.
+    pub shadows: bool,
+    /// How area lights' soft shadows are computed.
+    #[serde(serialize_with = "serialize_shadow")]
+    pub shadow_method: ShadowSpec,
+    /// Floating-point format of the interval evaluations of `g` and `g'` on rays and beams
+    /// (root searches and beam tests; serialized as `"f64"` or `"f32"`).
+    pub precision: Precision,
+}
+
+fn serialize_shadow<S: serde::Serializer>(m: &ShadowSpec, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(&m.to_string())
+}
+
+fn serialize_display<S: serde::Serializer>(m: &RootMethod, s: S) -> Result<S::Ok, S::Error> {
+    s.serialize_str(m.name())
+}
+
+impl Default for RenderSettings {
+    fn default() -> Self {
+        Self {
+            root_finder: RootMethod::NewtonAlefeldHansen,
+            root: RootSettings::default(),
+            primary: PrimaryMode::ScreenBoxes,
+            aa: AaMode::None,
+            rays_per_undecided: 9,
+            rays_per_pixel: 1,
+            t_final_width: 0.05,
+            grid_resolution: 16,
+            shadows: true,
+            shadow_method: ShadowSpec::default(),
+            precision: Precision::F64,
+        }
+    }
+}
+
+/// A scene ready to render.
+#[derive(Clone, Debug)]
+pub struct Scene {
+    /// Where the scene came from (a file name or `<built-in>`), for messages.
+    pub name: String,
+    /// The camera and image size.
+    pub camera: Camera,
+    /// Background colour.
+    pub background: [f32; 3],
+    /// Ambient light `c_a`.
+    pub ambient: f32,
+    /// Lights.
+    pub lights: Vec<Light>,
+    /// The compiled geometry.
+    pub geometry: Geometry,
+    /// Render settings.
+    pub settings: RenderSettings,
+}
