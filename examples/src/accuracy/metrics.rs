@@ -7,8 +7,8 @@ use std::time::Duration;
 use beam_trace::RenderOutput;
 use beam_trace::shadow::ShadowClass;
 
-use super::BASELINE;
-use super::experiment::{Setting, Variant, fractions, image_name, shadow_time};
+use super::options::BASELINE;
+use super::setting::{Setting, Variant, image_name};
 
 /// The visible fraction of a render against the reference.
 #[derive(Copy, Clone, Debug, Default)]
@@ -239,4 +239,20 @@ pub(crate) fn cheapest(report: &SceneReport, metric: Metric, level: f64) -> Opti
         .iter()
         .filter(|r| r.setting.variant == Variant::Default && metric.of(r) <= level)
         .min_by(|a, b| a.shadow_time.cmp(&b.shadow_time))
+}
+
+/// Time of the soft-shadow pass of a render.
+pub(crate) fn shadow_time(out: &RenderOutput) -> Duration {
+    out.stats
+        .pass("soft-shadows")
+        .map_or(Duration::ZERO, |p| p.time)
+}
+
+/// The visible fraction of the first area light, per pixel.
+pub(crate) fn fractions(out: &RenderOutput) -> Result<&[f32], String> {
+    out.shadows
+        .as_ref()
+        .and_then(|m| m.fractions.first())
+        .map(Vec::as_slice)
+        .ok_or_else(|| "the render has no soft-shadow maps (no area light?)".to_string())
 }

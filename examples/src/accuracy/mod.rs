@@ -4,7 +4,9 @@
 //! visible fraction of the first area light is measured against a many-sample stochastic
 //! reference, and a markdown report with time-against-error plots is written. The parts:
 //!
-//! * [`experiment`]: the settings, the renders of one scene and the images they leave;
+//! * [`options`]: the command line and the options resolved from it;
+//! * [`setting`]: the settings run (a method and a variant) and their families;
+//! * [`experiment`]: the renders of one scene and the images they leave;
 //! * [`metrics`]: errors and proofs of a render against the reference, Pareto fronts;
 //! * [`plots`]: time against error per method family, with the Pareto fronts;
 //! * [`report`]: the markdown report.
@@ -13,97 +15,20 @@
 
 pub mod experiment;
 pub mod metrics;
+pub mod options;
 pub mod plots;
 pub mod report;
+pub mod setting;
 
-use std::path::PathBuf;
+pub use options::Args;
+
 use std::time::{Duration, Instant};
 
-use clap::Parser;
-
-use experiment::{Setting, run_scene, settings};
+use experiment::run_scene;
 use metrics::{Metric, SceneReport};
+use options::Options;
 use plots::plot;
 use report::markdown;
-
-/// Soft-shadow accuracy against time, per method and setting.
-#[derive(Parser, Debug)]
-#[command(version, about)]
-pub struct Args {
-    /// Scene files (TOML) with at least one area light.
-    #[arg(default_values = ["scenes/soft-shadows.toml", "scenes/thin-occluder.toml"])]
-    pub scenes: Vec<PathBuf>,
-    /// Image width (default 128; 32 with --quick).
-    #[arg(long)]
-    pub width: Option<u32>,
-    /// Image height (default 96; 24 with --quick).
-    #[arg(long)]
-    pub height: Option<u32>,
-    /// Samples of the stochastic reference (default 4096; 256 with --quick).
-    #[arg(long)]
-    pub reference_samples: Option<u32>,
-    /// Folder of the report (`accuracy.md`) and of its `images/` (default `docs`; the
-    /// system's temporary folder with --quick).
-    #[arg(long)]
-    pub out_dir: Option<PathBuf>,
-    /// Smoke run: tiny images, a small reference and fewer settings.
-    #[arg(long)]
-    pub quick: bool,
-}
-
-/// The settings the time ratios are relative to.
-pub(crate) const BASELINE: &str = "stochastic:64";
-
-/// The setting whose shadow-class image goes into the report.
-pub(crate) const CLASS_IMAGE: &str = "beam:7";
-
-/// Settings whose error maps go into the report, with their image names.
-pub(crate) const ERROR_MAPS: [(&str, &str); 2] = [
-    ("beam:7", "beam7-error"),
-    ("stochastic:64", "stochastic64-error"),
-];
-
-/// Options resolved from the command line.
-pub(crate) struct Options {
-    pub(crate) width: u32,
-    pub(crate) height: u32,
-    pub(crate) reference_samples: u32,
-    pub(crate) out_dir: PathBuf,
-    pub(crate) settings: Vec<Setting>,
-}
-
-impl Options {
-    pub(crate) fn from_args(args: &Args) -> Result<Self, String> {
-        let (w, h, n) = if args.quick {
-            (32, 24, 256)
-        } else {
-            (128, 96, 4096)
-        };
-        let width = args.width.unwrap_or(w);
-        let height = args.height.unwrap_or(h);
-        if !(1..=4096).contains(&width) || !(1..=4096).contains(&height) {
-            return Err("--width and --height must lie in 1..=4096".into());
-        }
-        let out_dir = args.out_dir.clone().unwrap_or_else(|| {
-            if args.quick {
-                std::env::temp_dir().join("accuracy-cost")
-            } else {
-                PathBuf::from("docs")
-            }
-        });
-        Ok(Options {
-            width,
-            height,
-            reference_samples: args.reference_samples.unwrap_or(n),
-            out_dir,
-            settings: settings(args.quick)?,
-        })
-    }
-
-    pub(crate) fn images(&self) -> PathBuf {
-        self.out_dir.join("images")
-    }
-}
 
 pub(crate) fn write_report(
     reports: &[SceneReport],

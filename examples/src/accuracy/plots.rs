@@ -6,66 +6,7 @@ use std::path::Path;
 use plotters::prelude::*;
 
 use super::metrics::{Metric, RunResult, SceneReport, pareto};
-
-/// The colour groups of the plots.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-pub(crate) enum Family {
-    Stochastic,
-    StochasticCache,
-    Beam,
-    BeamOther,
-    MinkowskiStochastic,
-    MinkowskiBeam,
-    Epsilon,
-    F32,
-}
-
-impl Family {
-    pub(crate) const ALL: [Family; 8] = [
-        Family::Stochastic,
-        Family::StochasticCache,
-        Family::Beam,
-        Family::BeamOther,
-        Family::MinkowskiStochastic,
-        Family::MinkowskiBeam,
-        Family::Epsilon,
-        Family::F32,
-    ];
-
-    pub(crate) fn name(self) -> &'static str {
-        match self {
-            Family::Stochastic => "stochastic:N",
-            Family::StochasticCache => "stochastic:N:cache",
-            Family::Beam => "beam:n",
-            Family::BeamOther => "beam-all / beam-quadtree",
-            Family::MinkowskiStochastic => "minkowski:stochastic:N",
-            Family::MinkowskiBeam => "minkowski:beam:n",
-            Family::Epsilon => "root epsilon varied",
-            Family::F32 => "f32 precision",
-        }
-    }
-
-    /// Whether the family's visible fraction is a proven lower bound of the true one.
-    pub(crate) fn is_lower_bound(self) -> bool {
-        matches!(
-            self,
-            Family::Beam | Family::BeamOther | Family::MinkowskiBeam
-        )
-    }
-
-    pub(crate) fn color(self) -> RGBColor {
-        match self {
-            Family::Stochastic => RGBColor(31, 119, 180),
-            Family::StochasticCache => RGBColor(23, 190, 207),
-            Family::Beam => RGBColor(214, 39, 40),
-            Family::BeamOther => RGBColor(255, 127, 14),
-            Family::MinkowskiStochastic => RGBColor(44, 160, 44),
-            Family::MinkowskiBeam => RGBColor(148, 103, 189),
-            Family::Epsilon => RGBColor(140, 86, 75),
-            Family::F32 => RGBColor(227, 119, 194),
-        }
-    }
-}
+use super::setting::Family;
 
 /// Smallest value a log axis shows (an error of exactly 0 is drawn there).
 pub(crate) const LOG_FLOOR: f64 = 1e-5;
@@ -136,7 +77,7 @@ pub(crate) fn draw_plot(
         // Alternate the label above and below the point so that neighbours overlap less.
         let dy = if i % 2 == 0 { -16 } else { 4 };
         EmptyElement::at(point(r))
-            + Circle::new((0, 0), 5, r.setting.family().color().filled())
+            + Circle::new((0, 0), 5, color(r.setting.family()).filled())
             + Text::new(r.setting.label(), (7, dy), ("sans-serif", 12))
     }))?;
     draw_legend(&legend_area, runs)?;
@@ -178,8 +119,21 @@ pub(crate) fn draw_legend<DB: DrawingBackend>(
             continue;
         }
         y += 26;
-        area.draw(&Circle::new((20, y), 5, family.color().filled()))?;
+        area.draw(&Circle::new((20, y), 5, color(family).filled()))?;
         area.draw(&Text::new(family.name(), (40, y - 8), font))?;
     }
     Ok(())
+}
+
+fn color(family: Family) -> RGBColor {
+    match family {
+        Family::Stochastic => RGBColor(31, 119, 180),
+        Family::StochasticCache => RGBColor(23, 190, 207),
+        Family::Beam => RGBColor(214, 39, 40),
+        Family::BeamOther => RGBColor(255, 127, 14),
+        Family::MinkowskiStochastic => RGBColor(44, 160, 44),
+        Family::MinkowskiBeam => RGBColor(148, 103, 189),
+        Family::Epsilon => RGBColor(140, 86, 75),
+        Family::F32 => RGBColor(227, 119, 194),
+    }
 }

@@ -6,10 +6,9 @@ use std::time::Duration;
 
 use beam_trace::root::RootSettings;
 
-use super::experiment::{VARIED, Variant};
 use super::metrics::{Metric, RunResult, SceneReport, cheapest, ms, pareto, percent};
-use super::plots::Family;
-use super::{BASELINE, CLASS_IMAGE, ERROR_MAPS, Options};
+use super::options::{BASELINE, CLASS_IMAGE, ERROR_MAPS, Options};
+use super::setting::{Family, VARIED, Variant};
 
 /// The command that reproduces the report.
 pub(crate) const COMMAND: &str =
