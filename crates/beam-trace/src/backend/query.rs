@@ -167,7 +167,8 @@ pub struct Answers<T> {
     /// One answer per query.
     pub values: Vec<T>,
     /// The cost of each answer in the backend's unit (seconds on the CPU, sections
-    /// evaluated on the GPU): the cost map shows it.
+    /// evaluated on the GPU), for the cost map of primary visibility; a backend may report
+    /// 0 for the other kinds (the CPU does).
     pub cost: Vec<f32>,
     /// The search counters of the whole batch.
     pub search: RootCounters,

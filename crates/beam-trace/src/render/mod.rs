@@ -199,3 +199,16 @@ const ROWS_PER_BATCH: u32 = 256;
 
 /// The per-pixel samples of a pass, the cost of each pixel, and the pass's statistics.
 type PixelSamples = (Vec<Vec<Sample>>, Vec<f32>, PassStats);
+
+/// Where each pixel's items start in the flat list of every pixel's items, given how many
+/// each pixel has.
+fn starts(counts: impl Iterator<Item = usize>) -> Vec<usize> {
+    let mut next = 0;
+    counts
+        .map(|n| {
+            let at = next;
+            next += n;
+            at
+        })
+        .collect()
+}

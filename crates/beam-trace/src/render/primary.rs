@@ -174,13 +174,14 @@ pub(super) fn primary_rays(
         let n = ((y1 - y0) * w) as usize;
         // The rays of every pixel of the batch, built in parallel; pixel `k` owns the rays
         // `first_ray[k]..first_ray[k + 1]` of the flat batch.
-        let counts: Vec<usize> = (0..n)
-            .into_par_iter()
-            .map(|k| pixel_rays(cam, first + k, w, classes[first + k], &offsets).count())
-            .collect();
         let mut first_ray = Vec::with_capacity(n + 1);
         first_ray.push(0);
-        for count in &counts {
+        for class in &classes[first..first + n] {
+            let count = match class.map(|c| c.0) {
+                Some(BoxClass::Miss) => 0,
+                Some(BoxClass::Hit { .. }) => 1,
+                Some(BoxClass::Undecided { .. }) | None => offsets.len(),
+            };
             first_ray.push(first_ray[first_ray.len() - 1] + count);
         }
         let batch: Vec<PixelRay> = (0..n)

@@ -4,6 +4,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+use super::starts;
 use crate::backend::{Queries, ShadeBatch, ShadeLight, ShadeSample};
 use crate::error::Error;
 use crate::plan::Pass;
@@ -32,13 +33,27 @@ pub(super) fn normals(
         search: answers.search,
         ..NormalCounters::default()
     };
-    let hits = samples.iter_mut().flatten().filter_map(|s| s.hit.as_mut());
-    for (hit, n) in hits.zip(answers.values) {
-        match n {
-            Some(n) => hit.normal = n,
-            None => c.degenerate += 1,
-        }
-    }
+    // Each pixel reads its answers in the order of its hits.
+    let first = starts(
+        samples
+            .iter()
+            .map(|px| px.iter().filter(|s| s.hit.is_some()).count()),
+    );
+    c.degenerate = samples
+        .par_iter_mut()
+        .zip(first)
+        .map(|(px, mut k)| {
+            let mut degenerate = 0;
+            for hit in px.iter_mut().filter_map(|s| s.hit.as_mut()) {
+                match answers.values[k] {
+                    Some(n) => hit.normal = n,
+                    None => degenerate += 1,
+                }
+                k += 1;
+            }
+            degenerate
+        })
+        .sum();
     Ok(PassStats::of(Pass::Normals, t0.elapsed(), &c))
 }
 
@@ -96,12 +111,11 @@ pub(super) fn shading(
             .collect()
     };
     // Each pixel's first colour: its hit samples' colours are consecutive.
-    let mut first = Vec::with_capacity(samples.len());
-    let mut k = 0;
-    for px in samples {
-        first.push(k);
-        k += px.iter().filter(|s| s.hit.is_some()).count();
-    }
+    let first = starts(
+        samples
+            .iter()
+            .map(|px| px.iter().filter(|s| s.hit.is_some()).count()),
+    );
     let pixels = samples
         .par_iter()
         .zip(first)

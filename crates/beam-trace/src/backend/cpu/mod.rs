@@ -88,21 +88,21 @@ impl Backend for Cpu {
 
 impl Queries for CpuQueries<'_> {
     fn beams(&self, queries: &[BeamQuery]) -> Result<Answers<BoxClass>, Error> {
-        Ok(self.map(queries, |ev, q, c| {
+        Ok(self.map(queries, true, |ev, q, c| {
             self.classify(ev, &q.beam, q.parent.as_ref(), c)
         }))
     }
 
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error> {
-        Ok(self.map(queries, |ev, q, c| self.cast(ev, &q.ray, q.window, c)))
+        Ok(self.map(queries, true, |ev, q, c| self.cast(ev, &q.ray, q.window, c)))
     }
 
     fn hit_points(&self, queries: &[HitQuery]) -> Result<Answers<Hit>, Error> {
-        Ok(self.map(queries, |ev, q, c| self.hit(ev, &q.ray, q.t, c)))
+        Ok(self.map(queries, true, |ev, q, c| self.hit(ev, &q.ray, q.t, c)))
     }
 
     fn normal_variation(&self, queries: &[VariationQuery]) -> Result<Answers<f64>, Error> {
-        Ok(self.map(queries, |ev, q, _| {
+        Ok(self.map(queries, true, |ev, q, _| {
             let region = q.beam.points(q.t_final);
             let (_, grad) = ev.geo.gradient_box(&region);
             let eye = q.beam.origin;
@@ -112,11 +112,11 @@ impl Queries for CpuQueries<'_> {
     }
 
     fn normals(&self, points: &[DVec3]) -> Result<Answers<Option<DVec3>>, Error> {
-        Ok(self.map(points, |ev, p, _| ev.geo.normal(*p)))
+        Ok(self.map(points, false, |ev, p, _| ev.geo.normal(*p)))
     }
 
     fn segments(&self, queries: &[SegmentQuery]) -> Result<Answers<Visibility>, Error> {
-        Ok(self.map(queries, |ev, q, c| {
+        Ok(self.map(queries, false, |ev, q, c| {
             let ray = Ray {
                 origin: q.from,
                 dir: q.to - q.from,

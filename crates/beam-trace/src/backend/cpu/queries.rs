@@ -68,10 +68,12 @@ impl CpuQueries<'_> {
         }
     }
 
-    /// Answers `queries` in parallel, each with `f`, timing each answer.
+    /// Answers `queries` in parallel, each with `f`, timing each answer when `timed` (the
+    /// kinds of primary visibility, whose cost the cost map shows; the others cost 0).
     pub(super) fn map<Q: Sync, T: Send>(
         &self,
         queries: &[Q],
+        timed: bool,
         f: impl Fn(&mut Evals, &Q, &mut RootCounters) -> T + Sync,
     ) -> Answers<T> {
         /// Queries per piece of work: one set of counters and vectors per piece.
@@ -84,12 +86,17 @@ impl CpuQueries<'_> {
                     let mut c = RootCounters::default();
                     let mut values = Vec::with_capacity(chunk.len());
                     let mut cost = Vec::with_capacity(chunk.len());
-                    let mut t0 = Instant::now();
-                    for q in chunk {
-                        values.push(f(ev, q, &mut c));
-                        let t1 = Instant::now();
-                        cost.push((t1 - t0).as_secs_f32());
-                        t0 = t1;
+                    if timed {
+                        let mut t0 = Instant::now();
+                        for q in chunk {
+                            values.push(f(ev, q, &mut c));
+                            let t1 = Instant::now();
+                            cost.push((t1 - t0).as_secs_f32());
+                            t0 = t1;
+                        }
+                    } else {
+                        values.extend(chunk.iter().map(|q| f(ev, q, &mut c)));
+                        cost.resize(chunk.len(), 0.0);
                     }
                     (values, cost, c)
                 },
