@@ -12,6 +12,7 @@ use std::time::Instant;
 
 use interval_core::Interval;
 
+use super::pixels::Pixels;
 use super::{PixelSamples, ROWS_PER_BATCH};
 use crate::backend::cpu::forward;
 use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery, VariationQuery};
@@ -86,7 +87,7 @@ pub(super) fn iaa(
     progress.begin(Pass::Iaa.name(), u64::from(h));
     let mut c = IaaCounters::default();
     let npix = w as usize * h as usize;
-    let mut samples: Vec<Vec<Sample>> = Vec::with_capacity(npix);
+    let mut pixels = Pixels::new();
     let mut cost: Vec<f32> = Vec::with_capacity(npix);
     for y0 in (0..h).step_by(ROWS_PER_BATCH as usize) {
         let y1 = (y0 + ROWS_PER_BATCH).min(h);
@@ -237,14 +238,15 @@ pub(super) fn iaa(
             pixel_cost[done[k].pixel] += t;
         }
         parts.sort_by_key(|&(pixel, path, _)| (pixel, path));
-        let mut pixels: Vec<Vec<Sample>> = vec![Vec::new(); n];
-        for (pixel, _, s) in parts {
-            pixels[pixel].push(s);
+        let mut counts = vec![0; n];
+        for &(pixel, _, _) in &parts {
+            counts[pixel] += 1;
         }
-        samples.extend(pixels);
+        let samples = parts.into_iter().map(|(_, _, s)| s).collect();
+        pixels.append(Pixels::from_counts(samples, counts.into_iter()));
         cost.extend(pixel_cost);
         progress.advance(u64::from(y1 - y0));
     }
     progress.end();
-    Ok((samples, cost, PassStats::of(Pass::Iaa, t0.elapsed(), &c)))
+    Ok((pixels, cost, PassStats::of(Pass::Iaa, t0.elapsed(), &c)))
 }

@@ -13,6 +13,7 @@
 mod hard_shadows;
 pub mod iaa;
 mod images;
+mod pixels;
 mod primary;
 mod shading;
 mod soft_shadows;
@@ -30,10 +31,10 @@ use crate::error::Error;
 use crate::image::Image;
 use crate::plan::{Pass, Plan, Primary};
 use crate::progress::Progress;
-use crate::sample::Sample;
 use crate::scene::Scene;
 use crate::shadow::ShadowClass;
 use crate::stats::{PassStats, RenderStats};
+use pixels::Pixels;
 
 /// What a render produces.
 #[derive(Clone, Debug)]
@@ -140,9 +141,10 @@ pub fn render_on<'a>(
         passes.push(PassStats::skipped(Pass::Normals.name()));
     }
 
-    // The visible fraction of each light from each sample (1 without a shadow pass).
+    // The visible fraction of each light from each sample (1 without a shadow pass):
+    // sample-major, light-minor.
     let nl = scene.lights.len();
-    let mut vis: Vec<Vec<f32>> = samples.iter().map(|s| vec![1.0; s.len() * nl]).collect();
+    let mut vis: Vec<f32> = vec![1.0; samples.samples.len() * nl];
     if plan.runs(Pass::HardShadows) {
         let points: Vec<Option<DVec3>> = scene
             .lights
@@ -197,18 +199,6 @@ pub fn render_on<'a>(
 /// core (or the GPU) busy, small enough to show progress and bound memory.
 const ROWS_PER_BATCH: u32 = 256;
 
-/// The per-pixel samples of a pass, the cost of each pixel, and the pass's statistics.
-type PixelSamples = (Vec<Vec<Sample>>, Vec<f32>, PassStats);
-
-/// Where each pixel's items start in the flat list of every pixel's items, given how many
-/// each pixel has.
-fn starts(counts: impl Iterator<Item = usize>) -> Vec<usize> {
-    let mut next = 0;
-    counts
-        .map(|n| {
-            let at = next;
-            next += n;
-            at
-        })
-        .collect()
-}
+/// The samples of every pixel from a primary pass, the cost of each pixel, and the pass's
+/// statistics.
+type PixelSamples = (Pixels, Vec<f32>, PassStats);

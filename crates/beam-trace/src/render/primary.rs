@@ -5,6 +5,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+use super::pixels::Pixels;
 use super::{PixelSamples, ROWS_PER_BATCH};
 use crate::backend::cpu::{child_window, forward};
 use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery};
@@ -105,46 +106,59 @@ struct PixelRay {
     in_t_final: bool,
 }
 
-/// The rays of pixel `i` (row-major in a `w`-wide image) under its box class: the central
-/// ray searched in a Hit box's `T_final`; `offsets.len()` stratified rays from where an
-/// Undecided box (or no box) left them open; none in a Miss box.
-fn pixel_rays<'a>(
-    cam: &'a Camera,
+/// The number of rays of a pixel of box class `class`: the central ray in a Hit box;
+/// `stratified` rays in an Undecided box (or without a box); none in a Miss box.
+fn ray_count(class: Option<(BoxClass, bool)>, stratified: usize) -> usize {
+    match class.map(|c| c.0) {
+        Some(BoxClass::Miss) => 0,
+        Some(BoxClass::Hit { .. }) => 1,
+        Some(BoxClass::Undecided { .. }) | None => stratified,
+    }
+}
+
+/// Ray `r` of pixel `i` (row-major in a `w`-wide image) of box class `class`: the central
+/// ray, searched in a Hit box's `T_final`; else stratified ray `r`, searched from where the
+/// pixel's beam proved every ray root-free (see [`ray_count`]).
+fn pixel_ray(
+    cam: &Camera,
     i: usize,
     w: u32,
     class: Option<(BoxClass, bool)>,
-    offsets: &'a [(f64, f64)],
-) -> impl Iterator<Item = PixelRay> + 'a {
+    offsets: &[(f64, f64)],
+    r: usize,
+) -> PixelRay {
     let (fx, fy) = (f64::from(i as u32 % w), f64::from(i as u32 / w));
-    let class = class.map(|c| c.0);
-    let central = match class {
-        Some(BoxClass::Hit { t_final }) => Some(PixelRay {
+    match class.map(|c| c.0) {
+        Some(BoxClass::Hit { t_final }) => PixelRay {
             weight: 1.0,
             query: RayQuery {
                 ray: cam.ray(fx + 0.5, fy + 0.5),
                 window: t_final,
             },
             in_t_final: true,
-        }),
-        _ => None,
-    };
-    // The pixel's beam proved its rays root-free before its undecided range.
-    let stratified: &[(f64, f64)] = match class {
-        Some(BoxClass::Undecided { .. }) | None => offsets,
-        Some(BoxClass::Miss | BoxClass::Hit { .. }) => &[],
-    };
-    let window = child_window(class.as_ref());
-    let weight = 1.0 / offsets.len() as f32;
-    central
-        .into_iter()
-        .chain(stratified.iter().map(move |&(ox, oy)| PixelRay {
-            weight,
-            query: RayQuery {
-                ray: cam.ray(fx + ox, fy + oy),
-                window,
-            },
-            in_t_final: false,
-        }))
+        },
+        class => {
+            let (ox, oy) = offsets[r];
+            PixelRay {
+                weight: 1.0 / offsets.len() as f32,
+                query: RayQuery {
+                    ray: cam.ray(fx + ox, fy + oy),
+                    window: child_window(class.as_ref()),
+                },
+                in_t_final: false,
+            }
+        }
+    }
+}
+
+/// For a flat list of items where item `k` owns `first[k]..first[k + 1]`: the owner of each
+/// item.
+fn owners(first: &[usize]) -> Vec<u32> {
+    let mut out = Vec::with_capacity(first[first.len() - 1]);
+    for k in 0..first.len() - 1 {
+        out.extend(std::iter::repeat_n(k as u32, first[k + 1] - first[k]));
+    }
+    out
 }
 
 /// The primary-rays pass: in a Hit box one central ray per pixel searched in `T_final`
@@ -166,7 +180,7 @@ pub(super) fn primary_rays(
     progress.begin(Pass::PrimaryRays.name(), u64::from(h));
     let mut c = PrimaryRayCounters::default();
     let npix = w as usize * h as usize;
-    let mut samples: Vec<Vec<Sample>> = Vec::with_capacity(npix);
+    let mut pixels = Pixels::new();
     let mut cost: Vec<f32> = Vec::with_capacity(npix);
     for y0 in (0..h).step_by(ROWS_PER_BATCH as usize) {
         let y1 = (y0 + ROWS_PER_BATCH).min(h);
@@ -177,16 +191,17 @@ pub(super) fn primary_rays(
         let mut first_ray = Vec::with_capacity(n + 1);
         first_ray.push(0);
         for class in &classes[first..first + n] {
-            let count = match class.map(|c| c.0) {
-                Some(BoxClass::Miss) => 0,
-                Some(BoxClass::Hit { .. }) => 1,
-                Some(BoxClass::Undecided { .. }) | None => offsets.len(),
-            };
-            first_ray.push(first_ray[first_ray.len() - 1] + count);
+            first_ray.push(first_ray[first_ray.len() - 1] + ray_count(*class, offsets.len()));
         }
-        let batch: Vec<PixelRay> = (0..n)
-            .into_par_iter()
-            .flat_map_iter(|k| pixel_rays(cam, first + k, w, classes[first + k], &offsets))
+        let ray_pixel = owners(&first_ray);
+        let batch: Vec<PixelRay> = ray_pixel
+            .par_iter()
+            .enumerate()
+            .map(|(j, &k)| {
+                let k = k as usize;
+                let r = j - first_ray[k];
+                pixel_ray(cam, first + k, w, classes[first + k], &offsets, r)
+            })
             .collect();
         let queries: Vec<RayQuery> = batch.par_iter().map(|r| r.query).collect();
         let first_try = q.roots(&queries)?;
@@ -228,20 +243,19 @@ pub(super) fn primary_rays(
             }
         }
         // The shading points of the rays that meet (or may meet) a surface.
-        let (hit_rays, hit_queries): (Vec<usize>, Vec<HitQuery>) = results
+        let hit_rays: Vec<usize> = (0..results.len())
+            .filter(|&j| !matches!(results[j], RootResult::NoRoot))
+            .collect();
+        let hit_queries: Vec<HitQuery> = hit_rays
             .par_iter()
-            .enumerate()
-            .filter_map(|(j, r)| match *r {
-                RootResult::Root { t, .. } | RootResult::Undecided { t } => Some((
-                    j,
-                    HitQuery {
-                        ray: batch[j].query.ray,
-                        t,
-                    },
-                )),
-                RootResult::NoRoot => None,
+            .map(|&j| HitQuery {
+                ray: batch[j].query.ray,
+                t: match results[j] {
+                    RootResult::Root { t, .. } | RootResult::Undecided { t } => t,
+                    RootResult::NoRoot => unreachable!("only rays that met a surface"),
+                },
             })
-            .unzip();
+            .collect();
         let hits = q.hit_points(&hit_queries)?;
         c.search.add(&hits.search);
         // The hit of ray `j` is `hits.values[hit_rank[j]]` when it has one.
@@ -259,34 +273,36 @@ pub(super) fn primary_rays(
             _ => Some(hits.values[hit_rank[j]]),
         };
         // Each pixel's samples, in the order of its rays (background without a ray).
-        let (pixels, pixel_cost): (Vec<Vec<Sample>>, Vec<f32>) = (0..n)
-            .into_par_iter()
-            .map(|k| {
-                let rays = first_ray[k]..first_ray[k + 1];
-                if rays.is_empty() {
-                    let miss = Sample {
+        let counts = (0..n).map(|k| (first_ray[k + 1] - first_ray[k]).max(1));
+        let mut first_sample = vec![0];
+        for count in counts.clone() {
+            first_sample.push(first_sample[first_sample.len() - 1] + count);
+        }
+        let samples: Vec<Sample> = owners(&first_sample)
+            .par_iter()
+            .enumerate()
+            .map(|(i, &k)| {
+                let k = k as usize;
+                if first_ray[k] == first_ray[k + 1] {
+                    return Sample {
                         weight: 1.0,
                         hit: None,
                     };
-                    return (vec![miss], 0.0);
                 }
-                let samples = rays
-                    .clone()
-                    .map(|j| Sample {
-                        weight: batch[j].weight,
-                        hit: hit_of(j),
-                    })
-                    .collect();
-                (samples, ray_cost[rays].iter().sum())
+                let j = first_ray[k] + (i - first_sample[k]);
+                Sample {
+                    weight: batch[j].weight,
+                    hit: hit_of(j),
+                }
             })
-            .unzip();
-        samples.extend(pixels);
-        cost.extend(pixel_cost);
+            .collect();
+        pixels.append(Pixels::from_counts(samples, counts));
+        cost.extend((0..n).map(|k| ray_cost[first_ray[k]..first_ray[k + 1]].iter().sum::<f32>()));
         progress.advance(u64::from(y1 - y0));
     }
     progress.end();
     Ok((
-        samples,
+        pixels,
         cost,
         PassStats::of(Pass::PrimaryRays, t0.elapsed(), &c),
     ))

@@ -4,12 +4,11 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::starts;
+use super::pixels::Pixels;
 use crate::backend::{Queries, ShadeBatch, ShadeLight, ShadeSample};
 use crate::error::Error;
 use crate::plan::Pass;
 use crate::progress::Progress;
-use crate::sample::Sample;
 use crate::scene::Scene;
 use crate::stats::PassStats;
 use crate::stats::counters::{NormalCounters, ShadingCounters};
@@ -17,13 +16,14 @@ use crate::stats::counters::{NormalCounters, ShadingCounters};
 /// Unit normals of the hit samples from the gradient.
 pub(super) fn normals(
     q: &dyn Queries,
-    samples: &mut [Vec<Sample>],
+    pixels: &mut Pixels,
     progress: &dyn Progress,
 ) -> Result<PassStats, Error> {
     let t0 = Instant::now();
-    let points: Vec<_> = samples
-        .par_iter()
-        .flat_map_iter(|px| px.iter().filter_map(|s| s.hit.map(|h| h.point)))
+    let points: Vec<_> = pixels
+        .samples
+        .iter()
+        .filter_map(|s| s.hit.map(|h| h.point))
         .collect();
     progress.begin(Pass::Normals.name(), 1);
     let answers = q.normals(&points)?;
@@ -33,44 +33,40 @@ pub(super) fn normals(
         search: answers.search,
         ..NormalCounters::default()
     };
-    // Each pixel reads its answers in the order of its hits.
-    let first = starts(
-        samples
-            .iter()
-            .map(|px| px.iter().filter(|s| s.hit.is_some()).count()),
-    );
-    c.degenerate = samples
-        .par_iter_mut()
-        .zip(first)
-        .map(|(px, mut k)| {
-            let mut degenerate = 0;
-            for hit in px.iter_mut().filter_map(|s| s.hit.as_mut()) {
-                match answers.values[k] {
-                    Some(n) => hit.normal = n,
-                    None => degenerate += 1,
-                }
-                k += 1;
-            }
-            degenerate
-        })
-        .sum();
+    let hits = pixels.samples.iter_mut().filter_map(|s| s.hit.as_mut());
+    for (hit, n) in hits.zip(answers.values) {
+        match n {
+            Some(n) => hit.normal = n,
+            None => c.degenerate += 1,
+        }
+    }
     Ok(PassStats::of(Pass::Normals, t0.elapsed(), &c))
 }
 
 /// Each pixel's colour: the weighted sum of its samples' Phong colours under the lights'
-/// visible fractions `vis` (the flat material colour when the scene has no lights, and the
-/// pass does not run: `lit` is false).
+/// visible fractions `vis` (sample-major, light-minor; the flat material colour when the
+/// scene has no lights, and the pass does not run: `lit` is false).
 pub(super) fn shading(
     q: &dyn Queries,
     scene: &Scene,
     lit: bool,
-    samples: &[Vec<Sample>],
-    vis: &[Vec<f32>],
+    pixels: &Pixels,
+    vis: &[f32],
 ) -> Result<(Vec<[f32; 3]>, PassStats), Error> {
     let t0 = Instant::now();
     let leaves = scene.geometry.leaves();
     let nl = scene.lights.len();
-    let hits = || samples.iter().flatten().filter_map(|s| s.hit);
+    let samples = &pixels.samples;
+    // The hit samples, and each sample's rank among them (its colour's index).
+    let mut hit_samples = Vec::new();
+    let mut rank = Vec::with_capacity(samples.len());
+    for (j, s) in samples.iter().enumerate() {
+        rank.push(hit_samples.len());
+        if s.hit.is_some() {
+            hit_samples.push(j);
+        }
+    }
+    let hit = |j: usize| samples[j].hit.expect("a hit sample");
     let colors: Vec<[f32; 3]> = if lit {
         let lights: Vec<ShadeLight> = scene
             .lights
@@ -80,23 +76,24 @@ pub(super) fn shading(
                 color: l.color(),
             })
             .collect();
-        let count: usize = samples
+        let shade: Vec<ShadeSample> = hit_samples
             .par_iter()
-            .map(|px| px.iter().filter(|s| s.hit.is_some()).count())
-            .sum();
-        let mut shade: Vec<ShadeSample> = Vec::with_capacity(count);
-        let mut fractions: Vec<f32> = Vec::with_capacity(count * nl);
-        for (px, v) in samples.iter().zip(vis) {
-            for (si, s) in px.iter().enumerate() {
-                let Some(h) = s.hit else { continue };
-                shade.push(ShadeSample {
+            .map(|&j| {
+                let h = hit(j);
+                ShadeSample {
                     point: h.point,
                     normal: h.normal,
                     to_eye: h.to_eye,
                     material: leaves[h.leaf as usize].material,
-                });
-                fractions.extend_from_slice(&v[si * nl..(si + 1) * nl]);
-            }
+                }
+            })
+            .collect();
+        let mut fractions = vec![0f32; hit_samples.len() * nl];
+        if nl > 0 {
+            fractions
+                .par_chunks_mut(nl)
+                .zip(&hit_samples)
+                .for_each(|(f, &j)| f.copy_from_slice(&vis[j * nl..(j + 1) * nl]));
         }
         q.shade(&ShadeBatch {
             lights: &lights,
@@ -106,32 +103,24 @@ pub(super) fn shading(
         })?
         .values
     } else {
-        hits()
-            .map(|h| leaves[h.leaf as usize].material.color)
+        hit_samples
+            .iter()
+            .map(|&j| leaves[hit(j).leaf as usize].material.color)
             .collect()
     };
-    // Each pixel's first colour: its hit samples' colours are consecutive.
-    let first = starts(
-        samples
-            .iter()
-            .map(|px| px.iter().filter(|s| s.hit.is_some()).count()),
-    );
-    let pixels = samples
-        .par_iter()
-        .zip(first)
-        .map(|(px, mut k)| {
+    let image = (0..pixels.len())
+        .into_par_iter()
+        .map(|p| {
             let mut acc = [0f32; 3];
             let mut wsum = 0f32;
-            for s in px {
+            for j in pixels.range(p) {
+                let s = &samples[j];
                 let c = match s.hit {
+                    Some(_) => colors[rank[j]],
                     None => scene.background,
-                    Some(_) => {
-                        k += 1;
-                        colors[k - 1]
-                    }
                 };
-                for j in 0..3 {
-                    acc[j] += s.weight * c[j];
+                for k in 0..3 {
+                    acc[k] += s.weight * c[k];
                 }
                 wsum += s.weight;
             }
@@ -144,11 +133,11 @@ pub(super) fn shading(
         .collect();
     let stats = if lit {
         let c = ShadingCounters {
-            shaded_samples: hits().count() as u64,
+            shaded_samples: colors.len() as u64,
         };
         PassStats::of(Pass::Shading, t0.elapsed(), &c)
     } else {
         PassStats::skipped(Pass::Shading.name())
     };
-    Ok((pixels, stats))
+    Ok((image, stats))
 }

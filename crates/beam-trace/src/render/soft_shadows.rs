@@ -4,11 +4,12 @@
 
 use std::time::Instant;
 
+use super::pixels::Pixels;
 use crate::backend::Queries;
 use crate::error::Error;
 use crate::plan::{Pass, Plan};
 use crate::progress::Progress;
-use crate::sample::{SHADOW_OFFSET, Sample};
+use crate::sample::SHADOW_OFFSET;
 use crate::scene::Scene;
 use crate::shadow::{LightVisibility, ShadowClass, ShadowQuery, stochastic};
 use crate::stats::PassStats;
@@ -36,15 +37,16 @@ pub(super) fn soft_shadows(
     q: &dyn Queries,
     scene: &Scene,
     plan: &Plan,
-    samples: &[Vec<Sample>],
-    vis: &mut [Vec<f32>],
+    pixels: &Pixels,
+    vis: &mut [f32],
     progress: &dyn Progress,
 ) -> Result<SoftShadows, Error> {
     let t0 = Instant::now();
     let nl = scene.lights.len();
     let offset = SHADOW_OFFSET * scene.geometry.diagonal();
     let name = plan.shadow_method.to_string();
-    let mut classes: Vec<Option<ShadowClass>> = vec![None; samples.len()];
+    let npix = pixels.len();
+    let mut classes: Vec<Option<ShadowClass>> = vec![None; npix];
     let mut per_light = Vec::new();
     let mut fractions = Vec::new();
     let mut total = SoftShadowCounters::default();
@@ -57,13 +59,13 @@ pub(super) fn soft_shadows(
         // The queries of the samples facing the light, and where their answers go.
         let mut slots = Vec::new();
         let mut queries = Vec::new();
-        for (p, px) in samples.iter().enumerate() {
-            for (si, s) in px.iter().enumerate() {
+        for p in 0..npix {
+            for (si, s) in pixels.pixel(p).iter().enumerate() {
                 let Some(hit) = s.hit else { continue };
                 if light.patch.is_behind(hit.point, hit.facing_normal()) {
                     continue;
                 }
-                slots.push((p, si));
+                slots.push(pixels.range(p).start + si);
                 queries.push(ShadowQuery {
                     origin: hit.shadow_origin(offset),
                     light: light.patch,
@@ -89,17 +91,18 @@ pub(super) fn soft_shadows(
         progress.end();
         // Per pixel: the fraction averaged over its shaded samples, and its class.
         let mut answer = slots.iter().zip(&answers).peekable();
-        let mut light_fractions = Vec::with_capacity(samples.len());
-        for (p, px) in samples.iter().enumerate() {
+        let mut light_fractions = Vec::with_capacity(npix);
+        for (p, pixel_class) in classes.iter_mut().enumerate() {
             let mut class: Option<ShadowClass> = None;
             let mut shadowed = false;
             let (mut sum, mut weight) = (0f32, 0f32);
-            for (si, s) in px.iter().enumerate() {
+            for j in pixels.range(p) {
+                let s = &pixels.samples[j];
                 if s.hit.is_none() {
                     continue;
                 }
                 let (lv, sample_class) = match answer.peek() {
-                    Some(&(&slot, lv)) if slot == (p, si) => {
+                    Some(&(&slot, lv)) if slot == j => {
                         answer.next();
                         (*lv, lv.class())
                     }
@@ -108,7 +111,7 @@ pub(super) fn soft_shadows(
                         (LightVisibility::estimate(0.0), ShadowClass::BackFacing)
                     }
                 };
-                vis[p][si * nl + li] = lv.fraction;
+                vis[j * nl + li] = lv.fraction;
                 sum += s.weight * lv.fraction;
                 weight += s.weight;
                 shadowed |= lv.fraction < 1.0;
@@ -122,7 +125,7 @@ pub(super) fn soft_shadows(
                 Some(ShadowClass::BackFacing) | None => {}
             }
             if let Some(cl) = class {
-                classes[p] = Some(ShadowClass::merge(classes[p], cl));
+                *pixel_class = Some(ShadowClass::merge(*pixel_class, cl));
             }
             light_fractions.push(if weight > 0.0 { sum / weight } else { f32::NAN });
         }

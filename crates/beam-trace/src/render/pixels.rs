@@ -1,0 +1,61 @@
+//! The samples of every pixel, stored flat: one vector of samples, pixel after pixel, and
+//! where each pixel's samples start.
+
+use std::ops::Range;
+
+use crate::sample::Sample;
+
+/// The samples of every pixel, in pixel order.
+#[derive(Clone, Debug, Default)]
+pub(super) struct Pixels {
+    /// Every pixel's samples, pixel after pixel.
+    pub(super) samples: Vec<Sample>,
+    /// Pixel `p`'s samples are `samples[first[p]..first[p + 1]]`.
+    first: Vec<usize>,
+}
+
+impl Pixels {
+    /// No pixel yet.
+    pub(super) fn new() -> Self {
+        Pixels {
+            samples: Vec::new(),
+            first: vec![0],
+        }
+    }
+
+    /// Pixels whose samples are `samples`, `counts[p]` of them for pixel `p` in order.
+    pub(super) fn from_counts(samples: Vec<Sample>, counts: impl Iterator<Item = usize>) -> Self {
+        let mut first = vec![0];
+        for n in counts {
+            first.push(first[first.len() - 1] + n);
+        }
+        debug_assert_eq!(first[first.len() - 1], samples.len());
+        Pixels { samples, first }
+    }
+
+    /// The number of pixels.
+    pub(super) fn len(&self) -> usize {
+        self.first.len() - 1
+    }
+
+    /// Where pixel `p`'s samples lie in [`Pixels::samples`].
+    pub(super) fn range(&self, p: usize) -> Range<usize> {
+        self.first[p]..self.first[p + 1]
+    }
+
+    /// Pixel `p`'s samples.
+    pub(super) fn pixel(&self, p: usize) -> &[Sample] {
+        &self.samples[self.range(p)]
+    }
+
+    /// Appends the pixels of `more`.
+    pub(super) fn append(&mut self, more: Pixels) {
+        if self.len() == 0 {
+            *self = more;
+            return;
+        }
+        let base = self.samples.len();
+        self.samples.extend(more.samples);
+        self.first.extend(more.first[1..].iter().map(|&f| base + f));
+    }
+}
