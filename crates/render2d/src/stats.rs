@@ -1,5 +1,6 @@
 //! Counters and times of a render, per tile level and in total.
 
+use std::fmt::Write;
 use std::time::Duration;
 
 /// What happened at one level of tiles.
@@ -69,11 +70,14 @@ pub struct Stats {
     pub point_tape_len_sum: u64,
     /// Tapes pruned (`simplify` calls that returned a shorter tape).
     pub pruned_tapes: u64,
-    /// Time in interval evaluation, summed over threads (with [`Settings::timing`](crate::Settings::timing)).
+    /// Time in interval evaluation, summed over threads (with
+    /// [`Settings::timing`](crate::Settings::timing)).
     pub interval_time: Duration,
-    /// Time in tape pruning, summed over threads (with [`Settings::timing`](crate::Settings::timing)).
+    /// Time in tape pruning, summed over threads (with
+    /// [`Settings::timing`](crate::Settings::timing)).
     pub prune_time: Duration,
-    /// Time in point evaluation, summed over threads (with [`Settings::timing`](crate::Settings::timing)).
+    /// Time in point evaluation, summed over threads (with
+    /// [`Settings::timing`](crate::Settings::timing)).
     pub point_time: Duration,
 }
 
@@ -113,5 +117,99 @@ impl Stats {
         } else {
             self.point_tape_len_sum as f64 / self.point_batches as f64
         }
+    }
+
+    /// The counters as a text table, one line per tile level, then the pixels classified by
+    /// point evaluation (out of `pixels`, the image's), the pruned tapes and the stage times
+    /// (summed over `threads` threads); every line ends with a newline. The `--stats`
+    /// output of the `render2d` example.
+    pub fn table(&self, pixels: usize, threads: usize) -> String {
+        let mut s = String::new();
+        // Writing to a `String` cannot fail.
+        let _ = self.write_table(&mut s, pixels, threads);
+        s
+    }
+
+    /// Writes [`Stats::table`] into `out`.
+    fn write_table(&self, out: &mut String, pixels: usize, threads: usize) -> std::fmt::Result {
+        writeln!(
+            out,
+            "level  tile  evaluated   inside  outside  split  tape len min/mean/max"
+        )?;
+        for (k, l) in self.levels.iter().enumerate() {
+            let split = l.tiles - l.inside - l.outside;
+            writeln!(
+                out,
+                "{k:>5} {:>5} {:>10} {:>8} {:>8} {:>6}  {}/{:.0}/{}",
+                l.size,
+                l.tiles,
+                l.inside,
+                l.outside,
+                split,
+                l.tape_len_min,
+                l.tape_len_mean(),
+                l.tape_len_max
+            )?;
+        }
+        writeln!(
+            out,
+            "pixels by point evaluation: {} of {} ({:.2} %), in {} batches, mean tape length {:.0}",
+            self.point_pixels,
+            pixels,
+            100.0 * self.point_pixels as f64 / pixels as f64,
+            self.point_batches,
+            self.point_tape_len_mean()
+        )?;
+        writeln!(out, "pruned tapes built: {}", self.pruned_tapes)?;
+        writeln!(
+            out,
+            "stage times summed over {threads} threads: interval {:.1} ms, pruning {:.1} ms, points {:.1} ms",
+            self.interval_time.as_secs_f64() * 1e3,
+            self.prune_time.as_secs_f64() * 1e3,
+            self.point_time.as_secs_f64() * 1e3
+        )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn merge_keeps_extremes_and_table_shows_them() {
+        let mut a = Stats::new(&[8, 2]);
+        let mut b = Stats::new(&[8, 2]);
+        a.levels[0].add_tape(10);
+        b.levels[0].add_tape(4);
+        b.levels[0].add_tape(7);
+        b.levels[0].inside = 1;
+        b.point_pixels = 4;
+        b.point_batches = 1;
+        b.point_tape_len_sum = 3;
+        a.merge(&b);
+        let l = &a.levels[0];
+        assert_eq!((l.tiles, l.tape_len_min, l.tape_len_max), (3, 4, 10));
+        assert_eq!(
+            a.levels[1],
+            LevelStats {
+                size: 2,
+                ..LevelStats::default()
+            }
+        );
+        let table = a.table(16, 2);
+        let lines: Vec<&str> = table.lines().collect();
+        assert_eq!(lines.len(), 6);
+        assert_eq!(
+            lines[1],
+            "    0     8          3        1        0      2  4/7/10"
+        );
+        assert_eq!(
+            lines[2],
+            "    1     2          0        0        0      0  0/0/0"
+        );
+        assert!(
+            lines[3].starts_with("pixels by point evaluation: 4 of 16 (25.00 %), in 1 batches")
+        );
+        assert!(table.ends_with(" ms\n"));
     }
 }

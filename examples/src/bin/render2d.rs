@@ -11,11 +11,12 @@
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
+use std::str::FromStr;
 use std::time::Instant;
 
 use clap::{Parser, ValueEnum};
 use implicit_expr::{Context, Error, Tape};
-use render2d::{Image, Pixel, Region, Settings, Stats};
+use render2d::{Image, Region, Settings};
 
 /// Renders f(x, y) < 0 (inside) by interval subdivision with tape pruning.
 #[derive(Parser, Debug)]
@@ -31,7 +32,7 @@ struct Args {
     #[arg(long, default_value_t = 1024)]
     size: usize,
     /// The region shown: xmin,xmax,ymin,ymax.
-    #[arg(long, default_value = "-1,1,-1,1", value_parser = parse_region, allow_hyphen_values = true)]
+    #[arg(long, default_value = "-1,1,-1,1", value_parser = Region::from_str, allow_hyphen_values = true)]
     region: Region,
     /// The value of z, for functions that use it.
     #[arg(long, default_value_t = 0.0, allow_hyphen_values = true)]
@@ -69,25 +70,6 @@ enum Precision {
     F32,
     /// `f64` points and `Interval<f64>`.
     F64,
-}
-
-fn parse_region(s: &str) -> Result<Region, String> {
-    let v: Vec<f64> = s
-        .split(',')
-        .map(|t| t.trim().parse::<f64>().map_err(|e| format!("'{t}': {e}")))
-        .collect::<Result<_, _>>()?;
-    match v[..] {
-        [x0, x1, y0, y1]
-            if [x0, x1, y0, y1].iter().all(|v| v.is_finite()) && x0 < x1 && y0 < y1 =>
-        {
-            Ok(Region { x0, x1, y0, y1 })
-        }
-        [_, _, _, _] => Err("need finite bounds with xmin < xmax and ymin < ymax".into()),
-        _ => Err(format!(
-            "need 4 numbers xmin,xmax,ymin,ymax, got {}",
-            v.len()
-        )),
-    }
 }
 
 fn main() -> ExitCode {
@@ -166,7 +148,7 @@ fn run(args: &Args) -> Result<ExitCode, String> {
         threads
     );
     if args.stats {
-        print_stats(&stats, image.width * image.height, threads);
+        print!("{}", stats.table(image.width * image.height, threads));
         println!(
             "time: load and compile {:.1} ms, render {:.1} ms, PNG {:.1} ms",
             loaded.as_secs_f64() * 1e3,
@@ -227,52 +209,6 @@ fn show_error(e: &Error, text: &str, path: Option<&Path>) -> String {
     )
 }
 
-fn print_stats(stats: &Stats, pixels: usize, threads: usize) {
-    println!("level  tile  evaluated   inside  outside  split  tape len min/mean/max");
-    for (k, l) in stats.levels.iter().enumerate() {
-        let split = l.tiles - l.inside - l.outside;
-        println!(
-            "{k:>5} {:>5} {:>10} {:>8} {:>8} {:>6}  {}/{:.0}/{}",
-            l.size,
-            l.tiles,
-            l.inside,
-            l.outside,
-            split,
-            l.tape_len_min,
-            l.tape_len_mean(),
-            l.tape_len_max
-        );
-    }
-    println!(
-        "pixels by point evaluation: {} of {} ({:.2} %), in {} batches, mean tape length {:.0}",
-        stats.point_pixels,
-        pixels,
-        100.0 * stats.point_pixels as f64 / pixels as f64,
-        stats.point_batches,
-        stats.point_tape_len_mean()
-    );
-    println!("pruned tapes built: {}", stats.pruned_tapes);
-    println!(
-        "stage times summed over {threads} threads: interval {:.1} ms, pruning {:.1} ms, points {:.1} ms",
-        stats.interval_time.as_secs_f64() * 1e3,
-        stats.prune_time.as_secs_f64() * 1e3,
-        stats.point_time.as_secs_f64() * 1e3
-    );
-}
-
-/// Colours: inside dark blue, outside off-white; with `show_points`, the pixels decided by
-/// point evaluation are lighter (inside) or tinted (outside).
-fn colour(p: Pixel, show_points: bool) -> [u8; 3] {
-    const INSIDE: [u8; 3] = [0x1d, 0x35, 0x57];
-    const OUTSIDE: [u8; 3] = [0xf4, 0xf1, 0xe8];
-    match (p, show_points) {
-        (Pixel::Inside, true) => [0x45, 0x7b, 0x9d],
-        (Pixel::Outside, true) => [0xe6, 0xa5, 0x7e],
-        (p, _) if p.is_inside() => INSIDE,
-        _ => OUTSIDE,
-    }
-}
-
 /// Writes the image as an RGB PNG, whole or not at all: into a temporary file in the same
 /// directory, renamed over `path` once complete.
 fn write_png(path: &Path, image: &Image, show_points: bool) -> std::io::Result<()> {
@@ -285,13 +221,8 @@ fn write_png(path: &Path, image: &Image, show_points: bool) -> std::io::Result<(
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         let mut writer = enc.write_header().map_err(std::io::Error::other)?;
-        let data: Vec<u8> = image
-            .pixels
-            .iter()
-            .flat_map(|&p| colour(p, show_points))
-            .collect();
         writer
-            .write_image_data(&data)
+            .write_image_data(&image.to_rgb8(show_points))
             .map_err(std::io::Error::other)?;
         writer.finish().map_err(std::io::Error::other)?;
     }
