@@ -47,8 +47,7 @@ impl Backend for Pieces {
         plan: &'a Plan,
         kinds: &[QueryKind],
     ) -> Result<Prepared<'a>, Error> {
-        static CPU: Cpu = Cpu;
-        let p = CPU.prepare(scene, plan, kinds)?;
+        let p = Cpu.prepare(scene, plan, kinds)?;
         Ok(Prepared {
             queries: Box::new(PieceQueries {
                 inner: p.queries,

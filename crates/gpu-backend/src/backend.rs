@@ -9,12 +9,12 @@
 
 use std::time::Instant;
 
-use beam_trace::backend::cpu::child_window;
 use beam_trace::backend::{
     Answers, Backend, BeamQuery, HitQuery, Prepared, Queries, QueryKind, RayQuery, SegmentQuery,
     ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use beam_trace::beam::BoxClass;
+use beam_trace::beam::child_window;
 use beam_trace::ray::{Beam, IBox, Ray, point_box};
 use beam_trace::root::{Proof, RootCounters, RootResult};
 use beam_trace::sample::{Hit, SHADOW_OFFSET};

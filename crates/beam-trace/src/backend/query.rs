@@ -80,7 +80,7 @@ pub enum Support {
 
 /// A beam to classify: every ray of `beam`, searched where its `parent` beam (the beam it
 /// was split from, if any) left the rays open (see
-/// [`cpu::child_window`](super::cpu::child_window)).
+/// [`child_window`](crate::beam::child_window)).
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct BeamQuery {
     /// The beam.

@@ -43,9 +43,6 @@ pub fn pass_queries(pass: Pass, plan: &Plan) -> &'static [QueryKind] {
     }
 }
 
-/// The CPU backend that answers in the chosen one's place.
-static CPU: Cpu = Cpu;
-
 /// Who answers a kind of query.
 #[derive(Clone, Debug, PartialEq, Eq)]
 enum Route {
@@ -136,7 +133,7 @@ impl Routing {
         let cpu = if cpu_kinds.is_empty() {
             None
         } else {
-            let p = CPU.prepare(scene, plan, &cpu_kinds)?;
+            let p = Cpu.prepare(scene, plan, &cpu_kinds)?;
             passes.extend(p.passes);
             Some(p.queries)
         };

@@ -12,11 +12,11 @@ use std::time::Instant;
 
 use interval_core::Interval;
 
-use super::pixels::Pixels;
-use super::{PixelSamples, ROWS_PER_BATCH};
-use crate::backend::cpu::forward;
+use super::pixels::{Pixels, offsets};
+use super::{PixelSamples, RowBatch, row_batches};
 use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery, VariationQuery};
 use crate::beam::BoxClass;
+use crate::beam::forward;
 use crate::error::Error;
 use crate::plan::Pass;
 use crate::progress::Progress;
@@ -89,10 +89,7 @@ pub(super) fn iaa(
     let npix = w as usize * h as usize;
     let mut pixels = Pixels::new();
     let mut cost: Vec<f32> = Vec::with_capacity(npix);
-    for y0 in (0..h).step_by(ROWS_PER_BATCH as usize) {
-        let y1 = (y0 + ROWS_PER_BATCH).min(h);
-        let first = (y0 * w) as usize;
-        let n = ((y1 - y0) * w) as usize;
+    for RowBatch { rows, first, n } in row_batches(w, h) {
         let mut pixel_cost = vec![0f32; n];
         let mut done: Vec<Shaded> = Vec::new();
         let mut level: Vec<Part> = (0..n)
@@ -243,9 +240,9 @@ pub(super) fn iaa(
             counts[pixel] += 1;
         }
         let samples = parts.into_iter().map(|(_, _, s)| s).collect();
-        pixels.append(Pixels::from_counts(samples, counts.into_iter()));
+        pixels.append(Pixels::from_offsets(samples, offsets(counts.into_iter())));
         cost.extend(pixel_cost);
-        progress.advance(u64::from(y1 - y0));
+        progress.advance(u64::from(rows));
     }
     progress.end();
     Ok((pixels, cost, PassStats::of(Pass::Iaa, t0.elapsed(), &c)))

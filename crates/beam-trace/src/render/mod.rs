@@ -80,8 +80,7 @@ pub struct ShadowMaps {
 ///
 /// [`Error`] when a backend fails (the CPU does not).
 pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Error> {
-    static CPU: Cpu = Cpu;
-    render_on(scene, &CPU, progress)
+    render_on(scene, &Cpu, progress)
 }
 
 /// Renders `scene` with `backend` answering the queries it supports and the CPU the others
@@ -174,6 +173,7 @@ pub fn render_on<'a>(
 
     let (pixels, stats) = shading::shading(q, scene, plan.runs(Pass::Shading), &samples, &vis)?;
     passes.push(stats);
+    // The queries borrow the plan, which the output takes.
     drop(queries);
 
     Ok(RenderOutput {
@@ -198,6 +198,28 @@ pub fn render_on<'a>(
 /// Rows of pixels a pass hands the backend per batch: batches big enough to keep every
 /// core (or the GPU) busy, small enough to show progress and bound memory.
 const ROWS_PER_BATCH: u32 = 256;
+
+/// A batch of whole image rows: the pixels `first..first + n` (row-major).
+struct RowBatch {
+    /// Rows in the batch.
+    rows: u32,
+    /// Its first pixel.
+    first: usize,
+    /// Its number of pixels.
+    n: usize,
+}
+
+/// The batches of [`ROWS_PER_BATCH`] rows that cover a `w × h` image, top to bottom.
+fn row_batches(w: u32, h: u32) -> impl Iterator<Item = RowBatch> {
+    (0..h).step_by(ROWS_PER_BATCH as usize).map(move |y0| {
+        let rows = ROWS_PER_BATCH.min(h - y0);
+        RowBatch {
+            rows,
+            first: (y0 * w) as usize,
+            n: (rows * w) as usize,
+        }
+    })
+}
 
 /// The samples of every pixel from a primary pass, the cost of each pixel, and the pass's
 /// statistics.

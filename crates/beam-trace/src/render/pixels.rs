@@ -23,12 +23,9 @@ impl Pixels {
         }
     }
 
-    /// Pixels whose samples are `samples`, `counts[p]` of them for pixel `p` in order.
-    pub(super) fn from_counts(samples: Vec<Sample>, counts: impl Iterator<Item = usize>) -> Self {
-        let mut first = vec![0];
-        for n in counts {
-            first.push(first[first.len() - 1] + n);
-        }
+    /// Pixels whose samples are `samples`, pixel `p`'s at `first[p]..first[p + 1]` (see
+    /// [`offsets`]).
+    pub(super) fn from_offsets(samples: Vec<Sample>, first: Vec<usize>) -> Self {
         debug_assert_eq!(first[first.len() - 1], samples.len());
         Pixels { samples, first }
     }
@@ -58,4 +55,23 @@ impl Pixels {
         self.samples.extend(more.samples);
         self.first.extend(more.first[1..].iter().map(|&f| base + f));
     }
+}
+
+/// Where the items of each owner start in a flat list where owner `k` has `counts[k]` items
+/// in turn, followed by the total: owner `k` owns `first[k]..first[k + 1]`.
+pub(super) fn offsets(counts: impl Iterator<Item = usize>) -> Vec<usize> {
+    let mut first = vec![0];
+    for n in counts {
+        first.push(first[first.len() - 1] + n);
+    }
+    first
+}
+
+/// The owner of each item of a flat list where owner `k` owns `first[k]..first[k + 1]`.
+pub(super) fn owners(first: &[usize]) -> Vec<u32> {
+    let mut out = Vec::with_capacity(first[first.len() - 1]);
+    for k in 0..first.len() - 1 {
+        out.extend(std::iter::repeat_n(k as u32, first[k + 1] - first[k]));
+    }
+    out
 }

@@ -5,11 +5,11 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use super::pixels::Pixels;
-use super::{PixelSamples, ROWS_PER_BATCH};
-use crate::backend::cpu::{child_window, forward};
+use super::pixels::{self, Pixels, owners};
+use super::{PixelSamples, RowBatch, row_batches};
 use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery};
 use crate::beam::BoxClass;
+use crate::beam::{child_window, forward};
 use crate::camera::Camera;
 use crate::error::Error;
 use crate::plan::{Pass, Plan};
@@ -151,16 +151,6 @@ fn pixel_ray(
     }
 }
 
-/// For a flat list of items where item `k` owns `first[k]..first[k + 1]`: the owner of each
-/// item.
-fn owners(first: &[usize]) -> Vec<u32> {
-    let mut out = Vec::with_capacity(first[first.len() - 1]);
-    for k in 0..first.len() - 1 {
-        out.extend(std::iter::repeat_n(k as u32, first[k + 1] - first[k]));
-    }
-    out
-}
-
 /// The primary-rays pass: in a Hit box one central ray per pixel searched in `T_final`
 /// (the whole ray again if the search stops at a limit there); elsewhere `rays` stratified
 /// rays per pixel, from where the pixel's beam proved them root-free; a Miss box's pixels
@@ -182,17 +172,14 @@ pub(super) fn primary_rays(
     let npix = w as usize * h as usize;
     let mut pixels = Pixels::new();
     let mut cost: Vec<f32> = Vec::with_capacity(npix);
-    for y0 in (0..h).step_by(ROWS_PER_BATCH as usize) {
-        let y1 = (y0 + ROWS_PER_BATCH).min(h);
-        let first = (y0 * w) as usize;
-        let n = ((y1 - y0) * w) as usize;
+    for RowBatch { rows, first, n } in row_batches(w, h) {
         // The rays of every pixel of the batch, built in parallel; pixel `k` owns the rays
         // `first_ray[k]..first_ray[k + 1]` of the flat batch.
-        let mut first_ray = Vec::with_capacity(n + 1);
-        first_ray.push(0);
-        for class in &classes[first..first + n] {
-            first_ray.push(first_ray[first_ray.len() - 1] + ray_count(*class, offsets.len()));
-        }
+        let first_ray = pixels::offsets(
+            classes[first..first + n]
+                .iter()
+                .map(|class| ray_count(*class, offsets.len())),
+        );
         let ray_pixel = owners(&first_ray);
         let batch: Vec<PixelRay> = ray_pixel
             .par_iter()
@@ -273,11 +260,8 @@ pub(super) fn primary_rays(
             _ => Some(hits.values[hit_rank[j]]),
         };
         // Each pixel's samples, in the order of its rays (background without a ray).
-        let counts = (0..n).map(|k| (first_ray[k + 1] - first_ray[k]).max(1));
-        let mut first_sample = vec![0];
-        for count in counts.clone() {
-            first_sample.push(first_sample[first_sample.len() - 1] + count);
-        }
+        let first_sample =
+            pixels::offsets((0..n).map(|k| (first_ray[k + 1] - first_ray[k]).max(1)));
         let samples: Vec<Sample> = owners(&first_sample)
             .par_iter()
             .enumerate()
@@ -296,9 +280,9 @@ pub(super) fn primary_rays(
                 }
             })
             .collect();
-        pixels.append(Pixels::from_counts(samples, counts));
+        pixels.append(Pixels::from_offsets(samples, first_sample));
         cost.extend((0..n).map(|k| ray_cost[first_ray[k]..first_ray[k + 1]].iter().sum::<f32>()));
-        progress.advance(u64::from(y1 - y0));
+        progress.advance(u64::from(rows));
     }
     progress.end();
     Ok((

@@ -4,7 +4,7 @@
 mod occluders;
 mod queries;
 
-pub use queries::{CpuQueries, child_window, forward};
+pub use queries::CpuQueries;
 
 use std::time::Instant;
 

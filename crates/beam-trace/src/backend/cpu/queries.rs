@@ -7,7 +7,7 @@ use interval_core::Interval;
 use rayon::prelude::*;
 
 use crate::backend::query::Answers;
-use crate::beam::{BoxClass, Extent, evaluate_box};
+use crate::beam::{BoxClass, Extent, child_window, evaluate_box, forward};
 use crate::grid::{Grid, GridEval};
 use crate::plan::Plan;
 use crate::ray::{Beam, BeamEval, Ray};
@@ -28,29 +28,6 @@ pub struct CpuQueries<'a> {
 pub(crate) struct Evals {
     pub(super) geo: GeometryEval,
     pub(super) grid: Option<GridEval>,
-}
-
-/// The parameters a beam lying inside a classified parent beam needs to search: every ray
-/// of an Undecided parent is root-free before the parent's undecided range, and every ray
-/// of a Hit parent has its first root in the parent's `T_final`. A part of a beam has a
-/// subset of its rays, so the same holds for it. For an Undecided parent the window starts
-/// a few widths of its undecided range earlier (still in the rejected prefix), so that `g`
-/// has one strict sign at the window's start, which the inclusion test needs.
-pub fn child_window(parent: Option<&BoxClass>) -> Interval<f64> {
-    match parent {
-        None => forward(),
-        Some(BoxClass::Hit { t_final }) => *t_final,
-        Some(BoxClass::Undecided { t }) => {
-            let start = (t.inf() - 8.0 * t.wid()).max(0.0);
-            Interval::new_unchecked(start, f64::INFINITY)
-        }
-        Some(BoxClass::Miss) => Interval::EMPTY,
-    }
-}
-
-/// `[0, +∞]`: rays start at their origin.
-pub fn forward() -> Interval<f64> {
-    Interval::new_unchecked(0.0, f64::INFINITY)
 }
 
 impl CpuQueries<'_> {
