@@ -3,6 +3,7 @@
 
 use std::collections::HashMap;
 
+use beam_trace::beam::forward;
 use beam_trace::grid::{CellHit, Grid};
 use beam_trace::ray::{Beam, BeamEval, IBox, Ray};
 use beam_trace::root::{
@@ -66,10 +67,6 @@ fn iv(lo: f64, hi: f64) -> Interval<f64> {
 
 fn cube(r: f64) -> IBox {
     [iv(-r, r); 3]
-}
-
-fn forward() -> Interval<f64> {
-    iv(0.0, f64::INFINITY)
 }
 
 /// A geometry of leaves given by formulas and CSG objects over them.

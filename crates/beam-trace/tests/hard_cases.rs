@@ -17,13 +17,13 @@
 
 use std::collections::BTreeSet;
 
+use beam_trace::beam::forward;
 use beam_trace::grid::Grid;
 use beam_trace::ray::{Ray, ipoint};
 use beam_trace::root::{Proof, RootCounters, RootMethod, RootResult, RootSettings};
 use beam_trace::scene::geometry::GeometryEval;
 use beam_trace::{Camera, NoProgress, RenderOutput, Scene, render};
 use glam::DVec3;
-use interval_core::Interval;
 
 // ---------------------------------------------------------------------------------------
 // Root searches and their truth.
@@ -34,10 +34,6 @@ fn reliable() -> Vec<RootMethod> {
         .into_iter()
         .filter(|m| m.finder().is_reliable())
         .collect()
-}
-
-fn forward() -> Interval<f64> {
-    Interval::new_unchecked(0.0, f64::INFINITY)
 }
 
 /// The first-root search of `method` along `ray`, over the part of the ray (`t ≥ 0`) inside
