@@ -12,8 +12,9 @@
 //! _6 sub _4 _5
 //! ```
 //!
-//! An id is any token starting with `_` (usually hexadecimal: `_1a`); each is defined once,
-//! before its uses. `#` starts a comment (a whole line or the rest of one); blank lines are
+//! An id is any token (usually `_` and hexadecimal digits, `_1a`, but `y`, `mxy` or
+//! `sphere-3` are ids too, as in fidget's model files); each is defined once, before its
+//! uses. `#` starts a comment (a whole line or the rest of one); blank lines are
 //! ignored. The last instruction is the root of the expression.
 //!
 //! | ops | arguments |
@@ -153,13 +154,6 @@ pub fn import_vm(ctx: &mut Context, text: &str) -> Result<NodeId, Error> {
         let Some((id, id_span)) = toks.first().cloned() else {
             continue;
         };
-        if !id.starts_with('_') {
-            return Err(err(
-                format!("expected an id starting with '_', found {}", quote(id)),
-                id_span,
-                Some("each line is 'ID OP ARGS...', e.g. '_0 var-x'".into()),
-            ));
-        }
         if let Some((_, first)) = ids.get(id) {
             return Err(err(
                 format!("duplicate id {}", quote(id)),
@@ -256,12 +250,6 @@ fn lookup(
 ) -> Result<NodeId, (String, Option<String>)> {
     if let Some((node, _)) = ids.get(arg) {
         return Ok(*node);
-    }
-    if !arg.starts_with('_') {
-        return Err((
-            format!("expected an id starting with '_', found {}", quote(arg)),
-            Some("the arguments of this op are ids of earlier lines".into()),
-        ));
     }
     Err((
         format!("undefined id {}", quote(arg)),

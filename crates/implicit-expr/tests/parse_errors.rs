@@ -412,9 +412,9 @@ const VM: &[VmCase] = &[
     (
         "_0 var-x\n_1 add _0 x",
         2,
-        "expected an id starting with '_', found 'x'",
+        "undefined id 'x'",
         19..20,
-        None,
+        Some("earlier line"),
     ),
     (
         "_0 var-x\n_0 var-y",
@@ -433,13 +433,6 @@ const VM: &[VmCase] = &[
     ("_0 const 1e400", 1, "bad constant '1e400'", 9..14, None),
     ("_0 const nan", 1, "bad constant 'nan'", 9..12, None),
     ("_0 const --1", 1, "bad constant '--1'", 9..12, None),
-    (
-        "x var-x",
-        1,
-        "expected an id starting with '_', found 'x'",
-        0..1,
-        None,
-    ),
     (
         "\n\n  _0   # comment\n",
         3,
@@ -497,4 +490,19 @@ fn vm_display_and_long_files() {
         ctx.eval::<f64>(f, &[1.0, 0.0, 0.0]).unwrap(),
         (N + 1) as f64
     );
+}
+
+/// fidget's own model files name their values freely (`y`, `mxy`, `sphere-3`): every
+/// token is an id.
+#[test]
+fn vm_ids_need_not_start_with_underscore() {
+    let mut ctx = Context::new();
+    let text = "# fidget style\ny var-y\nx var-x\nmxy max x y\nr const 0.5\n\
+                sphere-3 sub mxy r\n_5 square sphere-3\n";
+    let f = import_vm(&mut ctx, text).unwrap();
+    // max(0.25, 1) - 0.5 = 0.5, squared.
+    assert_eq!(ctx.eval::<f64>(f, &[0.25, 1.0, 0.0]).unwrap(), 0.25);
+    // A name that is only defined later is still an undefined id.
+    let err = import_vm(&mut ctx, "a add b b\nb var-x\n").unwrap_err();
+    assert!(err.to_string().contains("undefined id 'b'"), "{err}");
 }
