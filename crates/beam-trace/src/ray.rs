@@ -217,6 +217,20 @@ impl BeamEval {
         e
     }
 
+    /// Switches to another function without free parameters (a cell's pruned function,
+    /// say); the ray or beam set before stays set, the precision too.
+    pub fn set_function(&mut self, f: &RayFunction) {
+        self.interval
+            .set_function(f)
+            .expect("scene functions have no parameters");
+        self.interval32
+            .set_function(f)
+            .expect("scene functions have no parameters");
+        self.point
+            .set_function(f)
+            .expect("scene functions have no parameters");
+    }
+
     /// Sets the precision of the interval evaluations. The ray or beam set before stays set.
     pub fn set_precision(&mut self, precision: Precision) {
         self.precision = precision;

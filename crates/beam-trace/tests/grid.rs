@@ -387,7 +387,7 @@ fn dims_statistics_and_thread_independence() {
             .filter(|&c| grid.cell_function(c).is_some())
             .count() as u64;
         assert_eq!(st.non_empty, counted, "{name}");
-        assert!(st.functions as usize <= grid.functions().len());
+        assert!(st.functions as usize <= grid.function_count());
         // Serializable statistics.
         let json = serde_json::to_string(&st).unwrap();
         assert!(json.contains("non_empty"), "{json}");
@@ -459,7 +459,7 @@ fn reduced_functions_keep_sign_and_zero_set() {
                 };
                 let e = evals
                     .entry(fi)
-                    .or_insert_with(|| BeamEval::new(&grid.functions()[fi as usize]));
+                    .or_insert_with(|| BeamEval::new(grid.function(fi)));
                 let kb = grid.class_box(c);
                 for _ in 0..30 {
                     let p = rng.in_box(&kb);
@@ -500,13 +500,9 @@ fn reduction_simplifies_cells() {
     let g = difference();
     let grid = Grid::build(&g, 12);
     assert!(grid.stats().functions >= 2, "{:?}", grid.stats());
-    let full_len = grid.functions()[grid.full_function() as usize]
-        .g_tape()
-        .len();
-    let shortest = grid
-        .functions()
-        .iter()
-        .map(|f| f.g_tape().len())
+    let full_len = grid.function(grid.full_function()).g_tape().len();
+    let shortest = (0..grid.function_count() as u32)
+        .map(|i| grid.function(i).g_tape().len())
         .min()
         .unwrap();
     assert!(shortest < full_len, "{shortest} vs {full_len}");
@@ -659,7 +655,7 @@ fn check_ray_traversal(name: &str, grid: &Grid, ray: &Ray, t: Interval<f64>) {
         let own = grid.cell_function(h.cell).expect("non-empty cell");
         assert!(h.function == own || h.function == grid.full_function());
         assert!(h.t.subset(t), "{name}: {:?} outside {t:?}", h.t);
-        assert!((h.function as usize) < grid.functions().len());
+        assert!((h.function as usize) < grid.function_count());
         // Tight: the ray's point at the middle of t_c is (nearly) in the cell.
         let tm = h.t.mid();
         if tm.is_finite() {
@@ -1074,4 +1070,33 @@ fn beam_missing_the_grid_has_no_cells() {
     assert!(!cells.is_empty());
     let ranges = grid.beam_t_ranges(&beam);
     assert!(ranges[0].inf() <= 3.0, "{ranges:?}");
+}
+
+#[test]
+fn one_large_leaf_is_pruned_per_cell() {
+    // One formula of many `min`s (a union of spheres written as one leaf): the CSG
+    // reduction cannot split it, the per-cell pruning does.
+    let mut terms = Vec::new();
+    for i in 0..12 {
+        let c = -0.9 + 0.16 * i as f64;
+        terms.push(format!("sqrt((x - {c})^2 + y^2 + z^2) - 0.1"));
+    }
+    let formula = terms
+        .iter()
+        .skip(1)
+        .fold(terms[0].clone(), |acc, t| format!("min({acc}, {t})"));
+    let scene = beam_trace::Scene::from_toml(
+        &format!(
+            "[camera]\neye = [0.0, 0.0, 5.0]\nlook_at = [0.0, 0.0, 0.0]\n\
+         [[surfaces]]\nformula = \"{formula}\"\nbounds = [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]\n"
+        ),
+        "spheres.toml",
+        None,
+    )
+    .unwrap();
+    let grid = Grid::build(&scene.geometry, 25);
+    let st = grid.stats();
+    assert_eq!(st.reduced, 1, "{st:?}");
+    assert!(st.functions > 1, "{st:?}");
+    assert!(st.cell_instrs * 2 < st.full_instrs, "{st:?}");
 }

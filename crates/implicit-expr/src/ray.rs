@@ -128,6 +128,27 @@ impl<N: Number> RayEvaluator<N> {
         })
     }
 
+    /// Switches to another function with the same parameters (a pruned version of the
+    /// same surface, say), keeping the ray or beam set and the parameters' values. Cheap
+    /// when `f`'s tapes are the ones already set.
+    ///
+    /// Returns an error when `f` has another number of parameters.
+    pub fn set_function(&mut self, f: &RayFunction) -> Result<(), Error> {
+        if f.params.len() + RAY_VARS.len() != self.vars.len() {
+            return Err(Error::Unsupported(format!(
+                "the function has {} parameters, the evaluator {}",
+                f.params.len(),
+                self.vars.len() - RAY_VARS.len()
+            )));
+        }
+        if !self.g.tape().ptr_eq(&f.g) {
+            self.g.set_tape(&f.g);
+            self.g_dg.set_tape(&f.g_dg);
+            self.continuous = f.g.is_continuous();
+        }
+        Ok(())
+    }
+
     /// Sets the origin `c` and direction `d` of the ray (points) or beam (boxes).
     pub fn set_ray(&mut self, origin: [N; 3], dir: [N; 3]) {
         self.vars[0..3].copy_from_slice(&origin);

@@ -49,7 +49,7 @@ impl RootFinder for Bisection {
                 if !may_vanish(gx) {
                     continue;
                 }
-                if let Some(root) = settle_piece(&mut ev, x, cont, None, t.sup()) {
+                if let Some(root) = settle_piece(&mut ev, x, cont, None, t) {
                     return root;
                 }
                 continue;

@@ -112,7 +112,7 @@ impl RootFinder for CounterBisection {
                     // other finder (a kernel runs it as a fixed epilogue), so that a
                     // section a few widths before a simple root becomes a proven root.
                     let (_, cont) = ev.checked(x);
-                    return settle_piece(&mut ev, x, cont, None, hi).unwrap_or(RootResult::Root {
+                    return settle_piece(&mut ev, x, cont, None, t).unwrap_or(RootResult::Root {
                         t: x,
                         proof: Proof::Possible,
                     });

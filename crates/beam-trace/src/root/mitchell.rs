@@ -68,7 +68,7 @@ impl RootFinder for Mitchell {
                     continue;
                 }
                 if small {
-                    match settle(&mut ev, x, (ga, gb), cont, monotone, t.sup()) {
+                    match settle(&mut ev, x, (ga, gb), cont, monotone, t) {
                         Some(root) => return root,
                         None => continue,
                     }

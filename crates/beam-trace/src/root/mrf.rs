@@ -80,7 +80,7 @@ impl RootFinder for Mrf {
             }
             if is_small(x, settings.epsilon) {
                 let gb = ev.at(x.sup());
-                match settle(&mut ev, x, (ga, gb), cont, false, t.sup()) {
+                match settle(&mut ev, x, (ga, gb), cont, false, t) {
                     Some(root) => return root,
                     None => continue,
                 }
@@ -187,7 +187,7 @@ pub(crate) fn mrfro_search(
                 stack.clear();
             }
             if small {
-                match settle(&mut ev, x, (ga, gb), cont, false, t.sup()) {
+                match settle(&mut ev, x, (ga, gb), cont, false, t) {
                     Some(root) => return root,
                     None => continue,
                 }

@@ -92,7 +92,7 @@ pub(crate) fn newton_search(
         };
         let (_, dg) = ev.g_dg(x);
         if is_small(x, settings.epsilon) {
-            match settle_piece(&mut ev, x, cont, Some(dg), t.sup()) {
+            match settle_piece(&mut ev, x, cont, Some(dg), t) {
                 Some(root) => return root,
                 None => continue,
             }

@@ -248,20 +248,19 @@ fn classify(ga: Interval<f64>, gb: Interval<f64>, cont: bool, monotone: bool) ->
 }
 
 /// The answer for a final piece `x = [a, b]` with `0 ∈ G(x)` and end values `ga`, `gb`:
-/// [`classify`], and where that leaves only a possible root with both ends of one sign,
-/// [`look_ahead`] for a sign change just after `x`. `None` rejects `x`. `end` is `T.sup()`.
+/// [`classify`], and where that leaves only a possible root, [`look_around`] for a sign
+/// change just around `x`. `None` rejects `x`. `range` is the whole `T` searched.
 pub(crate) fn settle(
     ev: &mut Eval<'_>,
     x: Interval<f64>,
     (ga, gb): (Interval<f64>, Interval<f64>),
     cont: bool,
     monotone: bool,
-    end: f64,
+    range: Interval<f64>,
 ) -> Option<RootResult> {
     let proof = classify(ga, gb, cont, monotone)?;
     if proof == Proof::Possible
-        && same_sign(ga, gb)
-        && let Some(r) = look_ahead(ev, x, gb, end)
+        && let Some(r) = look_around(ev, x, (ga, gb), range)
     {
         return Some(r);
     }
@@ -275,37 +274,91 @@ pub(crate) fn settle_piece(
     x: Interval<f64>,
     cont: bool,
     dg: Option<Interval<f64>>,
-    end: f64,
+    range: Interval<f64>,
 ) -> Option<RootResult> {
     let ends = (ev.at(x.inf()), ev.at(x.sup()));
-    settle(ev, x, ends, cont, dg.is_some_and(excludes_zero), end)
+    settle(ev, x, ends, cont, dg.is_some_and(excludes_zero), range)
 }
 
-/// How far [`look_ahead`] looks: `2^LOOK_AHEAD` widths of the final piece.
+/// How far [`look_around`] looks: `2^LOOK_AHEAD` widths of the final piece on each side.
 const LOOK_AHEAD: u32 = 10;
 
-/// Turns a possible root into a proven one where a sign change follows closely.
+/// Turns a possible root into a proven one where the sign changes just around the piece.
 ///
-/// The final piece `x = [a, b]` of a search holds 0 in `G(x)` but `g` has one strict sign
-/// at both ends: the natural interval extension overestimates `g` near a root, so such
-/// pieces occur a few widths *before* a simple root, where no rejection test of the piece
-/// alone can remove them. Nothing before `a` is a root. A sign change found by
-/// [`sign_change_ahead`] proves a root in `[a, p]`, so the first root of `T` lies there
-/// too: `[a, p]` is returned with [`Proof::Exists`]. Its width may exceed `ε`; it is
-/// proven. `None` when nothing is found.
-fn look_ahead(
+/// The final piece `x = [a, b]` of a search holds 0 in `G(x)` but its end values prove no
+/// sign change. Two cases lead here: the natural interval extension overestimates `g` near
+/// a root, so pieces occur a few widths *before* a simple root with one strict sign at
+/// both ends, where no rejection test of the piece alone can remove them; and a Newton
+/// contraction can leave a piece a few ulps wide around the root, where the enclosure of
+/// `g` at an end holds 0 by rounding alone.
+///
+/// Nothing before `a` is a root (the search order). The probe finds a strict sign at `a`
+/// or at some `l = a − w·2^k ≥ T.inf()`, then the opposite strict sign at `b` or at some
+/// `p = b + w·2^k ≤ T.sup()` (`w` the width of `x`). With `g` proven continuous on `[l, p]`
+/// it has a root there, none before `a`, so the first root of `T` lies in `[a, p]`: returned
+/// with [`Proof::Unique`] where `0 ∉ G'([a, p])`, else [`Proof::Exists`]. Its width may
+/// exceed `ε`; it is proven. `None` when nothing is found.
+fn look_around(
     ev: &mut Eval<'_>,
     x: Interval<f64>,
-    gb: Interval<f64>,
-    end: f64,
+    (ga, gb): (Interval<f64>, Interval<f64>),
+    range: Interval<f64>,
 ) -> Option<RootResult> {
-    sign_change_ahead(ev, x, gb, end, LOOK_AHEAD, &|_| true).map(|h| RootResult::Root {
-        t: h,
-        proof: Proof::Exists,
-    })
+    let (a, b) = (x.inf(), x.sup());
+    let w = x.wid();
+    if w.is_nan() || w <= 0.0 {
+        return None;
+    }
+    let (lo, s) = if sign(ga) != 0 {
+        (a, sign(ga))
+    } else {
+        probe(ev, w, |step| (a - step).max(range.inf()), |v| sign(v) != 0)?
+    };
+    let (hi, _) = if sign(gb) == -s {
+        (b, -s)
+    } else {
+        probe(ev, w, |step| (b + step).min(range.sup()), |v| sign(v) == -s)?
+    };
+    let (_, cont) = ev.checked(ival(lo, hi));
+    if !cont {
+        return None;
+    }
+    let t = ival(a, hi);
+    let (_, dg) = ev.g_dg(t);
+    let proof = if excludes_zero(dg) {
+        Proof::Unique
+    } else {
+        Proof::Exists
+    };
+    Some(RootResult::Root { t, proof })
 }
 
-/// The shared probe of [`look_ahead`] and of the beams' inclusion test: for the piece
+/// The first parameter `at(w·2^k)`, `k ≤ LOOK_AHEAD`, where `G` is `wanted`, with the sign
+/// found there; `None` when the probe leaves the range (`at` stops moving) first.
+fn probe(
+    ev: &mut Eval<'_>,
+    w: f64,
+    at: impl Fn(f64) -> f64,
+    wanted: impl Fn(Interval<f64>) -> bool,
+) -> Option<(f64, i8)> {
+    let mut step = w;
+    let mut last = f64::NAN;
+    for _ in 0..=LOOK_AHEAD {
+        let p = at(step);
+        if p == last {
+            return None;
+        }
+        let v = ev.at(p);
+        if wanted(v) {
+            return Some((p, sign(v)));
+        }
+        last = p;
+        step *= 2.0;
+    }
+    None
+}
+
+/// The probe of the beams' inclusion test: for the piece
 /// `x = [a, b]` and `reference`, a strictly signed enclosure of `g` at `a` or `b` (with
 /// `g` of that sign at both ends), the first `p = b + w·2^k` (`w` the width of `x`,
 /// `k ≤ steps`, `p ≤ end`) where `G([p])` has the opposite sign ([`sign_change`]); `[a, p]`

@@ -66,8 +66,14 @@ counters! {
         cells,
         /// Cells whose classification could not exclude the surface.
         non_empty,
-        /// Distinct reduced functions of the cells.
+        /// Distinct functions of the cells (CSG-reduced, then pruned per cell).
         functions,
+        /// Distinct CSG reductions of the objects' trees.
+        reduced,
+        /// Mean instructions of a non-empty cell's function.
+        cell_instrs,
+        /// Instructions of the full scene function.
+        full_instrs,
         /// Interval evaluations of leaf surfaces while classifying.
         leaf_evals,
     }

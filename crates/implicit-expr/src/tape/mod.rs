@@ -10,6 +10,7 @@
 //! Tapes are cheap to clone (an `Arc`) and immutable; [`Tape::simplify`] makes the shorter
 //! tape valid inside a region from the `min`/`max` choices of an interval evaluation there.
 
+mod graph;
 mod prune;
 mod regalloc;
 

@@ -68,6 +68,9 @@ impl Backend for Cpu {
                     cells: s.cells,
                     non_empty: s.non_empty,
                     functions: s.functions,
+                    reduced: s.reduced,
+                    cell_instrs: s.cell_instrs,
+                    full_instrs: s.full_instrs,
                     leaf_evals: s.leaf_evals,
                 };
                 (Some(g), PassStats::of(Pass::Grid, t0.elapsed(), &counters))

@@ -166,7 +166,9 @@ impl CpuQueries<'_> {
     ///
     /// The point is placed inside `t` where the floating-point values of `g` change sign
     /// (bisection on point values, for shading only: the proof is `t`), on the side of the
-    /// ray's origin, so that shadow segments start outside the surface they leave.
+    /// ray's origin, so that shadow segments start outside the surface they leave. Where one
+    /// grid cell holds the points of `t`, `g` is the cell's function (sign-equivalent to the
+    /// scene function there, and much shorter), else the scene function.
     pub(super) fn hit(
         &self,
         ev: &mut Evals,
@@ -174,7 +176,17 @@ impl CpuQueries<'_> {
         t: Interval<f64>,
         c: &mut RootCounters,
     ) -> Hit {
-        let tm = shading_parameter(&mut ev.geo.beam, ray, t, c);
+        // Inside one cell, its (reduced, pruned) function has the scene function's signs.
+        let cell = self
+            .grid
+            .as_ref()
+            .zip(ev.grid.as_mut())
+            .and_then(|(g, gev)| g.function_over(ray, t).map(|f| gev.get(g, f)));
+        let eval = match cell {
+            Some(e) => e,
+            None => &mut ev.geo.beam,
+        };
+        let tm = shading_parameter(eval, ray, t, c);
         let point = ray.at(tm);
         Hit {
             t,

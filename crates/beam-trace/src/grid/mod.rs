@@ -89,17 +89,23 @@
 //! function, over the merged parameter ranges of [`Grid::beam_t_ranges`] only: outside
 //! them every ray of the beam is in empty cells or outside the scene bounds.
 
+mod functions;
+mod reduce;
+
 use std::collections::HashMap;
 use std::ops::ControlFlow;
 
-use implicit_expr::{Context, Evaluator, NodeId, RayFunction, Tape};
+use implicit_expr::{Evaluator, NodeId, RayFunction, Tape};
 use interval_core::Interval;
 use rayon::prelude::*;
 
 use crate::ibox::IBox;
-use crate::ray::{Beam, BeamEval, Precision, Ray};
+use crate::ray::{Beam, Precision, Ray};
 use crate::root::{RootCounters, RootFinder, RootResult, RootSettings};
-use crate::scene::{Csg, Geometry};
+use crate::scene::Geometry;
+use functions::CellFunctions;
+pub use functions::GridEval;
+use reduce::{Sign, classify, combine, reduce};
 
 /// The function index of an empty cell (no point of the surface in it).
 pub const EMPTY: u32 = u32::MAX;
@@ -114,8 +120,14 @@ pub struct GridStats {
     pub cells: u64,
     /// Cells the surface may cross (not empty).
     pub non_empty: u64,
-    /// Distinct reduced functions used by the cells.
+    /// Distinct functions used by the cells (CSG-reduced, then pruned per cell).
     pub functions: u64,
+    /// Distinct CSG reductions of the objects' trees used by the cells.
+    pub reduced: u64,
+    /// Mean number of instructions of the non-empty cells' functions (rounded).
+    pub cell_instrs: u64,
+    /// Instructions of the full scene function.
+    pub full_instrs: u64,
     /// Interval evaluations of leaf surfaces over cells.
     pub leaf_evals: u64,
 }
@@ -153,205 +165,8 @@ pub struct Grid {
     lines: [Vec<bool>; 3],
     /// Per axis: whether each slab of cells across that axis holds a non-empty cell.
     planes: [Vec<bool>; 3],
-    functions: Vec<RayFunction>,
-    full: u32,
+    functions: CellFunctions,
     stats: GridStats,
-}
-
-/// Per-thread evaluators of a grid's functions, created on first use.
-#[derive(Clone, Debug, Default)]
-pub struct GridEval {
-    evals: Vec<Option<BeamEval>>,
-    precision: Precision,
-}
-
-impl GridEval {
-    /// The evaluator of function `index` of `grid` (created on first use).
-    ///
-    /// # Panics
-    /// If `index` is not a function of `grid`.
-    pub fn get(&mut self, grid: &Grid, index: u32) -> &mut BeamEval {
-        let i = index as usize;
-        if self.evals.len() < grid.functions.len() {
-            self.evals.resize(grid.functions.len(), None);
-        }
-        let precision = self.precision;
-        self.evals[i].get_or_insert_with(|| BeamEval::with_precision(&grid.functions[i], precision))
-    }
-
-    /// Sets the precision of the interval evaluations of every evaluator, those already
-    /// created and those created later.
-    pub fn set_precision(&mut self, precision: Precision) {
-        self.precision = precision;
-        for e in self.evals.iter_mut().flatten() {
-            e.set_precision(precision);
-        }
-    }
-
-    /// The precision of the interval evaluations.
-    pub fn precision(&self) -> Precision {
-        self.precision
-    }
-}
-
-/// Sign class of a node of the CSG tree over a cell.
-#[derive(Copy, Clone, Debug, PartialEq, Eq)]
-enum Sign {
-    /// Defined nowhere in the cell.
-    Undefined,
-    /// Proven defined everywhere and positive.
-    Pos,
-    /// Proven defined everywhere and negative.
-    Neg,
-    /// Anything else.
-    Unknown,
-}
-
-/// Leaf classes, one byte per used leaf and cell.
-const C_UNDEFINED: u8 = 0;
-const C_POS: u8 = 1;
-const C_NEG: u8 = 2;
-const C_UNKNOWN_DEFINED: u8 = 3;
-const C_UNKNOWN: u8 = 4;
-
-/// A reduced tree: leaves (by index into the geometry's leaves), negation, `min`, `max`.
-#[derive(Clone, Debug)]
-enum Expr {
-    Leaf(usize),
-    Neg(Box<Expr>),
-    Min(Vec<Expr>),
-    Max(Vec<Expr>),
-}
-
-/// The reduction of a node: a sign-equivalent tree, its sign class, and whether it is
-/// proven defined at every point of the cell.
-#[derive(Clone, Debug)]
-struct Reduced {
-    sign: Sign,
-    defined: bool,
-    expr: Expr,
-}
-
-impl Expr {
-    fn build(&self, ctx: &mut Context, leaves: &[NodeId]) -> NodeId {
-        match self {
-            Expr::Leaf(i) => leaves[*i],
-            Expr::Neg(e) => {
-                let n = e.build(ctx, leaves);
-                ctx.neg(n)
-            }
-            Expr::Min(c) | Expr::Max(c) => {
-                let min = matches!(self, Expr::Min(_));
-                let mut acc = c[0].build(ctx, leaves);
-                for e in &c[1..] {
-                    let n = e.build(ctx, leaves);
-                    acc = if min {
-                        ctx.min(acc, n)
-                    } else {
-                        ctx.max(acc, n)
-                    };
-                }
-                acc
-            }
-        }
-    }
-}
-
-fn negate(r: Reduced) -> Reduced {
-    let sign = match r.sign {
-        Sign::Pos => Sign::Neg,
-        Sign::Neg => Sign::Pos,
-        s => s,
-    };
-    let expr = match r.expr {
-        Expr::Neg(e) => *e,
-        e => Expr::Neg(Box::new(e)),
-    };
-    Reduced {
-        sign,
-        defined: r.defined,
-        expr,
-    }
-}
-
-/// `min` (`is_min`) or `max` of reduced children.
-fn combine(children: Vec<Reduced>, is_min: bool) -> Reduced {
-    let (absorbing, neutral) = if is_min {
-        (Sign::Neg, Sign::Pos)
-    } else {
-        (Sign::Pos, Sign::Neg)
-    };
-    if let Some(u) = children.iter().find(|r| r.sign == Sign::Undefined) {
-        return u.clone();
-    }
-    let first = children[0].expr.clone();
-    let mut kept: Vec<Reduced> = children.into_iter().filter(|r| r.sign != neutral).collect();
-    if kept.is_empty() {
-        // Every child neutral: so is the node.
-        return Reduced {
-            sign: neutral,
-            defined: true,
-            expr: first,
-        };
-    }
-    let all_defined = kept.iter().all(|r| r.defined);
-    if all_defined && let Some(a) = kept.iter().find(|r| r.sign == absorbing) {
-        return a.clone();
-    }
-    if kept.len() == 1 {
-        return kept.pop().expect("one child");
-    }
-    let exprs = kept.into_iter().map(|r| r.expr).collect();
-    Reduced {
-        sign: Sign::Unknown,
-        defined: all_defined,
-        expr: if is_min {
-            Expr::Min(exprs)
-        } else {
-            Expr::Max(exprs)
-        },
-    }
-}
-
-fn reduce(csg: &Csg, class: &dyn Fn(usize) -> u8) -> Reduced {
-    match csg {
-        Csg::Leaf(i) => {
-            let (sign, defined) = match class(*i) {
-                C_UNDEFINED => (Sign::Undefined, false),
-                C_POS => (Sign::Pos, true),
-                C_NEG => (Sign::Neg, true),
-                C_UNKNOWN_DEFINED => (Sign::Unknown, true),
-                _ => (Sign::Unknown, false),
-            };
-            Reduced {
-                sign,
-                defined,
-                expr: Expr::Leaf(*i),
-            }
-        }
-        Csg::Union(c) => combine(c.iter().map(|c| reduce(c, class)).collect(), true),
-        Csg::Intersection(c) => combine(c.iter().map(|c| reduce(c, class)).collect(), false),
-        Csg::Difference(a, b) => {
-            let a = reduce(a, class);
-            let b = negate(reduce(b, class));
-            combine(vec![a, b], false)
-        }
-    }
-}
-
-/// The class of a leaf whose enclosure over the cell is `f`.
-fn classify(f: Interval<f64>, defined: bool) -> u8 {
-    if f.is_empty() {
-        C_UNDEFINED
-    } else if !defined {
-        C_UNKNOWN
-    } else if f.inf() > 0.0 {
-        C_POS
-    } else if f.sup() < 0.0 {
-        C_NEG
-    } else {
-        C_UNKNOWN_DEFINED
-    }
 }
 
 /// The two axes other than `a`.
@@ -516,8 +331,7 @@ impl Grid {
             cells: Vec::new(),
             lines: Default::default(),
             planes: Default::default(),
-            functions: Vec::new(),
-            full: 0,
+            functions: CellFunctions::empty(geometry.ray_function()),
             stats: GridStats::default(),
         };
         let ncells = n.iter().map(|&k| k as usize).product::<usize>();
@@ -576,13 +390,12 @@ impl Grid {
         let leaf_nodes: Vec<NodeId> = leaves.iter().map(|l| l.node).collect();
         let mut by_node: HashMap<NodeId, u32> = HashMap::new();
         let mut by_class: HashMap<&[u8], u32> = HashMap::new();
-        let mut functions: Vec<RayFunction> = Vec::new();
-        let full_node = geometry.root();
-        let mut cells = vec![EMPTY; ncells];
+        let mut reduced_nodes: Vec<NodeId> = Vec::new();
+        let mut reduced = vec![EMPTY; ncells];
         let mut non_empty = 0_u64;
         let position: HashMap<usize, usize> =
             used.iter().enumerate().map(|(k, &i)| (i, k)).collect();
-        for (idx, cell) in cells.iter_mut().enumerate() {
+        for (idx, cell) in reduced.iter_mut().enumerate() {
             let key = &classes[idx * nused..(idx + 1) * nused];
             let f = *by_class.entry(key).or_insert_with(|| {
                 let class = |leaf: usize| key[position[&leaf]];
@@ -597,10 +410,8 @@ impl Grid {
                 }
                 let node = top.expr.build(&mut fctx, &leaf_nodes);
                 *by_node.entry(node).or_insert_with(|| {
-                    let rf = RayFunction::new(&fctx, node)
-                        .unwrap_or_else(|_| geometry.ray_function().clone());
-                    functions.push(rf);
-                    (functions.len() - 1) as u32
+                    reduced_nodes.push(node);
+                    (reduced_nodes.len() - 1) as u32
                 })
             });
             if f != EMPTY {
@@ -608,24 +419,36 @@ impl Grid {
             }
             *cell = f;
         }
-        let used_functions = functions.len() as u64;
-        let full = match by_node.get(&full_node) {
-            Some(&i) => i,
-            None => {
-                functions.push(geometry.ray_function().clone());
-                (functions.len() - 1) as u32
-            }
+        let full_tape = |ctx| Tape::new(ctx, &[geometry.root()]).expect("the scene's tape builds");
+        let reduced_tapes: Vec<Tape> = reduced_nodes
+            .iter()
+            .map(|&node| Tape::new(&fctx, &[node]).unwrap_or_else(|_| full_tape(ctx)))
+            .collect();
+        let full = full_tape(ctx);
+        let full_instrs = full.len() as u64;
+        // Prune each cell's reduced function over its classification box.
+        let (functions, cells) = {
+            let g = &grid;
+            CellFunctions::build(
+                &reduced_tapes,
+                &reduced,
+                |idx| g.class_box(g.cell_of_index(idx)),
+                full,
+                geometry.ray_function(),
+            )
         };
         grid.cells = cells;
         grid.index_occupancy();
-        grid.functions = functions;
-        grid.full = full;
         grid.stats = GridStats {
             cells: ncells as u64,
             non_empty,
-            functions: used_functions,
+            functions: u64::from(functions.used),
+            reduced: reduced_nodes.len() as u64,
+            cell_instrs: functions.cell_instrs.div_ceil(non_empty.max(1)),
+            full_instrs,
             leaf_evals: (ncells * nused) as u64,
         };
+        grid.functions = functions;
         grid
     }
 
@@ -672,15 +495,34 @@ impl Grid {
         self.stats
     }
 
-    /// The compiled functions: the distinct reduced functions of the cells and the full
-    /// scene function ([`Grid::full_function`]).
-    pub fn functions(&self) -> &[RayFunction] {
-        &self.functions
+    /// Number of functions: the distinct functions of the cells and the full scene
+    /// function ([`Grid::full_function`]).
+    pub fn function_count(&self) -> usize {
+        self.functions.len()
     }
 
-    /// The index of the full scene function in [`Grid::functions`].
+    /// Function `index` restricted to rays ([`RayFunction`]), compiled on first use: a
+    /// cell's function (its objects' CSG trees reduced over the cell, then pruned by the
+    /// `min`/`max` choices of its interval evaluation over the cell) or the full scene
+    /// function.
+    ///
+    /// # Panics
+    /// If `index` is not below [`Grid::function_count`].
+    pub fn function(&self, index: u32) -> &RayFunction {
+        self.functions.ray(index)
+    }
+
+    /// Function `index` as a formula in `x y z` (see [`Grid::function`]).
+    ///
+    /// # Panics
+    /// If `index` is not below [`Grid::function_count`].
+    pub fn function_tape(&self, index: u32) -> &Tape {
+        self.functions.tape(index)
+    }
+
+    /// The index of the full scene function.
     pub fn full_function(&self) -> u32 {
-        self.full
+        self.functions.full
     }
 
     /// The function index of a cell, `None` for an empty cell.
@@ -715,10 +557,7 @@ impl Grid {
     /// Per-thread evaluators of the grid's functions whose interval evaluations run in
     /// `precision`.
     pub fn evaluator_with(&self, precision: Precision) -> GridEval {
-        GridEval {
-            evals: vec![None; self.functions.len()],
-            precision,
-        }
+        GridEval::with_precision(precision)
     }
 
     fn index_of(&self, c: [u32; 3]) -> usize {
@@ -847,7 +686,7 @@ impl Grid {
         if (0..3).all(|a| p[a].subset(c[a])) {
             f
         } else {
-            self.full
+            self.functions.full
         }
     }
 
@@ -948,6 +787,18 @@ impl Grid {
             visit(hit)?;
         }
         ControlFlow::Continue(())
+    }
+
+    /// The function that equals the scene function's sign at every point of the ray for
+    /// `t ∈ t` (a root enclosure, say), when one cell holds all of them: the first
+    /// non-empty cell the ray passes, when its parameter range holds `t` (its function, or
+    /// the full one where the ray's points are not proven inside the cell's box). `None`
+    /// when `t` spans several cells or meets no non-empty one.
+    pub fn function_over(&self, ray: &Ray, t: Interval<f64>) -> Option<u32> {
+        match self.for_each_ray_cell(ray, t, ControlFlow::Break) {
+            ControlFlow::Break(hit) if t.subset(hit.t) => Some(hit.function),
+            _ => None,
+        }
     }
 
     /// The non-empty cells the ray passes for `t ∈ t`, in visiting order (see

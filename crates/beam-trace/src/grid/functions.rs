@@ -1,0 +1,222 @@
+//! The functions the cells of a grid are searched with: each non-empty cell's reduced
+//! function, pruned by the `min`/`max` choices of its interval evaluation over the cell's
+//! classification box, compiled for rays on first use.
+//!
+//! # Pruning
+//!
+//! The CSG reduction drops whole objects and leaves; inside one leaf (a formula or a `.vm`
+//! model of hundreds of operations) it keeps every operation. An interval evaluation of the
+//! reduced function over the cell's classification box records which argument each `min`
+//! and `max` took ([`Evaluator::eval_traced`]); where the box decides it (`a ≤ b` proven
+//! everywhere in it), [`Tape::simplify`] keeps that argument only. The pruned function is
+//! *equal* to the reduced one at every point of the box (and its interval evaluation over
+//! any sub-box is the reduced function's, bound for bound), so it is sign-equivalent to the
+//! scene function there, as the reduced one is. Where some operation may be undefined in the
+//! box nothing is pruned, so definedness proofs are exactly as strong as before.
+//!
+//! Cells that prune to the same formula share one function: the cache is keyed by the pruned
+//! tape's content. A function is compiled for rays ([`RayFunction`]: `g` and `g'` by
+//! symbolic differentiation) when a ray or beam first needs it, so cells that no search
+//! reaches cost one interval evaluation each.
+
+use std::collections::HashMap;
+use std::sync::OnceLock;
+
+use implicit_expr::{Evaluator, RayFunction, Tape};
+use interval_core::Interval;
+use rayon::prelude::*;
+
+use crate::ibox::IBox;
+use crate::ray::{BeamEval, Precision};
+
+use super::EMPTY;
+
+/// Cells pruned per parallel piece before their tapes are merged into the cache (bounds the
+/// memory of tapes not yet deduplicated).
+const PIECE: usize = 4096;
+
+/// One function of the grid: its formula in `x y z` and, once needed, its ray form.
+#[derive(Clone, Debug)]
+struct CellFunction {
+    tape: Tape,
+    ray: OnceLock<RayFunction>,
+}
+
+/// The distinct functions of a grid's cells and the full scene function.
+#[derive(Clone, Debug)]
+pub(super) struct CellFunctions {
+    functions: Vec<CellFunction>,
+    /// The ray form of the full scene function, what a function that cannot be compiled
+    /// falls back to.
+    fallback: RayFunction,
+    /// Sum over the non-empty cells of their functions' instruction counts.
+    pub(super) cell_instrs: u64,
+    /// Distinct functions used by cells.
+    pub(super) used: u32,
+    /// Index of the full scene function.
+    pub(super) full: u32,
+}
+
+impl CellFunctions {
+    /// No function but the full scene function's ray form (a grid being built).
+    pub(super) fn empty(full_ray: &RayFunction) -> Self {
+        Self {
+            functions: Vec::new(),
+            fallback: full_ray.clone(),
+            cell_instrs: 0,
+            used: 0,
+            full: 0,
+        }
+    }
+
+    /// Prunes the reduced function of every non-empty cell over its classification box.
+    ///
+    /// `reduced[idx]` is cell `idx`'s index into `tapes` (the reduced functions in `x y z`),
+    /// [`EMPTY`] for an empty cell; `class_box(idx)` its classification box. `full` is the
+    /// full scene function's tape and `full_ray` its ray form. Returns the functions and
+    /// each cell's function index. Deterministic: indices follow the cells' order.
+    pub(super) fn build(
+        tapes: &[Tape],
+        reduced: &[u32],
+        class_box: impl Fn(usize) -> IBox + Sync,
+        full: Tape,
+        full_ray: &RayFunction,
+    ) -> (Self, Vec<u32>) {
+        let mut by_tape: HashMap<Tape, u32> = HashMap::new();
+        let mut functions: Vec<CellFunction> = Vec::new();
+        let mut cells = vec![EMPTY; reduced.len()];
+        let mut cell_instrs = 0_u64;
+        for (p, piece) in reduced.chunks(PIECE).enumerate() {
+            let base = p * PIECE;
+            let pruned: Vec<Option<Tape>> = piece
+                .par_iter()
+                .enumerate()
+                .map_init(
+                    || (None::<Evaluator<Interval<f64>>>, Vec::new()),
+                    |(eval, trace), (k, &r)| {
+                        if r == EMPTY {
+                            return None;
+                        }
+                        let tape = &tapes[r as usize];
+                        let e = match eval {
+                            Some(e) => {
+                                e.set_tape(tape);
+                                e
+                            }
+                            None => eval.insert(Evaluator::new(tape)),
+                        };
+                        let b = class_box(base + k);
+                        let pruned = e
+                            .eval_traced(&b, trace)
+                            .and_then(|_| tape.simplify(trace))
+                            .unwrap_or_else(|_| tape.clone());
+                        Some(pruned)
+                    },
+                )
+                .collect();
+            for (k, tape) in pruned.into_iter().enumerate() {
+                let Some(tape) = tape else { continue };
+                cell_instrs += tape.len() as u64;
+                let next = functions.len() as u32;
+                let index = *by_tape.entry(tape.clone()).or_insert_with(|| {
+                    functions.push(CellFunction {
+                        tape,
+                        ray: OnceLock::new(),
+                    });
+                    next
+                });
+                cells[base + k] = index;
+            }
+        }
+        let used = functions.len() as u32;
+        let full_index = match by_tape.get(&full) {
+            Some(&i) => i,
+            None => {
+                functions.push(CellFunction {
+                    tape: full,
+                    ray: OnceLock::new(),
+                });
+                (functions.len() - 1) as u32
+            }
+        };
+        let _ = functions[full_index as usize].ray.set(full_ray.clone());
+        (
+            Self {
+                functions,
+                fallback: full_ray.clone(),
+                cell_instrs,
+                used,
+                full: full_index,
+            },
+            cells,
+        )
+    }
+
+    /// Number of functions (the cells' and the full one).
+    pub(super) fn len(&self) -> usize {
+        self.functions.len()
+    }
+
+    /// The formula of function `index` in `x y z`.
+    pub(super) fn tape(&self, index: u32) -> &Tape {
+        &self.functions[index as usize].tape
+    }
+
+    /// The ray form of function `index`, compiled on first use (by any thread; the others
+    /// wait for it). A formula that cannot be compiled is searched with the full scene
+    /// function, which is valid everywhere.
+    pub(super) fn ray(&self, index: u32) -> &RayFunction {
+        let f = &self.functions[index as usize];
+        f.ray.get_or_init(|| {
+            f.tape
+                .to_context(&["x", "y", "z"])
+                .and_then(|(ctx, roots)| RayFunction::new(&ctx, roots[0]))
+                .unwrap_or_else(|_| self.fallback.clone())
+        })
+    }
+}
+
+/// Per-thread evaluator of a grid's functions: one [`BeamEval`] switched to the function of
+/// each cell searched (a switch to the function already set costs nothing).
+#[derive(Clone, Debug, Default)]
+pub struct GridEval {
+    eval: Option<BeamEval>,
+    precision: Precision,
+}
+
+impl GridEval {
+    /// An evaluator whose interval evaluations run in `precision`.
+    pub(super) fn with_precision(precision: Precision) -> Self {
+        Self {
+            eval: None,
+            precision,
+        }
+    }
+
+    /// The evaluator, set to function `index` of `grid`.
+    ///
+    /// # Panics
+    /// If `index` is not a function of `grid`.
+    pub fn get(&mut self, grid: &super::Grid, index: u32) -> &mut BeamEval {
+        let f = grid.function(index);
+        if let Some(e) = &mut self.eval {
+            e.set_function(f);
+        }
+        let precision = self.precision;
+        self.eval
+            .get_or_insert_with(|| BeamEval::with_precision(f, precision))
+    }
+
+    /// Sets the precision of the interval evaluations.
+    pub fn set_precision(&mut self, precision: Precision) {
+        self.precision = precision;
+        if let Some(e) = &mut self.eval {
+            e.set_precision(precision);
+        }
+    }
+
+    /// The precision of the interval evaluations.
+    pub fn precision(&self) -> Precision {
+        self.precision
+    }
+}
