@@ -179,7 +179,15 @@ fn search(
     // Each piece carries the end of the range it came from (how far a look-ahead may go).
     let mut stack: Vec<(Interval<f64>, f64)> = ranges.iter().rev().map(|r| (*r, r.sup())).collect();
     let mut bisections = 0u64;
+    // The end of the range whose region `g` is restricted to.
+    let mut restricted = f64::NAN;
     while let Some((t, end)) = stack.pop() {
+        if end != restricted {
+            // The first piece of a range is the range: every later evaluation of its
+            // pieces, look-ahead and T_final lies inside it.
+            g.restrict(t);
+            restricted = end;
+        }
         let (gt, continuous) = g.g_checked(t);
         counters.g_evals += 1;
         if !may_vanish(gt) {

@@ -37,6 +37,11 @@ pub trait RayFn {
     /// The floating-point value of `g` at the point `t` for the central ray, rounded to
     /// nearest: for the unreliable baselines only.
     fn g_point(&mut self, t: f64) -> f64;
+
+    /// Announces that the following interval evaluations all lie inside `t` (until the next
+    /// `restrict`), so that an implementation may specialise `g` to that region (prune its
+    /// tape). The default does nothing. Enclosures must stay as sound as without it.
+    fn restrict(&mut self, _t: Interval<f64>) {}
 }
 
 /// A ray `origin + t · dir`.
@@ -303,5 +308,14 @@ impl RayFn for BeamEval {
     #[inline]
     fn g_point(&mut self, t: f64) -> f64 {
         self.point.g(t)
+    }
+
+    /// Prunes the interval tape of `g` of the current precision to the beam over `t`
+    /// ([`RayEvaluator::restrict`]); a new beam, ray or function undoes it.
+    fn restrict(&mut self, t: Interval<f64>) {
+        match self.precision {
+            Precision::F64 => self.interval.restrict(t),
+            Precision::F32 => self.interval32.restrict(t.cast()),
+        }
     }
 }

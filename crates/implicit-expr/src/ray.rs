@@ -96,6 +96,10 @@ impl RayFunction {
 #[derive(Clone, Debug)]
 pub struct RayEvaluator<N> {
     g: Evaluator<N>,
+    /// `g`'s whole tape (the evaluator `g` may hold a pruned one, see
+    /// [`RayEvaluator::restrict`]).
+    g_full: Tape,
+    trace: Vec<crate::Choice>,
     g_dg: Evaluator<N>,
     vars: Vec<N>,
     out: [N; 2],
@@ -121,6 +125,8 @@ impl<N: Number> RayEvaluator<N> {
         vars.extend_from_slice(params);
         Ok(Self {
             g: Evaluator::new(&f.g),
+            g_full: f.g.clone(),
+            trace: Vec::new(),
             g_dg: Evaluator::new(&f.g_dg),
             vars,
             out: [zero; 2],
@@ -141,16 +147,50 @@ impl<N: Number> RayEvaluator<N> {
                 self.vars.len() - RAY_VARS.len()
             )));
         }
-        if !self.g.tape().ptr_eq(&f.g) {
-            self.g.set_tape(&f.g);
+        if !self.g_full.ptr_eq(&f.g) {
+            self.g_full = f.g.clone();
             self.g_dg.set_tape(&f.g_dg);
             self.continuous = f.g.is_continuous();
         }
+        self.g.set_tape(&f.g);
         Ok(())
     }
 
-    /// Sets the origin `c` and direction `d` of the ray (points) or beam (boxes).
+    /// Prunes `g` to the region of the ray or beam set over the parameters `t`: an
+    /// evaluation of `g` over it records the `min`/`max` choices, and later calls of
+    /// [`g`](Self::g) and [`g_checked`](Self::g_checked) evaluate the pruned tape
+    /// ([`Tape::simplify`]), which equals `g` at every point of the region and gives the
+    /// same enclosure over every part of it. Valid until the next `restrict`,
+    /// [`unrestrict`](Self::unrestrict), [`set_ray`](Self::set_ray) or
+    /// [`set_function`](Self::set_function); only parameters inside `t` may be asked
+    /// meanwhile. `g'` is not pruned. Where the trace cannot be taken, `g` stays whole.
+    pub fn restrict(&mut self, t: N) {
+        self.g.set_tape(&self.g_full);
+        self.vars[T.index()] = t;
+        let pruned = self
+            .g
+            .eval_traced(&self.vars, &mut self.trace)
+            .and_then(|_| self.g_full.simplify(&self.trace));
+        if let Ok(p) = pruned {
+            self.g.set_tape(&p);
+        }
+    }
+
+    /// Undoes [`restrict`](Self::restrict): `g` is evaluated whole again.
+    pub fn unrestrict(&mut self) {
+        self.g.set_tape(&self.g_full);
+    }
+
+    /// The number of instructions `g` is evaluated with now (fewer after a
+    /// [`restrict`](Self::restrict) that pruned).
+    pub fn g_len(&self) -> usize {
+        self.g.tape().len()
+    }
+
+    /// Sets the origin `c` and direction `d` of the ray (points) or beam (boxes); `g` is
+    /// evaluated whole again (see [`restrict`](Self::restrict)).
     pub fn set_ray(&mut self, origin: [N; 3], dir: [N; 3]) {
+        self.g.set_tape(&self.g_full);
         self.vars[0..3].copy_from_slice(&origin);
         self.vars[4..7].copy_from_slice(&dir);
     }

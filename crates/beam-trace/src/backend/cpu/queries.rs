@@ -112,6 +112,9 @@ impl CpuQueries<'_> {
     /// classified `parent` beam searches only what the parent left open (see
     /// [`child_window`]); inside a Hit parent, exactly the parent's `T_final`, whose ends
     /// already have one strict sign for every ray.
+    ///
+    /// The search restricts `g` to each range before searching it ([`RayFn::restrict`]):
+    /// the whole function pruned to the beam over the range.
     pub(super) fn classify(
         &self,
         ev: &mut Evals,
