@@ -220,3 +220,36 @@ impl GridEval {
         self.precision
     }
 }
+
+/// The scene function pruned to each cell, built when a cell is first asked for (normals
+/// at hit points): an interval evaluation of the whole function over the cell's
+/// classification box records the `min`/`max` choices, [`Tape::simplify`] keeps the taken
+/// arguments. Equal to the scene function at every point of the box, with the same
+/// gradient wherever the evaluators' `min`/`max` pick a side (they pick the side the
+/// interval evaluation proved).
+#[derive(Clone, Debug)]
+pub(super) struct SceneTapes {
+    full: Tape,
+    cells: Vec<OnceLock<Tape>>,
+}
+
+impl SceneTapes {
+    /// Nothing built yet for `cells` cells of the scene function `full`.
+    pub(super) fn new(full: Tape, cells: usize) -> Self {
+        Self {
+            full,
+            cells: (0..cells).map(|_| OnceLock::new()).collect(),
+        }
+    }
+
+    /// The scene function pruned to cell `idx`, whose classification box is `class_box`.
+    pub(super) fn get(&self, idx: usize, class_box: impl FnOnce() -> IBox) -> &Tape {
+        self.cells[idx].get_or_init(|| {
+            let mut e = Evaluator::<Interval<f64>>::new(&self.full);
+            let mut trace = Vec::new();
+            e.eval_traced(&class_box(), &mut trace)
+                .and_then(|_| self.full.simplify(&trace))
+                .unwrap_or_else(|_| self.full.clone())
+        })
+    }
+}

@@ -95,6 +95,7 @@ mod reduce;
 use std::collections::HashMap;
 use std::ops::ControlFlow;
 
+use glam::DVec3;
 use implicit_expr::{Evaluator, NodeId, RayFunction, Tape};
 use interval_core::Interval;
 use rayon::prelude::*;
@@ -103,8 +104,8 @@ use crate::ibox::IBox;
 use crate::ray::{Beam, Precision, Ray};
 use crate::root::{RootCounters, RootFinder, RootResult, RootSettings};
 use crate::scene::Geometry;
-use functions::CellFunctions;
 pub use functions::GridEval;
+use functions::{CellFunctions, SceneTapes};
 use reduce::{Sign, classify, combine, reduce};
 
 /// The function index of an empty cell (no point of the surface in it).
@@ -166,6 +167,7 @@ pub struct Grid {
     /// Per axis: whether each slab of cells across that axis holds a non-empty cell.
     planes: [Vec<bool>; 3],
     functions: CellFunctions,
+    scene: SceneTapes,
     stats: GridStats,
 }
 
@@ -332,6 +334,7 @@ impl Grid {
             lines: Default::default(),
             planes: Default::default(),
             functions: CellFunctions::empty(geometry.ray_function()),
+            scene: SceneTapes::new(geometry.tape().clone(), 0),
             stats: GridStats::default(),
         };
         let ncells = n.iter().map(|&k| k as usize).product::<usize>();
@@ -449,6 +452,7 @@ impl Grid {
             leaf_evals: (ncells * nused) as u64,
         };
         grid.functions = functions;
+        grid.scene = SceneTapes::new(geometry.tape().clone(), ncells);
         grid
     }
 
@@ -518,6 +522,22 @@ impl Grid {
     /// If `index` is not below [`Grid::function_count`].
     pub fn function_tape(&self, index: u32) -> &Tape {
         self.functions.tape(index)
+    }
+
+    /// The scene function pruned to the cell holding `p` (equal to it on the cell's
+    /// classification box, see the pruning of [`Grid::function`]), built on first use;
+    /// `None` when `p` is outside the grid (or not finite).
+    pub fn scene_tape_at(&self, p: DVec3) -> Option<&Tape> {
+        let v = p.to_array();
+        if !(0..3).all(|a| v[a] >= self.lo[a] && v[a] <= self.hi[a]) {
+            return None;
+        }
+        let cell: [u32; 3] = std::array::from_fn(|a| self.guess(a, v[a]));
+        let b = self.class_box(cell);
+        if !(0..3).all(|a| b[a].contains(v[a])) {
+            return None;
+        }
+        Some(self.scene.get(self.index_of(cell), || b))
     }
 
     /// The index of the full scene function.

@@ -232,6 +232,7 @@ impl Geometry {
     pub fn evaluator(&self) -> GeometryEval {
         GeometryEval {
             beam: BeamEval::new(&self.ray),
+            f_tape: self.f_tape.clone(),
             grad: Evaluator::new(&self.f_tape),
             igrad: Evaluator::new(&self.f_tape),
             interval: Evaluator::new(&self.f_tape),
@@ -250,6 +251,8 @@ impl Geometry {
 pub struct GeometryEval {
     /// `g` and `g'` of the scene function on rays and beams.
     pub beam: BeamEval,
+    /// The scene function's tape (the gradient evaluator may hold a pruned one).
+    f_tape: Tape,
     grad: Evaluator<Grad<f64>>,
     igrad: Evaluator<Grad<Interval<f64>>>,
     interval: Evaluator<Interval<f64>>,
@@ -264,6 +267,19 @@ pub struct GeometryEval {
 impl GeometryEval {
     /// The gradient of the scene function at `p` (rounded to nearest).
     pub fn gradient(&mut self, p: DVec3) -> DVec3 {
+        self.grad.set_tape(&self.f_tape);
+        self.gradient_of(p)
+    }
+
+    /// The unit normal at `p` computed from `tape`, a version of the scene function pruned
+    /// to a region holding `p` ([`Grid::scene_tape_at`](crate::grid::Grid::scene_tape_at)):
+    /// the same gradient as [`normal`](Self::normal), at the cost of the pruned tape.
+    pub fn normal_with(&mut self, tape: &Tape, p: DVec3) -> Option<DVec3> {
+        self.grad.set_tape(tape);
+        unit(self.gradient_of(p))
+    }
+
+    fn gradient_of(&mut self, p: DVec3) -> DVec3 {
         let g = self
             .grad
             .eval(&Grad::point(p.x, p.y, p.z))
@@ -273,9 +289,7 @@ impl GeometryEval {
 
     /// The unit normal at `p`, or `None` where the gradient vanishes or is not finite.
     pub fn normal(&mut self, p: DVec3) -> Option<DVec3> {
-        let g = self.gradient(p);
-        let n = g.normalize_or_zero();
-        (n != DVec3::ZERO && n.is_finite()).then_some(n)
+        unit(self.gradient(p))
     }
 
     /// Enclosures of the scene function and its gradient over a box.
@@ -306,6 +320,12 @@ impl GeometryEval {
             .expect("tape in x y z");
         nearest_zero(&self.object_values)
     }
+}
+
+/// The unit vector along a gradient, `None` where it vanishes or is not finite.
+fn unit(g: DVec3) -> Option<DVec3> {
+    let n = g.normalize_or_zero();
+    (n != DVec3::ZERO && n.is_finite()).then_some(n)
 }
 
 /// The index of the value of smallest magnitude (0 when all are NaN).

@@ -115,7 +115,12 @@ impl Queries for CpuQueries<'_> {
     }
 
     fn normals(&self, points: &[DVec3]) -> Result<Answers<Option<DVec3>>, Error> {
-        Ok(self.map(points, false, |ev, p, _| ev.geo.normal(*p)))
+        Ok(self.map(points, false, |ev, p, _| {
+            match self.grid.as_ref().and_then(|g| g.scene_tape_at(*p)) {
+                Some(tape) => ev.geo.normal_with(tape, *p),
+                None => ev.geo.normal(*p),
+            }
+        }))
     }
 
     fn segments(&self, queries: &[SegmentQuery]) -> Result<Answers<Visibility>, Error> {
