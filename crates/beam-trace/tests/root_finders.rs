@@ -673,3 +673,35 @@ proptest! {
         }
     }
 }
+
+/// A line whose values are enclosed 1e-13 wide, with an exact derivative: Newton contracts
+/// the piece around the root below that, where `g` at both ends of the final piece holds 0.
+/// The probe around the final piece still proves the root, and unique (`g'` = 3 excludes 0).
+#[test]
+fn pieces_narrower_than_the_enclosures_stay_proven() {
+    let mut line = TestFn {
+        name: "3t - 1",
+        g: |x| pt(3.0) * x - pt(1.0) + iv(-1e-13, 1e-13),
+        dg: |_| pt(3.0),
+        p: |t| 3.0 * t - 1.0,
+        jump: None,
+        t: (0.0, 1.0),
+        roots: &[1.0 / 3.0],
+        blur: 1e-13,
+    };
+    let settings = RootSettings {
+        epsilon: 1e-14,
+        ..RootSettings::default()
+    };
+    for m in [RootMethod::Newton, RootMethod::NewtonAlefeldHansen] {
+        let (r, _) = solve(m, &mut line, iv(0.0, 1.0), &settings);
+        check(m, &line, r, &settings);
+        match r {
+            RootResult::Root { t, proof } => {
+                assert!(t.contains(1.0 / 3.0), "{m:?}: {t:?}");
+                assert_eq!(proof, Proof::Unique, "{m:?}: {t:?}");
+            }
+            other => panic!("{m:?}: {other:?}"),
+        }
+    }
+}
