@@ -19,6 +19,7 @@
 //! adds the continuity check the intermediate value theorem needs (a formula with a pole
 //! or a step changes sign without a root).
 
+use implicit_expr::Tape;
 use interval_core::Interval;
 
 use crate::ibox::{IBox, ipoint};
@@ -176,18 +177,51 @@ fn search(
     counters: &mut RootCounters,
 ) -> BoxClass {
     let inside = |t: f64| extent.is_none_or(|e| e.holds(t));
-    // Each piece carries the end of the range it came from (how far a look-ahead may go).
-    let mut stack: Vec<(Interval<f64>, f64)> = ranges.iter().rev().map(|r| (*r, r.sup())).collect();
+    // Each piece carries the end of the range it came from (how far a look-ahead may go)
+    // and the restriction of `g` it lies in.
+    let mut stack: Vec<Piece> = ranges
+        .iter()
+        .rev()
+        .map(|r| Piece {
+            t: *r,
+            end: r.sup(),
+            scope: None,
+        })
+        .collect();
     let mut bisections = 0u64;
-    // The end of the range whose region `g` is restricted to.
-    let mut restricted = f64::NAN;
-    while let Some((t, end)) = stack.pop() {
-        if end != restricted {
-            // The first piece of a range is the range: every later evaluation of its
-            // pieces, look-ahead and T_final lies inside it.
+    // The range being searched, and the restriction set now.
+    let mut range_end = f64::NAN;
+    let mut range_scope: Option<Tape> = None;
+    let mut current: Option<Tape> = None;
+    while let Some(Piece { t, end, scope }) = stack.pop() {
+        let mut scope = match scope {
+            // The first piece of a range is the range: every later evaluation of its pieces,
+            // look-ahead and T_final lies inside it.
+            _ if end != range_end => {
+                range_end = end;
+                g.unrestrict();
+                g.restrict(t);
+                range_scope = g.scope();
+                range_scope.clone().map(|tape| Scope { tape, wid: t.wid() })
+            }
+            Some(s) => {
+                if current.as_ref().is_none_or(|c| !c.ptr_eq(&s.tape)) {
+                    g.set_scope(&s.tape);
+                }
+                Some(s)
+            }
+            None => None,
+        };
+        if let Some(s) = &scope
+            && t.wid() <= RESTRICT_AGAIN * s.wid
+            && s.tape.len() > RESTRICT_MIN_LEN
+        {
+            // Deep enough below the last restriction: prune again, for this piece and
+            // everything searched inside it.
             g.restrict(t);
-            restricted = end;
+            scope = g.scope().map(|tape| Scope { tape, wid: t.wid() });
         }
+        current = scope.as_ref().map(|s| s.tape.clone());
         let (gt, continuous) = g.g_checked(t);
         counters.g_evals += 1;
         if !may_vanish(gt) {
@@ -206,6 +240,12 @@ fn search(
         if t.wid() <= settings.epsilon.max(settings.rel_epsilon * t.inf())
             || bisections >= settings.max_bisections
         {
+            // The look-ahead leaves the piece: back to the range's restriction.
+            if let Some(r) = &range_scope
+                && current.as_ref().is_some_and(|c| !c.ptr_eq(r))
+            {
+                g.set_scope(r);
+            }
             if inclusion
                 && inside(t.inf())
                 && let Some(t) = look_ahead(g, t, end, &inside, counters)
@@ -219,11 +259,38 @@ fn search(
         let (l, r) = t.bisect();
         bisections += 1;
         counters.bisections += 1;
-        stack.push((r, end));
-        stack.push((l, end));
+        stack.push(Piece {
+            t: r,
+            end,
+            scope: scope.clone(),
+        });
+        stack.push(Piece { t: l, end, scope });
     }
     BoxClass::Miss
 }
+
+/// A restriction of `g` ([`RayFn::restrict`]) and the width of the parameters it holds.
+#[derive(Clone, Debug)]
+struct Scope {
+    tape: Tape,
+    wid: f64,
+}
+
+/// A piece of a beam's search: its parameters, the end of the range it belongs to, and
+/// the restriction it lies in (`None` for the first piece of a range, or where `g` has no
+/// restrictions).
+struct Piece {
+    t: Interval<f64>,
+    end: f64,
+    scope: Option<Scope>,
+}
+
+/// A piece at most this fraction of its restriction's width is restricted again: every two
+/// bisections (each restriction costs about three evaluations of the tape it prunes).
+const RESTRICT_AGAIN: f64 = 0.25;
+
+/// Tapes this short are not pruned further.
+const RESTRICT_MIN_LEN: usize = 12;
 
 /// How far [`look_ahead`] looks: up to `2^LOOK_AHEAD` widths of the final piece.
 const LOOK_AHEAD: u32 = 8;

@@ -12,7 +12,7 @@ use std::fmt;
 use std::str::FromStr;
 
 use glam::DVec3;
-use implicit_expr::{RayEvaluator, RayFunction};
+use implicit_expr::{RayEvaluator, RayFunction, Tape};
 use interval_core::Interval;
 
 pub use crate::ibox::{IBox, ipoint, ival, point_box};
@@ -38,10 +38,25 @@ pub trait RayFn {
     /// nearest: for the unreliable baselines only.
     fn g_point(&mut self, t: f64) -> f64;
 
-    /// Announces that the following interval evaluations all lie inside `t` (until the next
-    /// `restrict`), so that an implementation may specialise `g` to that region (prune its
-    /// tape). The default does nothing. Enclosures must stay as sound as without it.
+    /// Announces that the following interval evaluations all lie inside `t`, which lies
+    /// inside the region of the current scope (the whole ray or beam, or an earlier
+    /// restriction), so that an implementation may specialise `g` to it (prune its tape).
+    /// The default does nothing. Enclosures must stay as sound as without it.
     fn restrict(&mut self, _t: Interval<f64>) {}
+
+    /// Returns to the whole `g` of the ray or beam set (no restriction).
+    fn unrestrict(&mut self) {}
+
+    /// A handle of the current restriction, to return to it with
+    /// [`set_scope`](RayFn::set_scope) after evaluations elsewhere (`None`: nothing to
+    /// return to, the default).
+    fn scope(&self) -> Option<Tape> {
+        None
+    }
+
+    /// Returns to a restriction that [`scope`](RayFn::scope) gave for the same ray or beam;
+    /// only parameters inside its region may be asked then.
+    fn set_scope(&mut self, _scope: &Tape) {}
 }
 
 /// A ray `origin + t · dir`.
@@ -316,6 +331,25 @@ impl RayFn for BeamEval {
         match self.precision {
             Precision::F64 => self.interval.restrict(t),
             Precision::F32 => self.interval32.restrict(t.cast()),
+        }
+    }
+
+    fn unrestrict(&mut self) {
+        self.interval.unrestrict();
+        self.interval32.unrestrict();
+    }
+
+    fn scope(&self) -> Option<Tape> {
+        Some(match self.precision {
+            Precision::F64 => self.interval.scope().clone(),
+            Precision::F32 => self.interval32.scope().clone(),
+        })
+    }
+
+    fn set_scope(&mut self, scope: &Tape) {
+        match self.precision {
+            Precision::F64 => self.interval.set_scope(scope),
+            Precision::F32 => self.interval32.set_scope(scope),
         }
     }
 }

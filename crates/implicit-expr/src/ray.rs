@@ -160,25 +160,44 @@ impl<N: Number> RayEvaluator<N> {
     /// evaluation of `g` over it records the `min`/`max` choices, and later calls of
     /// [`g`](Self::g) and [`g_checked`](Self::g_checked) evaluate the pruned tape
     /// ([`Tape::simplify`]), which equals `g` at every point of the region and gives the
-    /// same enclosure over every part of it. Valid until the next `restrict`,
-    /// [`unrestrict`](Self::unrestrict), [`set_ray`](Self::set_ray) or
-    /// [`set_function`](Self::set_function); only parameters inside `t` may be asked
-    /// meanwhile. `g'` is not pruned. Where the trace cannot be taken, `g` stays whole.
+    /// same enclosure over every part of it. `g'` is not pruned. Where the trace cannot be
+    /// taken, `g` stays as it was.
+    ///
+    /// The tape pruned is the one evaluated now: the whole `g`, or the tape of an earlier
+    /// `restrict` (or [`scope`](Self::scope) set again by [`set_scope`](Self::set_scope))
+    /// whose region holds this one, so nested restrictions cost less and less. Only
+    /// parameters inside `t` may be asked until the scope changes again;
+    /// [`unrestrict`](Self::unrestrict), [`set_ray`](Self::set_ray) and
+    /// [`set_function`](Self::set_function) return to the whole `g`.
     pub fn restrict(&mut self, t: N) {
-        self.g.set_tape(&self.g_full);
         self.vars[T.index()] = t;
+        let current = self.g.tape().clone();
         let pruned = self
             .g
             .eval_traced(&self.vars, &mut self.trace)
-            .and_then(|_| self.g_full.simplify(&self.trace));
+            .and_then(|_| current.simplify(&self.trace));
         if let Ok(p) = pruned {
             self.g.set_tape(&p);
         }
     }
 
-    /// Undoes [`restrict`](Self::restrict): `g` is evaluated whole again.
+    /// Undoes every [`restrict`](Self::restrict): `g` is evaluated whole again.
     pub fn unrestrict(&mut self) {
         self.g.set_tape(&self.g_full);
+    }
+
+    /// The tape `g` is evaluated with now: the whole `g` or a [`restrict`](Self::restrict)ed
+    /// one. Handing it back to [`set_scope`](Self::set_scope) later (for the same ray or
+    /// beam and function) returns to that restriction without pruning again.
+    pub fn scope(&self) -> &Tape {
+        self.g.tape()
+    }
+
+    /// Evaluates `g` with `scope`, a tape that [`scope`](Self::scope) returned for the ray
+    /// or beam set now; only parameters inside the region it was restricted to may be
+    /// asked. Free when it is the tape set already.
+    pub fn set_scope(&mut self, scope: &Tape) {
+        self.g.set_tape(scope);
     }
 
     /// The number of instructions `g` is evaluated with now (fewer after a
