@@ -85,6 +85,18 @@ pub fn child_window(parent: Option<&BoxClass>) -> Interval<f64> {
     }
 }
 
+/// A restriction of the scene function to a beam over the parameters `t` (a tape pruned by
+/// [`RayFn::restrict`], see [`RayFn::scope`]), which a beam lying inside that beam may start
+/// its own restrictions from: over any `t' ⊆ t` its rays' points lie in the region the tape
+/// was pruned for. Only meaningful to the evaluator (function and precision) that made it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BeamScope {
+    /// The pruned tape.
+    pub tape: Tape,
+    /// The parameters it holds for.
+    pub t: Interval<f64>,
+}
+
 /// `[0, +∞]`: rays start at their origin.
 pub fn forward() -> Interval<f64> {
     Interval::new_unchecked(0.0, f64::INFINITY)
@@ -125,7 +137,7 @@ pub fn rejection_test(
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> bool {
-    search(g, ranges, None, settings, false, counters) == BoxClass::Miss
+    search(g, ranges, None, settings, false, None, counters).0 == BoxClass::Miss
 }
 
 /// The inclusion test on one range `t` (Fig. 5.9, made sound as described in the module
@@ -152,7 +164,7 @@ pub fn rejection_search(
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> BoxClass {
-    search(g, ranges, None, settings, false, counters)
+    search(g, ranges, None, settings, false, None, counters).0
 }
 
 /// EvaluateBox (Fig. 5.10): the rejection and inclusion tests in one front-to-back search
@@ -165,7 +177,23 @@ pub fn evaluate_box(
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> BoxClass {
-    search(g, ranges, extent, settings, true, counters)
+    search(g, ranges, extent, settings, true, None, counters).0
+}
+
+/// [`evaluate_box`] for a beam lying inside a beam whose restriction `inherited` is known:
+/// a range inside `inherited.t` is restricted starting from `inherited.tape` rather than
+/// the whole function. Also returns the restriction of the range where the search ended
+/// (the range of a Hit's `T_final` or of an Undecided piece), for the beams inside this
+/// one; `None` for a Miss.
+pub fn evaluate_box_within(
+    g: &mut dyn RayFn,
+    ranges: &[Interval<f64>],
+    inherited: Option<&BeamScope>,
+    extent: Option<&Extent<'_>>,
+    settings: &BeamSettings,
+    counters: &mut RootCounters,
+) -> (BoxClass, Option<BeamScope>) {
+    search(g, ranges, extent, settings, true, inherited, counters)
 }
 
 fn search(
@@ -174,8 +202,9 @@ fn search(
     extent: Option<&Extent<'_>>,
     settings: &BeamSettings,
     inclusion: bool,
+    inherited: Option<&BeamScope>,
     counters: &mut RootCounters,
-) -> BoxClass {
+) -> (BoxClass, Option<BeamScope>) {
     let inside = |t: f64| extent.is_none_or(|e| e.holds(t));
     // Each piece carries the end of the range it came from (how far a look-ahead may go)
     // and the restriction of `g` it lies in.
@@ -191,6 +220,7 @@ fn search(
     let mut bisections = 0u64;
     // The range being searched, and the restriction set now.
     let mut range_end = f64::NAN;
+    let mut range = Interval::EMPTY;
     let mut range_scope: Option<Tape> = None;
     let mut current: Option<Tape> = None;
     while let Some(Piece { t, end, scope }) = stack.pop() {
@@ -199,7 +229,13 @@ fn search(
             // look-ahead and T_final lies inside it.
             _ if end != range_end => {
                 range_end = end;
+                range = t;
                 g.unrestrict();
+                if let Some(s) = inherited
+                    && t.subset(s.t)
+                {
+                    g.set_scope(&s.tape);
+                }
                 g.restrict(t);
                 range_scope = g.scope();
                 range_scope.clone().map(|tape| Scope { tape, wid: t.wid() })
@@ -233,9 +269,10 @@ fn search(
             && inside(t.sup())
             && ends_change_sign(g, t, counters)
         {
-            return BoxClass::Hit {
+            let class = BoxClass::Hit {
                 t_final: t_final(g, t, settings, counters),
             };
+            return (class, scope_of(&range_scope, range));
         }
         if t.wid() <= settings.epsilon.max(settings.rel_epsilon * t.inf())
             || bisections >= settings.max_bisections
@@ -250,11 +287,12 @@ fn search(
                 && inside(t.inf())
                 && let Some(t) = look_ahead(g, t, end, &inside, counters)
             {
-                return BoxClass::Hit {
+                let class = BoxClass::Hit {
                     t_final: t_final(g, t, settings, counters),
                 };
+                return (class, scope_of(&range_scope, range));
             }
-            return BoxClass::Undecided { t };
+            return (BoxClass::Undecided { t }, scope_of(&range_scope, range));
         }
         let (l, r) = t.bisect();
         bisections += 1;
@@ -266,7 +304,12 @@ fn search(
         });
         stack.push(Piece { t: l, end, scope });
     }
-    BoxClass::Miss
+    (BoxClass::Miss, None)
+}
+
+/// The restriction of the range `t` as a [`BeamScope`].
+fn scope_of(tape: &Option<Tape>, t: Interval<f64>) -> Option<BeamScope> {
+    tape.clone().map(|tape| BeamScope { tape, t })
 }
 
 /// A restriction of `g` ([`RayFn::restrict`]) and the width of the parameters it holds.

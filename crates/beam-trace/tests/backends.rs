@@ -7,10 +7,9 @@
 //!   them with the reason, and the output is again the CPU's.
 
 use beam_trace::backend::{
-    Answers, Backend, BeamQuery, HitQuery, Prepared, Queries, QueryKind, RayQuery, SegmentQuery,
-    ShadeBatch, SoftAnswers, Support, VariationQuery,
+    Answers, Backend, BeamQuery, Classified, HitQuery, Prepared, Queries, QueryKind, RayQuery,
+    SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
-use beam_trace::beam::BoxClass;
 use beam_trace::root::RootResult;
 use beam_trace::shadow::hard::Visibility;
 use beam_trace::shadow::{ShadowQuery, ShadowSpec, ShadowWork};
@@ -76,7 +75,7 @@ impl PieceQueries<'_> {
 }
 
 impl Queries for PieceQueries<'_> {
-    fn beams(&self, q: &[BeamQuery]) -> Result<Answers<BoxClass>, Error> {
+    fn beams(&self, q: &[BeamQuery]) -> Result<Answers<Classified>, Error> {
         self.pieces(q, |c| self.inner.beams(c))
     }
     fn roots(&self, q: &[RayQuery]) -> Result<Answers<RootResult>, Error> {

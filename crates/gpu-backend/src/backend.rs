@@ -10,8 +10,8 @@
 use std::time::Instant;
 
 use beam_trace::backend::{
-    Answers, Backend, BeamQuery, HitQuery, Prepared, Queries, QueryKind, RayQuery, SegmentQuery,
-    ShadeBatch, SoftAnswers, Support, VariationQuery,
+    Answers, Backend, BeamQuery, Classified, HitQuery, Prepared, Queries, QueryKind, RayQuery,
+    SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use beam_trace::beam::BoxClass;
 use beam_trace::beam::child_window;
@@ -308,12 +308,14 @@ fn map<T, U>(a: Answers<T>, f: impl Fn(T) -> U) -> Answers<U> {
 }
 
 impl Queries for GpuQueries<'_> {
-    fn beams(&self, queries: &[BeamQuery]) -> Result<Answers<BoxClass>, Error> {
+    fn beams(&self, queries: &[BeamQuery]) -> Result<Answers<Classified>, Error> {
         let q: Vec<beams::BeamQuery> = queries
             .iter()
             .map(|b| self.query(b.beam, child_window(b.parent.as_ref())))
             .collect();
-        Ok(map(self.classify(&q, &self.primary)?, box_class))
+        Ok(map(self.classify(&q, &self.primary)?, |c| {
+            Classified::from(box_class(c))
+        }))
     }
 
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error> {

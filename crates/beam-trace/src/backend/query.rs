@@ -5,7 +5,7 @@ use std::fmt;
 use glam::DVec3;
 use interval_core::Interval;
 
-use crate::beam::BoxClass;
+use crate::beam::{BeamScope, BoxClass};
 use crate::ray::{Beam, Ray};
 use crate::root::RootCounters;
 use crate::scene::Material;
@@ -81,12 +81,33 @@ pub enum Support {
 /// A beam to classify: every ray of `beam`, searched where its `parent` beam (the beam it
 /// was split from, if any) left the rays open (see
 /// [`child_window`](crate::beam::child_window)).
-#[derive(Copy, Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct BeamQuery {
     /// The beam.
     pub beam: Beam,
     /// The class of the beam it lies in.
     pub parent: Option<BoxClass>,
+    /// What the backend that classified the parent beam handed on with its answer
+    /// ([`Classified::scope`]), `None` for a first beam or a backend without one.
+    pub scope: Option<BeamScope>,
+}
+
+/// The answer to a [`BeamQuery`]: the beam's class and, where the backend has one, a
+/// restriction of the scene function to the beam that the beams inside it may start from
+/// (the CPU's pruned tape of the range the search ended in; see
+/// [`evaluate_box_within`](crate::beam::evaluate_box_within)).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Classified {
+    /// The class.
+    pub class: BoxClass,
+    /// For the beams inside this one ([`BeamQuery::scope`]).
+    pub scope: Option<BeamScope>,
+}
+
+impl From<BoxClass> for Classified {
+    fn from(class: BoxClass) -> Self {
+        Self { class, scope: None }
+    }
 }
 
 /// A ray whose first root is wanted for parameters in `window` (clipped to `t ≥ 0`).

@@ -7,11 +7,10 @@ use glam::DVec3;
 
 use super::cpu::Cpu;
 use super::query::{
-    Answers, BeamQuery, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch, SoftAnswers,
-    Support, VariationQuery,
+    Answers, BeamQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch,
+    SoftAnswers, Support, VariationQuery,
 };
 use super::traits::{Backend, Prepared, Queries};
-use crate::beam::BoxClass;
 use crate::error::Error;
 use crate::plan::{Pass, Plan};
 use crate::root::RootResult;
@@ -182,7 +181,7 @@ impl Routed<'_> {
 }
 
 impl Queries for Routed<'_> {
-    fn beams(&self, q: &[BeamQuery]) -> Result<Answers<BoxClass>, Error> {
+    fn beams(&self, q: &[BeamQuery]) -> Result<Answers<Classified>, Error> {
         self.to(QueryKind::Beams).beams(q)
     }
     fn roots(&self, q: &[RayQuery]) -> Result<Answers<RootResult>, Error> {

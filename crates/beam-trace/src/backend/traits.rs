@@ -3,10 +3,9 @@
 use glam::DVec3;
 
 use super::query::{
-    Answers, BeamQuery, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch, SoftAnswers,
-    Support, VariationQuery,
+    Answers, BeamQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch,
+    SoftAnswers, Support, VariationQuery,
 };
-use crate::beam::BoxClass;
 use crate::error::Error;
 use crate::plan::Plan;
 use crate::root::RootResult;
@@ -25,7 +24,7 @@ pub trait Queries: Sync {
     /// Classifies each beam: [`BoxClass::Miss`] proves that no ray of it meets a surface
     /// where its parent left it open; [`BoxClass::Hit`] that every ray has its first root in
     /// `T_final`; else [`BoxClass::Undecided`] with the first range not rejected.
-    fn beams(&self, queries: &[BeamQuery]) -> Result<Answers<BoxClass>, Error>;
+    fn beams(&self, queries: &[BeamQuery]) -> Result<Answers<Classified>, Error>;
 
     /// The first root of each ray in its window.
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error>;

@@ -15,8 +15,8 @@ use interval_core::Interval;
 use super::pixels::{Pixels, offsets};
 use super::{PixelSamples, RowBatch, row_batches};
 use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery, VariationQuery};
-use crate::beam::BoxClass;
 use crate::beam::forward;
+use crate::beam::{BeamScope, BoxClass};
 use crate::error::Error;
 use crate::plan::Pass;
 use crate::progress::Progress;
@@ -29,7 +29,7 @@ use crate::stats::counters::IaaCounters;
 pub use crate::aa::normal_variation;
 
 /// A sub-pixel waiting for its beam.
-#[derive(Copy, Clone, Debug)]
+#[derive(Clone, Debug)]
 struct Part {
     /// The pixel, in the batch.
     pixel: usize,
@@ -44,10 +44,16 @@ struct Part {
     path: u64,
     /// The class of the beam it was split from.
     parent: Option<BoxClass>,
+    /// The backend's scope of the beam it was split from.
+    scope: Option<BeamScope>,
 }
 
 impl Part {
-    fn quadrants(&self, class: BoxClass) -> impl Iterator<Item = Part> + '_ {
+    fn quadrants(
+        &self,
+        class: BoxClass,
+        scope: Option<BeamScope>,
+    ) -> impl Iterator<Item = Part> + '_ {
         let h = 0.5 * self.size;
         [(0.0, 0.0), (h, 0.0), (0.0, h), (h, h)]
             .into_iter()
@@ -60,6 +66,7 @@ impl Part {
                 depth: self.depth + 1,
                 path: self.path | (k as u64) << (62 - 2 * self.depth),
                 parent: Some(class),
+                scope: scope.clone(),
             })
     }
 }
@@ -103,6 +110,7 @@ pub(super) fn iaa(
                     depth: 0,
                     path: 0,
                     parent: None,
+                    scope: None,
                 }
             })
             .collect();
@@ -112,6 +120,7 @@ pub(super) fn iaa(
                 .map(|p| BeamQuery {
                     beam: cam.beam(p.x0, p.y0, p.x0 + p.size, p.y0 + p.size),
                     parent: p.parent,
+                    scope: p.scope.clone(),
                 })
                 .collect();
             let answers = q.beams(&beams)?;
@@ -120,7 +129,11 @@ pub(super) fn iaa(
             for (p, t) in level.iter().zip(&answers.cost) {
                 pixel_cost[p.pixel] += t;
             }
-            let classes = answers.values;
+            let (classes, scopes): (Vec<BoxClass>, Vec<Option<BeamScope>>) = answers
+                .values
+                .into_iter()
+                .map(|a| (a.class, a.scope))
+                .unzip();
             // The normal variation of the hits that may be shaded once.
             let judged: Vec<usize> = (0..level.len())
                 .filter(|&j| {
@@ -172,7 +185,7 @@ pub(super) fn iaa(
                     }
                     BoxClass::Hit { .. } => {
                         c.splits_variation += 1;
-                        next.extend(p.quadrants(*class));
+                        next.extend(p.quadrants(*class, scopes[j].clone()));
                     }
                     BoxClass::Undecided { t } if at_limit => {
                         // The central ray may miss while some ray of the beam meets the
@@ -187,7 +200,7 @@ pub(super) fn iaa(
                     }
                     BoxClass::Undecided { .. } => {
                         c.splits_undecided += 1;
-                        next.extend(p.quadrants(*class));
+                        next.extend(p.quadrants(*class, scopes[j].clone()));
                     }
                 }
             }

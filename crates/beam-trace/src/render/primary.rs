@@ -8,7 +8,7 @@ use rayon::prelude::*;
 use super::pixels::{self, Pixels, owners};
 use super::{PixelSamples, RowBatch, row_batches};
 use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery};
-use crate::beam::BoxClass;
+use crate::beam::{BeamScope, BoxClass};
 use crate::beam::{child_window, forward};
 use crate::camera::Camera;
 use crate::error::Error;
@@ -42,12 +42,15 @@ pub(super) fn screen_boxes(
     progress.begin(Pass::ScreenBoxes.name(), u64::from(w) * u64::from(h));
     let mut classes: PixelClasses = vec![None; w as usize * h as usize];
     let mut c = ScreenBoxCounters::default();
-    let mut level: Vec<(PixelRect, Option<BoxClass>)> =
-        tiles(w, h, TILE).into_iter().map(|t| (t, None)).collect();
+    // Each box with the class and the backend's scope of the box it was split from.
+    let mut level: Vec<(PixelRect, Option<BoxClass>, Option<BeamScope>)> = tiles(w, h, TILE)
+        .into_iter()
+        .map(|t| (t, None, None))
+        .collect();
     while !level.is_empty() {
         let queries: Vec<BeamQuery> = level
             .iter()
-            .map(|(r, parent)| BeamQuery {
+            .map(|(r, parent, scope)| BeamQuery {
                 beam: cam.beam(
                     f64::from(r.x0),
                     f64::from(r.y0),
@@ -55,15 +58,21 @@ pub(super) fn screen_boxes(
                     f64::from(r.y1),
                 ),
                 parent: *parent,
+                scope: scope.clone(),
             })
             .collect();
         let answers = q.beams(&queries)?;
         c.beams += queries.len() as u64;
         c.search.add(&answers.search);
         let mut next = Vec::new();
-        for ((rect, _), class) in level.iter().zip(answers.values) {
+        for ((rect, _, _), answer) in level.iter().zip(answers.values) {
+            let class = answer.class;
             if needs_split(rect, &class, plan.t_final_width) {
-                next.extend(rect.split().into_iter().map(|r| (r, Some(class))));
+                next.extend(
+                    rect.split()
+                        .into_iter()
+                        .map(|r| (r, Some(class), answer.scope.clone())),
+                );
                 continue;
             }
             let count = match class {

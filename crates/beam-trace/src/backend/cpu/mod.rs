@@ -13,12 +13,11 @@ use interval_core::Interval;
 use rayon::prelude::*;
 
 use super::query::{
-    Answers, BeamQuery, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch, SoftAnswers,
-    Support, VariationQuery,
+    Answers, BeamQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch,
+    SoftAnswers, Support, VariationQuery,
 };
 use super::traits::{Backend, Prepared, Queries};
 use crate::aa::normal_variation;
-use crate::beam::BoxClass;
 use crate::error::Error;
 use crate::grid::Grid;
 use crate::plan::{Pass, Plan};
@@ -90,10 +89,8 @@ impl Backend for Cpu {
 }
 
 impl Queries for CpuQueries<'_> {
-    fn beams(&self, queries: &[BeamQuery]) -> Result<Answers<BoxClass>, Error> {
-        Ok(self.map(queries, true, |ev, q, c| {
-            self.classify(ev, &q.beam, q.parent.as_ref(), c)
-        }))
+    fn beams(&self, queries: &[BeamQuery]) -> Result<Answers<Classified>, Error> {
+        Ok(self.map(queries, true, |ev, q, c| self.classify(ev, q, c)))
     }
 
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error> {

@@ -7,7 +7,8 @@ use interval_core::Interval;
 use rayon::prelude::*;
 
 use crate::backend::query::Answers;
-use crate::beam::{BoxClass, Extent, child_window, evaluate_box, forward};
+use crate::backend::query::{BeamQuery, Classified};
+use crate::beam::{BoxClass, Extent, child_window, evaluate_box_within, forward};
 use crate::grid::{Grid, GridEval};
 use crate::plan::Plan;
 use crate::ray::{Beam, BeamEval, Ray};
@@ -118,16 +119,16 @@ impl CpuQueries<'_> {
     pub(super) fn classify(
         &self,
         ev: &mut Evals,
-        beam: &Beam,
-        parent: Option<&BoxClass>,
+        query: &BeamQuery,
         c: &mut RootCounters,
-    ) -> BoxClass {
+    ) -> Classified {
+        let (beam, parent) = (&query.beam, query.parent.as_ref());
         let ranges = match parent {
             Some(BoxClass::Hit { t_final }) => vec![*t_final],
             _ => self.beam_ranges(beam, child_window(parent)),
         };
         if ranges.is_empty() {
-            return BoxClass::Miss;
+            return BoxClass::Miss.into();
         }
         ev.geo.beam.set_beam(beam);
         let bounds = self.scene.geometry.bounds();
@@ -135,7 +136,15 @@ impl CpuQueries<'_> {
             beam,
             bounds: &bounds,
         };
-        evaluate_box(&mut ev.geo.beam, &ranges, Some(&extent), &self.plan.beam, c)
+        let (class, scope) = evaluate_box_within(
+            &mut ev.geo.beam,
+            &ranges,
+            query.scope.as_ref(),
+            Some(&extent),
+            &self.plan.beam,
+            c,
+        );
+        Classified { class, scope }
     }
 
     /// The first root along `ray` for parameters in `t` (clipped to `t ≥ 0`): through the
