@@ -1100,3 +1100,29 @@ fn one_large_leaf_is_pruned_per_cell() {
     assert!(st.functions > 1, "{st:?}");
     assert!(st.cell_instrs * 2 < st.full_instrs, "{st:?}");
 }
+
+#[test]
+fn the_cells_leaf_candidates_find_the_same_leaf() {
+    let mut rng = Rng::new(6);
+    let mut narrowed = 0;
+    for (name, g) in scenes() {
+        let grid = Grid::build(&g, 6);
+        let mut ev = g.evaluator();
+        for c in all_cells(&grid) {
+            if grid.cell_function(c).is_none() {
+                continue;
+            }
+            for _ in 0..20 {
+                let p = rng.in_box(&grid.cell_box(c));
+                let Some(cands) = grid.leaf_candidates_at(p) else {
+                    continue;
+                };
+                if cands.leaves.len() < g.leaves().len() {
+                    narrowed += 1;
+                }
+                assert_eq!(ev.leaf_among(&cands, p), ev.leaf_at(p), "{name} {c:?} {p}");
+            }
+        }
+    }
+    assert!(narrowed > 0, "no cell narrowed the search");
+}

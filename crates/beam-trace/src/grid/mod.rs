@@ -90,6 +90,7 @@
 //! them every ray of the beam is in empty cells or outside the scene bounds.
 
 mod functions;
+mod leaves;
 mod reduce;
 
 use std::collections::HashMap;
@@ -106,7 +107,9 @@ use crate::root::{RootCounters, RootFinder, RootResult, RootSettings};
 use crate::scene::Geometry;
 pub use functions::GridEval;
 use functions::{CellFunctions, SceneTapes};
-use reduce::{Sign, classify, combine, reduce};
+use leaves::CellLeaves;
+pub use leaves::LeafCandidates;
+use reduce::{C_NEG, C_POS, Sign, classify, combine, reduce};
 
 /// The function index of an empty cell (no point of the surface in it).
 pub const EMPTY: u32 = u32::MAX;
@@ -168,6 +171,7 @@ pub struct Grid {
     planes: [Vec<bool>; 3],
     functions: CellFunctions,
     scene: SceneTapes,
+    leaves: CellLeaves,
     stats: GridStats,
 }
 
@@ -335,6 +339,7 @@ impl Grid {
             planes: Default::default(),
             functions: CellFunctions::empty(geometry.ray_function()),
             scene: SceneTapes::new(geometry.tape().clone(), 0),
+            leaves: CellLeaves::default(),
             stats: GridStats::default(),
         };
         let ncells = n.iter().map(|&k| k as usize).product::<usize>();
@@ -361,31 +366,40 @@ impl Grid {
 
         // Classify every cell (parallel; each cell's classes depend only on the cell).
         let mut classes = vec![0_u8; ncells * nused];
+        // Per cell: the smallest magnitude over the cell of the leaves of proven sign.
+        let mut signed_bound = vec![f64::INFINITY; ncells];
         if nused > 0 {
             let g = &grid;
-            classes.par_chunks_mut(nused).enumerate().for_each_init(
-                || Classifier {
-                    all: Evaluator::new(&all_tape),
-                    partial: partial_tapes
-                        .iter()
-                        .map(|t| t.as_ref().map(Evaluator::new))
-                        .collect(),
-                    values: vec![Interval::EMPTY; nused],
-                },
-                |st, (idx, out)| {
-                    let b = g.class_box(g.cell_of_index(idx));
-                    st.all
-                        .eval_outputs(&b, &mut st.values)
-                        .expect("tape in x y z");
-                    for (k, o) in out.iter_mut().enumerate() {
-                        let (f, defined) = match &mut st.partial[k] {
-                            None => (st.values[k], true),
-                            Some(e) => e.eval_defined(&b).expect("tape in x y z"),
-                        };
-                        *o = classify(f, defined);
-                    }
-                },
-            );
+            classes
+                .par_chunks_mut(nused)
+                .zip(signed_bound.par_iter_mut())
+                .enumerate()
+                .for_each_init(
+                    || Classifier {
+                        all: Evaluator::new(&all_tape),
+                        partial: partial_tapes
+                            .iter()
+                            .map(|t| t.as_ref().map(Evaluator::new))
+                            .collect(),
+                        values: vec![Interval::EMPTY; nused],
+                    },
+                    |st, (idx, (out, bound))| {
+                        let b = g.class_box(g.cell_of_index(idx));
+                        st.all
+                            .eval_outputs(&b, &mut st.values)
+                            .expect("tape in x y z");
+                        for (k, o) in out.iter_mut().enumerate() {
+                            let (f, defined) = match &mut st.partial[k] {
+                                None => (st.values[k], true),
+                                Some(e) => e.eval_defined(&b).expect("tape in x y z"),
+                            };
+                            *o = classify(f, defined);
+                            if matches!(*o, C_POS | C_NEG) {
+                                *bound = bound.min(f.mig());
+                            }
+                        }
+                    },
+                );
         }
 
         // Reduce each distinct class vector once, compile each distinct tree once.
@@ -440,6 +454,10 @@ impl Grid {
                 geometry.ray_function(),
             )
         };
+        grid.leaves = CellLeaves::build(ctx, &leaf_nodes, &used, &classes, signed_bound, |idx| {
+            cells[idx] != EMPTY
+        })
+        .unwrap_or_default();
         grid.cells = cells;
         grid.index_occupancy();
         grid.stats = GridStats {
@@ -528,16 +546,31 @@ impl Grid {
     /// classification box, see the pruning of [`Grid::function`]), built on first use;
     /// `None` when `p` is outside the grid (or not finite).
     pub fn scene_tape_at(&self, p: DVec3) -> Option<&Tape> {
+        let idx = self.cell_at(p)?;
+        Some(
+            self.scene
+                .get(idx, || self.class_box(self.cell_of_index(idx))),
+        )
+    }
+
+    /// The leaves that may shade a hit at `p` (see [`LeafCandidates`]), from the cell
+    /// holding `p`; `None` outside the grid or in a cell without candidates.
+    pub fn leaf_candidates_at(&self, p: DVec3) -> Option<LeafCandidates<'_>> {
+        self.leaves.get(self.cell_at(p)?)
+    }
+
+    /// The index of the cell whose classification box holds `p`, `None` when there is none
+    /// (outside the grid, not finite).
+    fn cell_at(&self, p: DVec3) -> Option<usize> {
         let v = p.to_array();
         if !(0..3).all(|a| v[a] >= self.lo[a] && v[a] <= self.hi[a]) {
             return None;
         }
         let cell: [u32; 3] = std::array::from_fn(|a| self.guess(a, v[a]));
         let b = self.class_box(cell);
-        if !(0..3).all(|a| b[a].contains(v[a])) {
-            return None;
-        }
-        Some(self.scene.get(self.index_of(cell), || b))
+        (0..3)
+            .all(|a| b[a].contains(v[a]))
+            .then(|| self.index_of(cell))
     }
 
     /// The index of the full scene function.

@@ -238,6 +238,7 @@ impl Geometry {
             interval: Evaluator::new(&self.f_tape),
             leaves: Evaluator::new(&self.leaf_tape),
             leaf_values: vec![0.0; self.leaves.len()],
+            candidates: Evaluator::new(&self.leaf_tape),
             objects: self.object_rays.iter().map(BeamEval::new).collect(),
             object_values_eval: Evaluator::new(&self.object_tape),
             object_values: vec![0.0; self.objects.len()],
@@ -258,6 +259,8 @@ pub struct GeometryEval {
     interval: Evaluator<Interval<f64>>,
     leaves: Evaluator<f64>,
     leaf_values: Vec<f64>,
+    /// The leaves of a cell that may shade a point ([`GeometryEval::leaf_among`]).
+    candidates: Evaluator<f64>,
     /// `g` and `g'` of each top-level object alone.
     pub objects: Vec<BeamEval>,
     object_values_eval: Evaluator<f64>,
@@ -311,6 +314,26 @@ impl GeometryEval {
             .eval_outputs(&[p.x, p.y, p.z], &mut self.leaf_values)
             .expect("tape in x y z");
         nearest_zero(&self.leaf_values)
+    }
+
+    /// [`leaf_at`](Self::leaf_at) with the search narrowed to the candidates of the grid
+    /// cell holding `p` ([`LeafCandidates`](crate::grid::LeafCandidates)): the same leaf,
+    /// found among the candidates when one of them is nearer zero than every leaf left out
+    /// can be, else by the full search.
+    pub fn leaf_among(&mut self, c: &crate::grid::LeafCandidates<'_>, p: DVec3) -> usize {
+        self.candidates.set_tape(c.tape);
+        let n = c.leaves.len();
+        self.leaf_values.resize(self.leaf_values.len().max(n), 0.0);
+        let found = self
+            .candidates
+            .eval_outputs(&[p.x, p.y, p.z], &mut self.leaf_values[..n])
+            .ok()
+            .map(|()| nearest_zero(&self.leaf_values[..n]))
+            .filter(|&k| self.leaf_values[k].abs() < c.bound);
+        match found {
+            Some(k) => c.leaves[k] as usize,
+            None => self.leaf_at(p),
+        }
     }
 
     /// The top-level object whose surface passes nearest `p` (smallest `|f_object(p)|`).
