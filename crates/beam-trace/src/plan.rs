@@ -10,7 +10,7 @@ use std::fmt;
 use crate::beam::BeamSettings;
 use crate::ray::Precision;
 use crate::root::{RootMethod, RootSettings};
-use crate::scene::{AaMode, Light, PrimaryMode, Scene};
+use crate::scene::{AaMode, Light, PrimaryMode, Scene, auto_grid_resolution};
 use crate::shadow::ShadowSpec;
 
 /// How primary visibility is computed.
@@ -154,7 +154,13 @@ impl Plan {
         let hard_shadow_lights = count(|l| l.as_point().is_some());
         let soft_shadow_lights = count(|l| l.as_area().is_some());
         Plan {
-            grid: (s.grid_resolution > 0).then_some(s.grid_resolution),
+            grid: (s.grid_resolution > 0).then(|| {
+                if s.grid_auto {
+                    auto_grid_resolution(s.grid_resolution, scene.geometry.tape().len())
+                } else {
+                    s.grid_resolution
+                }
+            }),
             primary,
             shading,
             hard_shadow_lights,

@@ -175,7 +175,7 @@ fn scenes() -> Vec<(&'static str, Geometry)> {
     ]
 }
 
-const RESOLUTIONS: [u32; 4] = [1, 4, 7, 16];
+const RESOLUTIONS: [u32; 5] = [1, 4, 7, 16, 32];
 
 fn all_cells(grid: &Grid) -> impl Iterator<Item = [u32; 3]> + '_ {
     let [nx, ny, nz] = grid.dims();
@@ -449,7 +449,7 @@ fn reduced_functions_keep_sign_and_zero_set() {
     let mut rng = Rng::new(2);
     for (name, g) in scenes() {
         let mut full = FullF::new(&g);
-        for res in [2, 5, 11] {
+        for res in [2, 5, 11, 24] {
             let grid = Grid::build(&g, res);
             let mut evals: HashMap<u32, BeamEval> = HashMap::new();
             let mut compared = 0;

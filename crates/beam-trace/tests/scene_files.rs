@@ -601,3 +601,41 @@ fn arbitrary_text_never_panics() {
     let e = load_str(&chain).unwrap_err().to_string();
     assert!(e.contains("expands to more than"), "{e}");
 }
+
+#[test]
+fn the_grid_resolution_grows_with_the_scene_function_unless_set() {
+    use beam_trace::Plan;
+    use beam_trace::scene::auto_grid_resolution;
+    assert_eq!(auto_grid_resolution(16, 100), 16);
+    assert_eq!(auto_grid_resolution(16, 1024), 32);
+    assert_eq!(auto_grid_resolution(16, 1 << 20), 64);
+    assert_eq!(auto_grid_resolution(0, 1 << 20), 0);
+    let long: Vec<String> = (0..40)
+        .map(|i| {
+            format!(
+                "sqrt((x - {})^2 + y^2 + z^2) - 0.05",
+                -1.0 + 0.05 * f64::from(i)
+            )
+        })
+        .collect();
+    let formula = long
+        .iter()
+        .skip(1)
+        .fold(long[0].clone(), |acc, t| format!("min({acc}, {t})"));
+    let text = |render: &str| {
+        format!(
+            "[camera]\neye = [0.0, 0.0, 5.0]\nlook_at = [0.0, 0.0, 0.0]\n\
+             [[surfaces]]\nformula = \"{formula}\"\nbounds = [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]\n{render}"
+        )
+    };
+    let auto = Scene::from_toml(&text(""), "auto.toml", None).unwrap();
+    let instrs = auto.geometry.tape().len();
+    assert!(instrs > 128, "{instrs}");
+    assert_eq!(
+        Plan::for_scene(&auto).grid,
+        Some(auto_grid_resolution(16, instrs))
+    );
+    assert!(Plan::for_scene(&auto).grid > Some(16));
+    let set = Scene::from_toml(&text("[render]\ngrid = 16\n"), "set.toml", None).unwrap();
+    assert_eq!(Plan::for_scene(&set).grid, Some(16));
+}

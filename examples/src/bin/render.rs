@@ -179,6 +179,7 @@ fn load(args: &Args) -> Result<Scene, String> {
             ));
         }
         s.grid_resolution = g;
+        s.grid_auto = false;
     }
     Ok(scene)
 }

@@ -89,6 +89,7 @@
 //! function, over the merged parameter ranges of [`Grid::beam_t_ranges`] only: outside
 //! them every ray of the beam is in empty cells or outside the scene bounds.
 
+mod classify;
 mod functions;
 mod leaves;
 mod reduce;
@@ -97,19 +98,19 @@ use std::collections::HashMap;
 use std::ops::ControlFlow;
 
 use glam::DVec3;
-use implicit_expr::{Evaluator, NodeId, RayFunction, Tape};
+use implicit_expr::{NodeId, RayFunction, Tape};
 use interval_core::Interval;
-use rayon::prelude::*;
 
 use crate::ibox::IBox;
 use crate::ray::{Beam, Precision, Ray};
 use crate::root::{RootCounters, RootFinder, RootResult, RootSettings};
 use crate::scene::Geometry;
+use classify::{Classes, LeafTapes, classify_cells};
 pub use functions::GridEval;
 use functions::{CellFunctions, SceneTapes};
 use leaves::CellLeaves;
 pub use leaves::LeafCandidates;
-use reduce::{C_NEG, C_POS, Sign, classify, combine, reduce};
+use reduce::{Sign, combine, reduce};
 
 /// The function index of an empty cell (no point of the surface in it).
 pub const EMPTY: u32 = u32::MAX;
@@ -193,13 +194,6 @@ fn dominant(d: [f64; 3]) -> usize {
         }
     }
     a
-}
-
-/// Per-thread state of the parallel classification.
-struct Classifier {
-    all: Evaluator<Interval<f64>>,
-    partial: Vec<Option<Evaluator<Interval<f64>>>>,
-    values: Vec<Interval<f64>>,
 }
 
 /// The cells of one axis met by a ray, in travel order, each with an outward enclosure of
@@ -354,53 +348,25 @@ impl Grid {
         let leaves = geometry.leaves();
         let ctx = geometry.context();
         let used_nodes: Vec<NodeId> = used.iter().map(|&i| leaves[i].node).collect();
-        let all_tape = Tape::new(ctx, &used_nodes).expect("the geometry's leaf tape builds");
-        let partial_tapes: Vec<Option<Tape>> = used_nodes
-            .iter()
-            .map(|&node| {
-                (!ctx.is_total(node))
-                    .then(|| Tape::new(ctx, &[node]).expect("a leaf's tape builds"))
-            })
-            .collect();
+        let tapes = LeafTapes {
+            all: Tape::new(ctx, &used_nodes).expect("the geometry's leaf tape builds"),
+            each: used_nodes
+                .iter()
+                .map(|&node| Tape::new(ctx, &[node]).expect("a leaf's tape builds"))
+                .collect(),
+            total: used_nodes.iter().map(|&node| ctx.is_total(node)).collect(),
+        };
         let nused = used.len();
 
         // Classify every cell (parallel; each cell's classes depend only on the cell).
-        let mut classes = vec![0_u8; ncells * nused];
-        // Per cell: the smallest magnitude over the cell of the leaves of proven sign.
-        let mut signed_bound = vec![f64::INFINITY; ncells];
-        if nused > 0 {
+        let Classes {
+            classes,
+            bound: signed_bound,
+            leaf_evals,
+        } = {
             let g = &grid;
-            classes
-                .par_chunks_mut(nused)
-                .zip(signed_bound.par_iter_mut())
-                .enumerate()
-                .for_each_init(
-                    || Classifier {
-                        all: Evaluator::new(&all_tape),
-                        partial: partial_tapes
-                            .iter()
-                            .map(|t| t.as_ref().map(Evaluator::new))
-                            .collect(),
-                        values: vec![Interval::EMPTY; nused],
-                    },
-                    |st, (idx, (out, bound))| {
-                        let b = g.class_box(g.cell_of_index(idx));
-                        st.all
-                            .eval_outputs(&b, &mut st.values)
-                            .expect("tape in x y z");
-                        for (k, o) in out.iter_mut().enumerate() {
-                            let (f, defined) = match &mut st.partial[k] {
-                                None => (st.values[k], true),
-                                Some(e) => e.eval_defined(&b).expect("tape in x y z"),
-                            };
-                            *o = classify(f, defined);
-                            if matches!(*o, C_POS | C_NEG) {
-                                *bound = bound.min(f.mig());
-                            }
-                        }
-                    },
-                );
-        }
+            classify_cells(&tapes, n, &|a, i| g.boundary(a, i), margin)
+        };
 
         // Reduce each distinct class vector once, compile each distinct tree once.
         let mut fctx = ctx.clone();
@@ -467,7 +433,7 @@ impl Grid {
             reduced: reduced_nodes.len() as u64,
             cell_instrs: functions.cell_instrs.div_ceil(non_empty.max(1)),
             full_instrs,
-            leaf_evals: (ncells * nused) as u64,
+            leaf_evals,
         };
         grid.functions = functions;
         grid.scene = SceneTapes::new(geometry.tape().clone(), ncells);

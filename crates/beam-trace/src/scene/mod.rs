@@ -26,4 +26,5 @@ pub use geometry::{Csg, Geometry, Leaf};
 pub use material::Material;
 pub use model::{
     AaMode, AreaLight, Light, MAX_GRID_RESOLUTION, PointLight, PrimaryMode, RenderSettings, Scene,
+    auto_grid_resolution,
 };

@@ -136,6 +136,25 @@ pub enum PrimaryMode {
 /// million cells, a few hundred megabytes.
 pub const MAX_GRID_RESOLUTION: u32 = 256;
 
+/// Scene functions up to this many instructions keep the set grid resolution.
+const AUTO_GRID_INSTRS: usize = 128;
+
+/// The finest grid the automatic resolution chooses.
+const AUTO_GRID_MAX: u32 = 64;
+
+/// The grid resolution for a scene function of `instrs` instructions, starting from `base`:
+/// `base` up to [`AUTO_GRID_INSTRS`] instructions, then growing with the cube root of the
+/// length (a cell's pruned function shrinks with the cell), at most [`AUTO_GRID_MAX`]. With
+/// the grid classified block by block, a finer grid costs little to build; what it saves
+/// is the length of every ray's function.
+pub fn auto_grid_resolution(base: u32, instrs: usize) -> u32 {
+    if instrs <= AUTO_GRID_INSTRS || base == 0 {
+        return base;
+    }
+    let scale = (instrs as f64 / AUTO_GRID_INSTRS as f64).cbrt();
+    ((f64::from(base) * scale).round() as u32).clamp(base, AUTO_GRID_MAX.max(base))
+}
+
 /// Render settings.
 #[derive(Copy, Clone, Debug, PartialEq, serde::Serialize)]
 pub struct RenderSettings {
@@ -158,6 +177,10 @@ pub struct RenderSettings {
     pub t_final_width: f64,
     /// Cells of the regular grid along the longest side of the scene bounds (0: no grid).
     pub grid_resolution: u32,
+    /// Whether the grid may be finer than `grid_resolution` for a long scene function
+    /// ([`auto_grid_resolution`]): on unless the scene file or the caller set the
+    /// resolution.
+    pub grid_auto: bool,
     /// Whether lights cast shadows.
     pub shadows: bool,
     /// How area lights' soft shadows are computed.
@@ -187,6 +210,7 @@ impl Default for RenderSettings {
             rays_per_pixel: 1,
             t_final_width: 0.05,
             grid_resolution: 16,
+            grid_auto: true,
             shadows: true,
             shadow_method: ShadowSpec::default(),
             precision: Precision::F64,

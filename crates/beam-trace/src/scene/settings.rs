@@ -90,6 +90,7 @@ pub(super) fn render_settings(doc: &Doc<'_>, r: &RawRender) -> Result<RenderSett
     }
     if let Some(v) = r.grid {
         s.grid_resolution = doc.int_in("render.grid", v, 0, i64::from(MAX_GRID_RESOLUTION))?;
+        s.grid_auto = false;
     }
     if let Some(v) = r.shadows {
         s.shadows = v;
