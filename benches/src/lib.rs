@@ -9,10 +9,12 @@
 //! The expression benchmarks (`benches/expr_eval.rs`, the `expr_report` and
 //! `render2d_compare` binaries) share the modules [`expr`] (expressions, points and boxes,
 //! and the same expressions built for fidget) and [`csg2d`] (the generator of the large
-//! `min`/`max`-heavy 2D expression `data/models/csg2d.vm`).
+//! `min`/`max`-heavy 2D expression `data/models/csg2d.vm`), over the `.vm` writer of
+//! [`vmgen`].
 
 pub mod csg2d;
 pub mod expr;
+pub mod vmgen;
 
 use interval_core::Interval;
 use rand::rngs::StdRng;

@@ -12,6 +12,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 
 use benches::csg2d;
+use benches::vmgen::op_count;
 
 fn main() -> ExitCode {
     let mut args = std::env::args().skip(1);
@@ -40,7 +41,7 @@ fn main() -> ExitCode {
     println!(
         "wrote {} ({} operations, {} lines, seed {seed:#x})",
         path.display(),
-        csg2d::op_count(&text),
+        op_count(&text),
         text.lines().count()
     );
     ExitCode::SUCCESS
