@@ -232,7 +232,7 @@ mod tests {
         let committed = include_str!("../../data/models/csg2d.vm");
         assert!(
             committed == generate(SEED),
-            "regenerate with `cargo run -p benches --bin gen_csg2d`"
+            "regenerate with `cargo run -p benches --bin gen_models`"
         );
     }
 
