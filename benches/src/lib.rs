@@ -6,8 +6,8 @@
 //! values can be converted to `inari::Interval` (`to_inari`) and results compared
 //! (`compare`).
 //!
-//! The expression benchmarks (`benches/expr_eval.rs`, the `expr_report` and
-//! `render2d_compare` binaries) share the module [`expr`]
+//! The expression benchmarks (`benches/expr_eval.rs`, the `expr_report`,
+//! `render2d_compare` and `render3d_compare` binaries) share the module [`expr`]
 //! (expressions, points and boxes, and the same expressions built for fidget) and the
 //! committed models of `data/models/` ([`models`]), written by seeded generators: [`csg2d`]
 //! (a large `min`/`max`-heavy 2D expression), [`text2d`] (2D text with the operation mix of
