@@ -31,7 +31,9 @@
 //! `+y` up and the vertical field of view `2·atan(1 / D)`: the plane `z = 0` fills the
 //! image exactly as fidget's square does, and each pixel's one ray goes through its centre,
 //! so on that plane both sample the same `(x, y)`. The model is a `vm` surface with bounds
-//! `[-1, 1]³`, a white material on a black background and no light, so only primary
+//! `[-1, 1]³`, clipped to them (`clip = true`: where the solid reaches a face of the cube,
+//! both renderers see the face), a white material on a black background and no light, so
+//! only primary
 //! visibility runs (screen boxes, then one ray per pixel in undecided boxes:
 //! `rays_per_undecided = 1`). At depth `z` our ray is at `(x, y)·(D - z) / D`: a point of the
 //! model appears scaled by `D / (D - z)`, at most `1 / (D - 1)` off the orthographic view,
@@ -219,6 +221,7 @@ fn scene(path: &Path, size: u32, o: &Options) -> Result<Scene, String> {
          name = \"model\"\n\
          vm = {}\n\
          bounds = [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]\n\
+         clip = true\n\
          material = {{ color = [1.0, 1.0, 1.0] }}\n\
          [render]\n\
          rays_per_undecided = 1\n\
@@ -299,6 +302,25 @@ fn run() -> Result<(), String> {
     };
     let ours_pool = pool("renderer's")?;
     let fidget_pool = ThreadPool::Custom(pool("fidget")?);
+    // Every model read (and the scenes checked) before the first render.
+    let mut models = Vec::new();
+    for path in &o.files {
+        let text = std::fs::read_to_string(path)
+            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
+        let abs = path
+            .canonicalize()
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        let name = path.file_stem().map_or_else(
+            || path.display().to_string(),
+            |s| s.to_string_lossy().into_owned(),
+        );
+        let (ctx, root) = fidget::Context::from_text(text.as_bytes())
+            .map_err(|e| format!("{}: fidget: {e}", path.display()))?;
+        let vm = Shape::<VmFunction>::new(&ctx, root).map_err(|e| format!("{name}: {e}"))?;
+        let jit = Shape::<JitFunction>::new(&ctx, root).map_err(|e| format!("{name}: {e}"))?;
+        scene(&abs, 1, &o).map_err(|e| format!("{name}: {e}"))?;
+        models.push((name, abs, op_count(&text), vm, jit));
+    }
     let d = o.distance;
     println!(
         "fidget: orthographic voxel render of [-1, 1]³ along -z, one column of `size` voxels per pixel, \
@@ -318,27 +340,13 @@ fn run() -> Result<(), String> {
         "| model | ops | size | fidget VM s | fidget JIT s | ours s | ours / JIT | silhouette: ours vs JIT | VM vs JIT px | ours per pass (s) |"
     );
     println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|");
-    for path in &o.files {
-        let text = std::fs::read_to_string(path)
-            .map_err(|e| format!("cannot read {}: {e}", path.display()))?;
-        let abs = path
-            .canonicalize()
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-        let name = path.file_stem().map_or_else(
-            || path.display().to_string(),
-            |s| s.to_string_lossy().into_owned(),
-        );
-        let (ctx, root) = fidget::Context::from_text(text.as_bytes())
-            .map_err(|e| format!("{}: fidget: {e}", path.display()))?;
-        let vm = Shape::<VmFunction>::new(&ctx, root).map_err(|e| format!("{name}: {e}"))?;
-        let jit = Shape::<JitFunction>::new(&ctx, root).map_err(|e| format!("{name}: {e}"))?;
-        let ops = op_count(&text);
+    for (name, abs, ops, vm, jit) in &models {
         for &size in &o.sizes {
-            let scene = scene(&abs, size, &o).map_err(|e| format!("{name}: {e}"))?;
+            let scene = scene(abs, size, &o).map_err(|e| format!("{name}: {e}"))?;
             let (vm_hits, vm_best, vm_med) =
-                time(o.runs, || fidget_render(&vm, size, &fidget_pool))?;
+                time(o.runs, || fidget_render(vm, size, &fidget_pool))?;
             let (jit_hits, jit_best, jit_med) =
-                time(o.runs, || fidget_render(&jit, size, &fidget_pool))?;
+                time(o.runs, || fidget_render(jit, size, &fidget_pool))?;
             let ((our_hits, out), our_best, our_med) =
                 time(o.runs, || ours_render(&scene, &ours_pool))?;
             let n = (size as usize).pow(2);
