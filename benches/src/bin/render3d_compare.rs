@@ -71,7 +71,8 @@ struct Options {
     files: Vec<PathBuf>,
 }
 
-fn parse_args() -> Result<Options, String> {
+/// The options, or `None` when only the usage was asked for (and printed).
+fn parse_args() -> Result<Option<Options>, String> {
     let mut o = Options {
         sizes: vec![512, 1024],
         threads: 2,
@@ -112,7 +113,10 @@ fn parse_args() -> Result<Options, String> {
             }
             "--stats" => o.stats = true,
             "--images" => o.images = Some(PathBuf::from(value("--images")?)),
-            "-h" | "--help" => return Err(USAGE.into()),
+            "-h" | "--help" => {
+                println!("{USAGE}");
+                return Ok(None);
+            }
             s if s.starts_with("--") => return Err(format!("unknown option '{s}'\n{USAGE}")),
             path => o.files.push(PathBuf::from(path)),
         }
@@ -124,7 +128,7 @@ fn parse_args() -> Result<Options, String> {
             .map(|m| m.path())
             .collect();
     }
-    Ok(o)
+    Ok(Some(o))
 }
 
 /// An integer in `lo..=hi`.
@@ -293,7 +297,9 @@ fn main() -> ExitCode {
 }
 
 fn run() -> Result<(), String> {
-    let o = parse_args()?;
+    let Some(o) = parse_args()? else {
+        return Ok(());
+    };
     let pool = |what: &str| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(o.threads)
