@@ -6,13 +6,20 @@
 //! values can be converted to `inari::Interval` (`to_inari`) and results compared
 //! (`compare`).
 //!
-//! The expression benchmarks (`benches/expr_eval.rs`, the `expr_report` and
-//! `render2d_compare` binaries) share the modules [`expr`] (expressions, points and boxes,
-//! and the same expressions built for fidget) and [`csg2d`] (the generator of the large
-//! `min`/`max`-heavy 2D expression `data/models/csg2d.vm`).
+//! The expression benchmarks (`benches/expr_eval.rs`, the `expr_report`,
+//! `render2d_compare` and `render3d_compare` binaries) share the module [`expr`]
+//! (expressions, points and boxes, and the same expressions built for fidget) and the
+//! committed models of `data/models/` ([`models`]), written by seeded generators: [`csg2d`]
+//! (a large `min`/`max`-heavy 2D expression), [`text2d`] (2D text with the operation mix of
+//! `prospero.vm`) and [`csg3d`] (3D CSG models: a city, a molecule), over the `.vm` writer of
+//! [`vmgen`].
 
 pub mod csg2d;
+pub mod csg3d;
 pub mod expr;
+pub mod models;
+pub mod text2d;
+pub mod vmgen;
 
 use interval_core::Interval;
 use rand::rngs::StdRng;
