@@ -236,7 +236,9 @@ fn search(
                 {
                     g.set_scope(&s.tape);
                 }
-                g.restrict(t);
+                if g.scope().is_some_and(|tape| tape.len() > RESTRICT_MIN_LEN) {
+                    g.restrict(t);
+                }
                 range_scope = g.scope();
                 range_scope.clone().map(|tape| Scope { tape, wid: t.wid() })
             }
@@ -332,8 +334,9 @@ struct Piece {
 /// bisections (each restriction costs about three evaluations of the tape it prunes).
 const RESTRICT_AGAIN: f64 = 0.25;
 
-/// Tapes this short are not pruned further.
-const RESTRICT_MIN_LEN: usize = 12;
+/// Tapes this short are not pruned (further): a restriction costs about three evaluations
+/// of the tape it prunes, which a short tape does not win back.
+const RESTRICT_MIN_LEN: usize = 64;
 
 /// How far [`look_ahead`] looks: up to `2^LOOK_AHEAD` widths of the final piece.
 const LOOK_AHEAD: u32 = 8;

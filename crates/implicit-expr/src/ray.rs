@@ -170,6 +170,10 @@ impl<N: Number> RayEvaluator<N> {
     /// [`unrestrict`](Self::unrestrict), [`set_ray`](Self::set_ray) and
     /// [`set_function`](Self::set_function) return to the whole `g`.
     pub fn restrict(&mut self, t: N) {
+        if self.g.tape().choice_count() == 0 {
+            // Nothing to prune: no evaluation spent.
+            return;
+        }
         self.vars[T.index()] = t;
         let current = self.g.tape().clone();
         let pruned = self

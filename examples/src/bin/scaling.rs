@@ -5,7 +5,7 @@
 //! ```text
 //! scaling [--counts 1,10,100,1000,10000] [--width 320] [--height 240] [--threads 2]
 //!         [--catalog] [--max-seconds S] [--seed S] [--load-only] [--stats]
-//!         [--images DIR]
+//!         [--images DIR] [--write-scenes DIR]
 //! ```
 //!
 //! The objects stand on a square of side 9 on the floor `y = 0`, one in each of `N` cells of
@@ -18,7 +18,7 @@
 //! `--max-seconds S` the counts after a render that took longer than `S` seconds are skipped
 //! (and said so); `--load-only` reads the scenes without rendering them; `--stats` prints
 //! each render's statistics (the counters of every pass); `--images DIR` writes each image
-//! as `DIR/scaling-N.png`.
+//! as `DIR/scaling-N.png`, `--write-scenes DIR` each scene as `DIR/scaling-N.toml`.
 
 use std::fmt::Write as _;
 use std::path::PathBuf;
@@ -62,6 +62,10 @@ struct Args {
     /// Write each image to this folder as scaling-N.png.
     #[arg(long)]
     images: Option<PathBuf>,
+    /// Write each scene to this folder as scaling-N.toml (to render it with the `render`
+    /// command, of this version or another).
+    #[arg(long)]
+    write_scenes: Option<PathBuf>,
 }
 
 /// Largest number of objects of one scene.
@@ -205,6 +209,10 @@ fn run(mut args: Args) -> Result<(), String> {
             continue;
         }
         let text = scene_text(&args, n);
+        if let Some(dir) = &args.write_scenes {
+            let p = dir.join(format!("scaling-{n}.toml"));
+            std::fs::write(&p, &text).map_err(|e| format!("cannot write {}: {e}", p.display()))?;
+        }
         let t = Instant::now();
         let scene = Scene::from_toml(&text, &format!("scaling-{n}"), None)
             .map_err(|e| format!("the scene of {n} objects: {e}"))?;

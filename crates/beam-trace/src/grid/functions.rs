@@ -105,6 +105,9 @@ impl CellFunctions {
                             }
                             None => eval.insert(Evaluator::new(tape)),
                         };
+                        if tape.choice_count() == 0 {
+                            return Some(tape.clone());
+                        }
                         let b = class_box(base + k);
                         let pruned = e
                             .eval_traced(&b, trace)
