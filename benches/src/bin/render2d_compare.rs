@@ -10,7 +10,7 @@
 //! Without file arguments it renders `data/models/csg2d.vm`. Both renderers sample pixel
 //! centres of `[-1, 1]²` (fidget's image transform is shifted by half a pixel to match).
 //! Ours runs in `f32` (sound intervals, like for like with fidget's `f32`) and `f64`, with
-//! the example's default tiles (64, 16, 4) and fidget's VM tiles (128, 32, 8); fidget uses
+//! the tiles (64, 16, 4) and the example's default tiles (128, 32, 8, fidget's VM tiles); fidget uses
 //! its defaults (VM: 128, 32, 8; JIT: 128, 16). Times are the best and the median of
 //! `--runs` renders after one warm-up render.
 

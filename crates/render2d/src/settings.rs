@@ -28,14 +28,16 @@ pub struct Settings {
 }
 
 impl Settings {
-    /// A square image of `size` pixels over `[-1, 1]²`, tiles `[64, 16, 4]`, pruning on.
+    /// A square image of `size` pixels over `[-1, 1]²`, tiles `[128, 32, 8]` (the fastest
+    /// of those measured on the benchmark expressions, see `docs/expr-benchmarks.md`),
+    /// pruning on.
     pub fn square(size: usize) -> Self {
         Self {
             width: size,
             height: size,
             region: Region::default(),
             z: 0.0,
-            tiles: vec![64, 16, 4],
+            tiles: vec![128, 32, 8],
             prune: true,
             timing: false,
         }

@@ -44,7 +44,7 @@ struct Args {
     #[arg(long, value_enum, default_value_t = Precision::F64)]
     precision: Precision,
     /// Tile sizes in pixels, largest first, each dividing the previous one.
-    #[arg(long, default_value = "64,16,4", value_delimiter = ',')]
+    #[arg(long, default_value = "128,32,8", value_delimiter = ',')]
     tiles: Vec<usize>,
     /// Evaluate every tile with the full tape (no pruning).
     #[arg(long)]
