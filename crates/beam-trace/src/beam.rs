@@ -231,15 +231,22 @@ fn search(
                 range_end = end;
                 range = t;
                 g.unrestrict();
+                let mut start = None;
                 if let Some(s) = inherited
                     && t.subset(s.t)
                 {
                     g.set_scope(&s.tape);
+                    start = Some(s.tape.clone());
                 }
-                if g.scope().is_some_and(|tape| tape.len() > RESTRICT_MIN_LEN) {
-                    g.restrict(t);
-                }
-                range_scope = g.scope();
+                // Pieces carry a scope only where there is a restriction to return to (a
+                // shared tape handle copied per piece would cost more than short tapes save).
+                range_scope = match g.scope() {
+                    Some(tape) if tape.len() > RESTRICT_MIN_LEN => {
+                        g.restrict(t);
+                        g.scope()
+                    }
+                    _ => start,
+                };
                 range_scope.clone().map(|tape| Scope { tape, wid: t.wid() })
             }
             Some(s) => {
@@ -336,7 +343,7 @@ const RESTRICT_AGAIN: f64 = 0.25;
 
 /// Tapes this short are not pruned (further): a restriction costs about three evaluations
 /// of the tape it prunes, which a short tape does not win back.
-const RESTRICT_MIN_LEN: usize = 64;
+const RESTRICT_MIN_LEN: usize = 128;
 
 /// How far [`look_ahead`] looks: up to `2^LOOK_AHEAD` widths of the final piece.
 const LOOK_AHEAD: u32 = 8;

@@ -14,6 +14,11 @@
 //! scene function there, as the reduced one is. Where some operation may be undefined in the
 //! box nothing is pruned, so definedness proofs are exactly as strong as before.
 //!
+//! A pruned formula is used only where it is at most half as long as the reduced one: its
+//! derivative is the pruned formula's own (tighter where a `min`/`max` was decided, but on
+//! the box faces of a clipped surface wider than the whole formula's), which changes the
+//! path of the root searches; a slightly shorter tape does not pay for that.
+//!
 //! Cells that prune to the same formula share one function: the cache is keyed by the pruned
 //! tape's content. A function is compiled for rays ([`RayFunction`]: `g` and `g'` by
 //! symbolic differentiation) when a ray or beam first needs it, so cells that no search
@@ -34,6 +39,10 @@ use super::EMPTY;
 /// Cells pruned per parallel piece before their tapes are merged into the cache (bounds the
 /// memory of tapes not yet deduplicated).
 const PIECE: usize = 4096;
+
+/// A cell's pruned function is used when it is at most `1 / PAYS` as long as the cell's
+/// reduced function.
+const PAYS: usize = 2;
 
 /// One function of the grid: its formula in `x y z` and, once needed, its ray form.
 #[derive(Clone, Debug)]
@@ -113,7 +122,14 @@ impl CellFunctions {
                             .eval_traced(&b, trace)
                             .and_then(|_| tape.simplify(trace))
                             .unwrap_or_else(|_| tape.clone());
-                        Some(pruned)
+                        // A pruned formula has its own derivative, often tighter, sometimes
+                        // wider (a clipped surface's box faces); only a much shorter tape
+                        // pays for the change of the root searches' path.
+                        Some(if pruned.len() * PAYS <= tape.len() {
+                            pruned
+                        } else {
+                            tape.clone()
+                        })
                     },
                 )
                 .collect();
@@ -179,11 +195,17 @@ impl CellFunctions {
     }
 }
 
-/// Per-thread evaluator of a grid's functions: one [`BeamEval`] switched to the function of
-/// each cell searched (a switch to the function already set costs nothing).
+/// Grids with at most this many functions keep one evaluator per function and thread;
+/// beyond, one evaluator is switched between them.
+const EVALUATORS_PER_FUNCTION: usize = 256;
+
+/// Per-thread evaluators of a grid's functions: one per function on grids with few
+/// functions (created on first use), else one [`BeamEval`] switched to the function of each
+/// cell searched (a switch to the function already set costs nothing).
 #[derive(Clone, Debug, Default)]
 pub struct GridEval {
-    eval: Option<BeamEval>,
+    each: Vec<Option<BeamEval>>,
+    shared: Option<BeamEval>,
     precision: Precision,
 }
 
@@ -191,7 +213,8 @@ impl GridEval {
     /// An evaluator whose interval evaluations run in `precision`.
     pub(super) fn with_precision(precision: Precision) -> Self {
         Self {
-            eval: None,
+            each: Vec::new(),
+            shared: None,
             precision,
         }
     }
@@ -202,18 +225,26 @@ impl GridEval {
     /// If `index` is not a function of `grid`.
     pub fn get(&mut self, grid: &super::Grid, index: u32) -> &mut BeamEval {
         let f = grid.function(index);
-        if let Some(e) = &mut self.eval {
+        let precision = self.precision;
+        let count = grid.function_count();
+        if count <= EVALUATORS_PER_FUNCTION {
+            if self.each.len() < count {
+                self.each.resize(count, None);
+            }
+            return self.each[index as usize]
+                .get_or_insert_with(|| BeamEval::with_precision(f, precision));
+        }
+        if let Some(e) = &mut self.shared {
             e.set_function(f);
         }
-        let precision = self.precision;
-        self.eval
+        self.shared
             .get_or_insert_with(|| BeamEval::with_precision(f, precision))
     }
 
     /// Sets the precision of the interval evaluations.
     pub fn set_precision(&mut self, precision: Precision) {
         self.precision = precision;
-        if let Some(e) = &mut self.eval {
+        for e in self.each.iter_mut().flatten().chain(&mut self.shared) {
             e.set_precision(precision);
         }
     }
