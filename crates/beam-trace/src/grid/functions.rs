@@ -32,9 +32,8 @@ use interval_core::Interval;
 use rayon::prelude::*;
 
 use crate::ibox::IBox;
-use crate::ray::{BeamEval, Precision};
 
-use super::EMPTY;
+use super::empty::EMPTY;
 
 /// Cells pruned per parallel piece before their tapes are merged into the cache (bounds the
 /// memory of tapes not yet deduplicated).
@@ -192,66 +191,6 @@ impl CellFunctions {
                 .and_then(|(ctx, roots)| RayFunction::new(&ctx, roots[0]))
                 .unwrap_or_else(|_| self.fallback.clone())
         })
-    }
-}
-
-/// Grids with at most this many functions keep one evaluator per function and thread;
-/// beyond, one evaluator is switched between them.
-const EVALUATORS_PER_FUNCTION: usize = 256;
-
-/// Per-thread evaluators of a grid's functions: one per function on grids with few
-/// functions (created on first use), else one [`BeamEval`] switched to the function of each
-/// cell searched (a switch to the function already set costs nothing).
-#[derive(Clone, Debug, Default)]
-pub struct GridEval {
-    each: Vec<Option<BeamEval>>,
-    shared: Option<BeamEval>,
-    precision: Precision,
-}
-
-impl GridEval {
-    /// An evaluator whose interval evaluations run in `precision`.
-    pub(super) fn with_precision(precision: Precision) -> Self {
-        Self {
-            each: Vec::new(),
-            shared: None,
-            precision,
-        }
-    }
-
-    /// The evaluator, set to function `index` of `grid`.
-    ///
-    /// # Panics
-    /// If `index` is not a function of `grid`.
-    pub fn get(&mut self, grid: &super::Grid, index: u32) -> &mut BeamEval {
-        let f = grid.function(index);
-        let precision = self.precision;
-        let count = grid.function_count();
-        if count <= EVALUATORS_PER_FUNCTION {
-            if self.each.len() < count {
-                self.each.resize(count, None);
-            }
-            return self.each[index as usize]
-                .get_or_insert_with(|| BeamEval::with_precision(f, precision));
-        }
-        if let Some(e) = &mut self.shared {
-            e.set_function(f);
-        }
-        self.shared
-            .get_or_insert_with(|| BeamEval::with_precision(f, precision))
-    }
-
-    /// Sets the precision of the interval evaluations.
-    pub fn set_precision(&mut self, precision: Precision) {
-        self.precision = precision;
-        for e in self.each.iter_mut().flatten().chain(&mut self.shared) {
-            e.set_precision(precision);
-        }
-    }
-
-    /// The precision of the interval evaluations.
-    pub fn precision(&self) -> Precision {
-        self.precision
     }
 }
 

@@ -90,6 +90,7 @@
 //! them every ray of the beam is in empty cells or outside the scene bounds.
 
 mod classify;
+mod empty;
 mod functions;
 mod leaves;
 mod reduce;
@@ -102,18 +103,16 @@ use implicit_expr::{NodeId, RayFunction, Tape};
 use interval_core::Interval;
 
 use crate::ibox::IBox;
-use crate::ray::{Beam, Precision, Ray};
+use crate::ray::{Beam, BeamEval, Precision, Ray};
 use crate::root::{RootCounters, RootFinder, RootResult, RootSettings};
 use crate::scene::Geometry;
 use classify::{Classes, LeafTapes, classify_cells};
-pub use functions::GridEval;
 use functions::{CellFunctions, SceneTapes};
 use leaves::CellLeaves;
 pub use leaves::LeafCandidates;
 use reduce::{Sign, combine, reduce};
 
-/// The function index of an empty cell (no point of the surface in it).
-pub const EMPTY: u32 = u32::MAX;
+pub use empty::EMPTY;
 
 /// Margin of a cell's classification box, relative to the largest cell side.
 const MARGIN: f64 = 1e-9;
@@ -194,6 +193,66 @@ fn dominant(d: [f64; 3]) -> usize {
         }
     }
     a
+}
+
+/// Grids with at most this many functions keep one evaluator per function and thread;
+/// beyond, one evaluator is switched between them.
+const EVALUATORS_PER_FUNCTION: usize = 256;
+
+/// Per-thread evaluators of a grid's functions: one per function on grids with few
+/// functions (created on first use), else one [`BeamEval`] switched to the function of each
+/// cell searched (a switch to the function already set costs nothing).
+#[derive(Clone, Debug, Default)]
+pub struct GridEval {
+    each: Vec<Option<BeamEval>>,
+    shared: Option<BeamEval>,
+    precision: Precision,
+}
+
+impl GridEval {
+    /// An evaluator whose interval evaluations run in `precision`.
+    fn with_precision(precision: Precision) -> Self {
+        Self {
+            each: Vec::new(),
+            shared: None,
+            precision,
+        }
+    }
+
+    /// The evaluator, set to function `index` of `grid`.
+    ///
+    /// # Panics
+    /// If `index` is not a function of `grid`.
+    pub fn get(&mut self, grid: &Grid, index: u32) -> &mut BeamEval {
+        let f = grid.function(index);
+        let precision = self.precision;
+        let count = grid.function_count();
+        if count <= EVALUATORS_PER_FUNCTION {
+            if self.each.len() < count {
+                self.each.resize(count, None);
+            }
+            return self.each[index as usize]
+                .get_or_insert_with(|| BeamEval::with_precision(f, precision));
+        }
+        if let Some(e) = &mut self.shared {
+            e.set_function(f);
+        }
+        self.shared
+            .get_or_insert_with(|| BeamEval::with_precision(f, precision))
+    }
+
+    /// Sets the precision of the interval evaluations.
+    pub fn set_precision(&mut self, precision: Precision) {
+        self.precision = precision;
+        for e in self.each.iter_mut().flatten().chain(&mut self.shared) {
+            e.set_precision(precision);
+        }
+    }
+
+    /// The precision of the interval evaluations.
+    pub fn precision(&self) -> Precision {
+        self.precision
+    }
 }
 
 /// The cells of one axis met by a ray, in travel order, each with an outward enclosure of
