@@ -21,9 +21,9 @@ use crate::stats::PassStats;
 /// fails with an [`Error`] naming the backend; a backend is asked only the kinds it
 /// supports.
 pub trait Queries: Sync {
-    /// Classifies each beam: [`BoxClass::Miss`] proves that no ray of it meets a surface
-    /// where its parent left it open; [`BoxClass::Hit`] that every ray has its first root in
-    /// `T_final`; else [`BoxClass::Undecided`] with the first range not rejected.
+    /// Classifies each beam: [`BoxClass::Miss`](crate::beam::BoxClass::Miss) proves that no ray of it meets a surface
+    /// where its parent left it open; [`BoxClass::Hit`](crate::beam::BoxClass::Hit) that every ray has its first root in
+    /// `T_final`; else [`BoxClass::Undecided`](crate::beam::BoxClass::Undecided) with the first range not rejected.
     fn beams(&self, queries: &[BeamQuery]) -> Result<Answers<Classified>, Error>;
 
     /// The first root of each ray in its window.

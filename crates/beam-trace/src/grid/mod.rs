@@ -18,7 +18,7 @@
 //!   the leaf may be undefined somewhere in the box: `sqrt` of a negative number, a
 //!   division by zero, ...).
 //!
-//! Definedness is proven by [`Evaluator::eval_defined`]; a leaf built only from
+//! Definedness is proven by [`Evaluator::eval_defined`](implicit_expr::Evaluator::eval_defined); a leaf built only from
 //! operations defined on the whole line (`+ − ×`, non-negative integer powers, `min`,
 //! `max`, `sin`, `exp`, ...) needs no check.
 //!
@@ -144,7 +144,7 @@ pub struct CellHit {
     /// An enclosure, rounded outward and clipped to the searched range, of the parameters
     /// at which the ray (some ray of the beam) is in the cell.
     pub t: Interval<f64>,
-    /// The index in [`Grid::functions`] of the function to search in the cell. For a ray:
+    /// The index in the grid's functions ([`Grid::function`]) of the function to search in the cell. For a ray:
     /// the cell's reduced function, or the full scene function where the ray's points
     /// over `t` could not be proven inside the cell's classification box. For a beam:
     /// the cell's reduced function (valid for miss proofs only, see the

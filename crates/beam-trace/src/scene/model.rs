@@ -143,8 +143,8 @@ const AUTO_GRID_INSTRS: usize = 128;
 const AUTO_GRID_MAX: u32 = 64;
 
 /// The grid resolution for a scene function of `instrs` instructions, starting from `base`:
-/// `base` up to [`AUTO_GRID_INSTRS`] instructions, then growing with the cube root of the
-/// length (a cell's pruned function shrinks with the cell), at most [`AUTO_GRID_MAX`]. With
+/// `base` up to 128 instructions, then growing with the cube root of the
+/// length (a cell's pruned function shrinks with the cell), at most 64. With
 /// the grid classified block by block, a finer grid costs little to build; what it saves
 /// is the length of every ray's function.
 pub fn auto_grid_resolution(base: u32, instrs: usize) -> u32 {
