@@ -21,6 +21,17 @@ pub mod models;
 pub mod text2d;
 pub mod vmgen;
 
+/// The exit of a report binary: success, or the error printed as `error: ...` and failure.
+pub fn exit(result: Result<(), String>) -> std::process::ExitCode {
+    match result {
+        Ok(()) => std::process::ExitCode::SUCCESS,
+        Err(e) => {
+            eprintln!("error: {e}");
+            std::process::ExitCode::FAILURE
+        }
+    }
+}
+
 use interval_core::Interval;
 use rand::rngs::StdRng;
 use rand::{Rng, SeedableRng};

@@ -49,13 +49,7 @@ fn best(mut f: impl FnMut() -> f64) -> f64 {
 }
 
 fn main() -> ExitCode {
-    match run() {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    benches::exit(run())
 }
 
 fn run() -> Result<(), String> {

@@ -22,13 +22,7 @@ use benches::models::{self, MODELS};
 use benches::vmgen::op_count;
 
 fn main() -> ExitCode {
-    match run() {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    benches::exit(run())
 }
 
 const USAGE: &str = "usage: gen_models [--check | --list] | gen_models MODEL [--seed S] --out FILE

@@ -112,13 +112,7 @@ fn ms(d: Duration) -> f64 {
 }
 
 fn main() -> ExitCode {
-    match run() {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    benches::exit(run())
 }
 
 fn run() -> Result<(), String> {

@@ -287,13 +287,7 @@ fn pass_times(out: &RenderOutput) -> String {
 }
 
 fn main() -> ExitCode {
-    match run() {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(e) => {
-            eprintln!("error: {e}");
-            ExitCode::FAILURE
-        }
-    }
+    benches::exit(run())
 }
 
 fn run() -> Result<(), String> {

@@ -218,18 +218,15 @@ fn search(
         })
         .collect();
     let mut bisections = 0u64;
-    // The range being searched, and the restriction set now.
+    // The range being searched (its end) and its restriction.
     let mut range_end = f64::NAN;
-    let mut range = Interval::EMPTY;
-    let mut range_scope: Option<Tape> = None;
-    let mut current: Option<Tape> = None;
+    let mut range_scope: Option<BeamScope> = None;
     while let Some(Piece { t, end, scope }) = stack.pop() {
         let mut scope = match scope {
             // The first piece of a range is the range: every later evaluation of its pieces,
             // look-ahead and T_final lies inside it.
             _ if end != range_end => {
                 range_end = end;
-                range = t;
                 g.unrestrict();
                 let mut start = None;
                 if let Some(s) = inherited
@@ -240,33 +237,32 @@ fn search(
                 }
                 // Pieces carry a scope only where there is a restriction to return to (a
                 // shared tape handle copied per piece would cost more than short tapes save).
-                range_scope = match g.scope() {
+                let tape = match g.scope() {
                     Some(tape) if tape.len() > RESTRICT_MIN_LEN => {
                         g.restrict(t);
                         g.scope()
                     }
                     _ => start,
                 };
-                range_scope.clone().map(|tape| Scope { tape, wid: t.wid() })
+                range_scope = tape.map(|tape| BeamScope { tape, t });
+                range_scope.clone()
             }
             Some(s) => {
-                if current.as_ref().is_none_or(|c| !c.ptr_eq(&s.tape)) {
-                    g.set_scope(&s.tape);
-                }
+                // Free when it is the restriction set already.
+                g.set_scope(&s.tape);
                 Some(s)
             }
             None => None,
         };
         if let Some(s) = &scope
-            && t.wid() <= RESTRICT_AGAIN * s.wid
+            && t.wid() <= RESTRICT_AGAIN * s.t.wid()
             && s.tape.len() > RESTRICT_MIN_LEN
         {
             // Deep enough below the last restriction: prune again, for this piece and
             // everything searched inside it.
             g.restrict(t);
-            scope = g.scope().map(|tape| Scope { tape, wid: t.wid() });
+            scope = g.scope().map(|tape| BeamScope { tape, t });
         }
-        current = scope.as_ref().map(|s| s.tape.clone());
         let (gt, continuous) = g.g_checked(t);
         counters.g_evals += 1;
         if !may_vanish(gt) {
@@ -281,16 +277,14 @@ fn search(
             let class = BoxClass::Hit {
                 t_final: t_final(g, t, settings, counters),
             };
-            return (class, scope_of(&range_scope, range));
+            return (class, range_scope);
         }
         if t.wid() <= settings.epsilon.max(settings.rel_epsilon * t.inf())
             || bisections >= settings.max_bisections
         {
             // The look-ahead leaves the piece: back to the range's restriction.
-            if let Some(r) = &range_scope
-                && current.as_ref().is_some_and(|c| !c.ptr_eq(r))
-            {
-                g.set_scope(r);
+            if let Some(r) = &range_scope {
+                g.set_scope(&r.tape);
             }
             if inclusion
                 && inside(t.inf())
@@ -299,9 +293,9 @@ fn search(
                 let class = BoxClass::Hit {
                     t_final: t_final(g, t, settings, counters),
                 };
-                return (class, scope_of(&range_scope, range));
+                return (class, range_scope);
             }
-            return (BoxClass::Undecided { t }, scope_of(&range_scope, range));
+            return (BoxClass::Undecided { t }, range_scope);
         }
         let (l, r) = t.bisect();
         bisections += 1;
@@ -316,25 +310,13 @@ fn search(
     (BoxClass::Miss, None)
 }
 
-/// The restriction of the range `t` as a [`BeamScope`].
-fn scope_of(tape: &Option<Tape>, t: Interval<f64>) -> Option<BeamScope> {
-    tape.clone().map(|tape| BeamScope { tape, t })
-}
-
-/// A restriction of `g` ([`RayFn::restrict`]) and the width of the parameters it holds.
-#[derive(Clone, Debug)]
-struct Scope {
-    tape: Tape,
-    wid: f64,
-}
-
 /// A piece of a beam's search: its parameters, the end of the range it belongs to, and
 /// the restriction it lies in (`None` for the first piece of a range, or where `g` has no
 /// restrictions).
 struct Piece {
     t: Interval<f64>,
     end: f64,
-    scope: Option<Scope>,
+    scope: Option<BeamScope>,
 }
 
 /// A piece at most this fraction of its restriction's width is restricted again: every two

@@ -175,12 +175,7 @@ impl<N: Number> RayEvaluator<N> {
             return;
         }
         self.vars[T.index()] = t;
-        let current = self.g.tape().clone();
-        let pruned = self
-            .g
-            .eval_traced(&self.vars, &mut self.trace)
-            .and_then(|_| current.simplify(&self.trace));
-        if let Ok(p) = pruned {
+        if let Ok(p) = self.g.pruned(&self.vars, &mut self.trace) {
             self.g.set_tape(&p);
         }
     }

@@ -16,6 +16,8 @@ use implicit_expr::{Evaluator, Tape};
 use interval_core::Interval;
 use rayon::prelude::*;
 
+use super::box_eval::BoxEval;
+use super::cells::{cell as cell_of, index};
 use super::reduce::{C_NEG, C_POS, C_UNKNOWN, C_UNKNOWN_DEFINED, classify};
 use crate::ibox::IBox;
 
@@ -49,7 +51,7 @@ pub(super) struct LeafTapes {
 /// Per-thread evaluators of the flat classification.
 struct Flat {
     all: Evaluator<Interval<f64>>,
-    one: Evaluator<Interval<f64>>,
+    one: BoxEval,
     values: Vec<Interval<f64>>,
 }
 
@@ -57,7 +59,7 @@ impl Flat {
     fn new(t: &LeafTapes) -> Self {
         Self {
             all: Evaluator::new(&t.all),
-            one: Evaluator::new(&t.all),
+            one: BoxEval::default(),
             values: vec![Interval::EMPTY; t.each.len()],
         }
     }
@@ -71,8 +73,10 @@ impl Flat {
             let (f, defined) = if t.total[k] {
                 (self.values[k], true)
             } else {
-                self.one.set_tape(&t.each[k]);
-                self.one.eval_defined(b).expect("tape in x y z")
+                self.one
+                    .on(&t.each[k])
+                    .eval_defined(b)
+                    .expect("tape in x y z")
             };
             *o = classify(f, defined);
             if matches!(*o, C_POS | C_NEG) {
@@ -121,17 +125,6 @@ pub(super) fn classify_cells(
             )
         })
     };
-    let index = |c: [u32; 3], n: [u32; 3]| -> usize {
-        c[0] as usize + n[0] as usize * (c[1] as usize + n[1] as usize * c[2] as usize)
-    };
-    let cell_of = |idx: usize, n: [u32; 3]| -> [u32; 3] {
-        let (n0, n1) = (n[0] as usize, n[1] as usize);
-        [
-            (idx % n0) as u32,
-            ((idx / n0) % n1) as u32,
-            (idx / (n0 * n1)) as u32,
-        ]
-    };
     let ncells = n.iter().map(|&k| k as usize).product::<usize>();
     let fine_box = |idx: usize| {
         let c = cell_of(idx, n);
@@ -161,32 +154,15 @@ pub(super) fn classify_cells(
     // Per block, each leaf still unknown with its tape pruned to the block.
     let pruned: Vec<Vec<(usize, Tape)>> = (0..nblocks)
         .into_par_iter()
-        .map_init(
-            || (None::<Evaluator<Interval<f64>>>, Vec::new()),
-            |(eval, trace), bi| {
-                let b = block_box(bi);
-                let row = &coarse.classes[bi * nused..(bi + 1) * nused];
-                row.iter()
-                    .enumerate()
-                    .filter(|(_, c)| matches!(**c, C_UNKNOWN | C_UNKNOWN_DEFINED))
-                    .map(|(k, _)| {
-                        let tape = &t.each[k];
-                        let e = match eval {
-                            Some(e) => {
-                                e.set_tape(tape);
-                                e
-                            }
-                            None => eval.insert(Evaluator::new(tape)),
-                        };
-                        let p = e
-                            .eval_traced(&b, trace)
-                            .and_then(|_| tape.simplify(trace))
-                            .unwrap_or_else(|_| tape.clone());
-                        (k, p)
-                    })
-                    .collect()
-            },
-        )
+        .map_init(BoxEval::default, |eval, bi| {
+            let b = block_box(bi);
+            let row = &coarse.classes[bi * nused..(bi + 1) * nused];
+            row.iter()
+                .enumerate()
+                .filter(|(_, c)| matches!(**c, C_UNKNOWN | C_UNKNOWN_DEFINED))
+                .map(|(k, _)| (k, eval.pruned(&t.each[k], &b)))
+                .collect()
+        })
         .collect();
 
     // The cells: the block's decided classes, the unknown leaves evaluated.
@@ -200,32 +176,22 @@ pub(super) fn classify_cells(
         .par_chunks_mut(nused)
         .zip(bound.par_iter_mut())
         .enumerate()
-        .for_each_init(
-            || None::<Evaluator<Interval<f64>>>,
-            |eval, (idx, (out, bound))| {
-                let bi = block_of(idx);
-                out.copy_from_slice(&coarse.classes[bi * nused..(bi + 1) * nused]);
-                *bound = coarse.bound[bi];
-                if pruned[bi].is_empty() {
-                    return;
+        .for_each_init(BoxEval::default, |eval, (idx, (out, bound))| {
+            let bi = block_of(idx);
+            out.copy_from_slice(&coarse.classes[bi * nused..(bi + 1) * nused]);
+            *bound = coarse.bound[bi];
+            if pruned[bi].is_empty() {
+                return;
+            }
+            let b = fine_box(idx);
+            for (k, tape) in &pruned[bi] {
+                let (f, defined) = eval.on(tape).eval_defined(&b).expect("tape in x y z");
+                out[*k] = classify(f, defined);
+                if matches!(out[*k], C_POS | C_NEG) {
+                    *bound = bound.min(f.mig());
                 }
-                let b = fine_box(idx);
-                for (k, tape) in &pruned[bi] {
-                    let e = match eval {
-                        Some(e) => {
-                            e.set_tape(tape);
-                            e
-                        }
-                        None => eval.insert(Evaluator::new(tape)),
-                    };
-                    let (f, defined) = e.eval_defined(&b).expect("tape in x y z");
-                    out[*k] = classify(f, defined);
-                    if matches!(out[*k], C_POS | C_NEG) {
-                        *bound = bound.min(f.mig());
-                    }
-                }
-            },
-        );
+            }
+        });
     let unknown: u64 = (0..ncells)
         .map(|idx| pruned[block_of(idx)].len() as u64)
         .sum();

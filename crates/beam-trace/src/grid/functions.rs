@@ -27,13 +27,13 @@
 use std::collections::HashMap;
 use std::sync::OnceLock;
 
-use implicit_expr::{Evaluator, RayFunction, Tape};
-use interval_core::Interval;
+use implicit_expr::{RayFunction, Tape};
 use rayon::prelude::*;
 
 use crate::ibox::IBox;
 
-use super::empty::EMPTY;
+use super::box_eval::BoxEval;
+use super::cells::EMPTY;
 
 /// Cells pruned per parallel piece before their tapes are merged into the cache (bounds the
 /// memory of tapes not yet deduplicated).
@@ -99,38 +99,21 @@ impl CellFunctions {
             let pruned: Vec<Option<Tape>> = piece
                 .par_iter()
                 .enumerate()
-                .map_init(
-                    || (None::<Evaluator<Interval<f64>>>, Vec::new()),
-                    |(eval, trace), (k, &r)| {
-                        if r == EMPTY {
-                            return None;
-                        }
-                        let tape = &tapes[r as usize];
-                        let e = match eval {
-                            Some(e) => {
-                                e.set_tape(tape);
-                                e
-                            }
-                            None => eval.insert(Evaluator::new(tape)),
-                        };
-                        if tape.choice_count() == 0 {
-                            return Some(tape.clone());
-                        }
-                        let b = class_box(base + k);
-                        let pruned = e
-                            .eval_traced(&b, trace)
-                            .and_then(|_| tape.simplify(trace))
-                            .unwrap_or_else(|_| tape.clone());
-                        // A pruned formula has its own derivative, often tighter, sometimes
-                        // wider (a clipped surface's box faces); only a much shorter tape
-                        // pays for the change of the root searches' path.
-                        Some(if pruned.len() * PAYS <= tape.len() {
-                            pruned
-                        } else {
-                            tape.clone()
-                        })
-                    },
-                )
+                .map_init(BoxEval::default, |eval, (k, &r)| {
+                    if r == EMPTY {
+                        return None;
+                    }
+                    let tape = &tapes[r as usize];
+                    let pruned = eval.pruned(tape, &class_box(base + k));
+                    // A pruned formula has its own derivative, often tighter, sometimes
+                    // wider (a clipped surface's box faces); only a much shorter tape
+                    // pays for the change of the root searches' path.
+                    Some(if pruned.len() * PAYS <= tape.len() {
+                        pruned
+                    } else {
+                        tape.clone()
+                    })
+                })
                 .collect();
             for (k, tape) in pruned.into_iter().enumerate() {
                 let Some(tape) = tape else { continue };
@@ -217,12 +200,6 @@ impl SceneTapes {
 
     /// The scene function pruned to cell `idx`, whose classification box is `class_box`.
     pub(super) fn get(&self, idx: usize, class_box: impl FnOnce() -> IBox) -> &Tape {
-        self.cells[idx].get_or_init(|| {
-            let mut e = Evaluator::<Interval<f64>>::new(&self.full);
-            let mut trace = Vec::new();
-            e.eval_traced(&class_box(), &mut trace)
-                .and_then(|_| self.full.simplify(&trace))
-                .unwrap_or_else(|_| self.full.clone())
-        })
+        self.cells[idx].get_or_init(|| BoxEval::default().pruned(&self.full, &class_box()))
     }
 }

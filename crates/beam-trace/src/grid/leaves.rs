@@ -11,7 +11,7 @@ use std::collections::HashMap;
 
 use implicit_expr::{Context, NodeId, Tape};
 
-use super::empty::EMPTY;
+use super::cells::EMPTY;
 use super::reduce::{C_NEG, C_POS};
 
 /// The candidate leaves of a cell: their tape (one output per candidate, in leaf order),

@@ -89,8 +89,9 @@
 //! function, over the merged parameter ranges of [`Grid::beam_t_ranges`] only: outside
 //! them every ray of the beam is in empty cells or outside the scene bounds.
 
+mod box_eval;
+mod cells;
 mod classify;
-mod empty;
 mod functions;
 mod leaves;
 mod reduce;
@@ -112,7 +113,7 @@ use leaves::CellLeaves;
 pub use leaves::LeafCandidates;
 use reduce::{Sign, combine, reduce};
 
-pub use empty::EMPTY;
+pub use cells::EMPTY;
 
 /// Margin of a cell's classification box, relative to the largest cell side.
 const MARGIN: f64 = 1e-9;
@@ -644,16 +645,11 @@ impl Grid {
             "cell {c:?} outside {:?}",
             self.n
         );
-        c[0] as usize + self.n[0] as usize * (c[1] as usize + self.n[1] as usize * c[2] as usize)
+        cells::index(c, self.n)
     }
 
     fn cell_of_index(&self, idx: usize) -> [u32; 3] {
-        let (n0, n1) = (self.n[0] as usize, self.n[1] as usize);
-        [
-            (idx % n0) as u32,
-            ((idx / n0) % n1) as u32,
-            (idx / (n0 * n1)) as u32,
-        ]
+        cells::cell(idx, self.n)
     }
 
     /// Boundary `i` on axis `a` (`0 ≤ i ≤ n`): non-decreasing in `i`, the bounds at both

@@ -118,6 +118,17 @@ impl<N: Number> Evaluator<N> {
         run::<N, true, false>(self.tape.instrs(), &mut self.regs, vars, trace);
         Ok(self.regs[self.tape.outputs()[0] as usize])
     }
+
+    /// The tape pruned to the region `vars`: an [`eval_traced`](Self::eval_traced) there,
+    /// then [`Tape::simplify`] by its trace (`trace` is the buffer). Equal to the tape at
+    /// every point of the region, with the same enclosure over every part of it; the tape
+    /// itself where nothing is decided.
+    ///
+    /// Returns an error when fewer values than the tape's variable slots are given.
+    pub fn pruned(&mut self, vars: &[N], trace: &mut Vec<Choice>) -> Result<Tape, Error> {
+        self.eval_traced(vars, trace)?;
+        self.tape.simplify(trace)
+    }
 }
 
 /// The interpreter loop. `TRACE` selects choice recording and `CHECK` the definedness check

@@ -1,0 +1,40 @@
+//! A per-thread interval evaluator over boxes, switched between the tapes of cells, leaves
+//! and blocks, and the pruning of a tape to a box with it.
+
+use implicit_expr::{Choice, Evaluator, Tape};
+use interval_core::Interval;
+
+use crate::ibox::IBox;
+
+/// An interval evaluator created on first use and switched to each tape asked for, with
+/// the buffer of its choice traces.
+#[derive(Default)]
+pub(super) struct BoxEval {
+    eval: Option<Evaluator<Interval<f64>>>,
+    trace: Vec<Choice>,
+}
+
+impl BoxEval {
+    /// The evaluator, set to `tape`.
+    pub(super) fn on(&mut self, tape: &Tape) -> &mut Evaluator<Interval<f64>> {
+        if let Some(e) = &mut self.eval {
+            e.set_tape(tape);
+        }
+        self.eval.get_or_insert_with(|| Evaluator::new(tape))
+    }
+
+    /// `tape` pruned to the box `b` ([`Evaluator::pruned`]): equal to it on `b`; `tape`
+    /// itself where it has no `min`/`max` or nothing is decided.
+    pub(super) fn pruned(&mut self, tape: &Tape, b: &IBox) -> Tape {
+        if tape.choice_count() == 0 {
+            return tape.clone();
+        }
+        let mut trace = std::mem::take(&mut self.trace);
+        let p = self
+            .on(tape)
+            .pruned(b, &mut trace)
+            .unwrap_or_else(|_| tape.clone());
+        self.trace = trace;
+        p
+    }
+}
