@@ -26,6 +26,8 @@ where
     ys: Vec<T>,
     zs: Vec<T>,
     values: Vec<T>,
+    /// Per level, the buffers of the children of the tile being split there.
+    levels: Vec<Children<T>>,
     /// The counters of the tile being rendered.
     pub(crate) stats: Stats,
 }
@@ -47,6 +49,9 @@ where
             ys: Vec::new(),
             zs: Vec::new(),
             values: Vec::new(),
+            levels: (0..settings.tiles.len())
+                .map(|_| Children::default())
+                .collect(),
             stats: Stats::new(&settings.tiles),
         }
     }
@@ -143,10 +148,11 @@ where
         let Some(&size) = self.settings.tiles.get(level + 1) else {
             return self.points(&sub, t, top, out);
         };
-        let mut children = Vec::new();
+        let mut c = std::mem::take(&mut self.levels[level]);
+        c.tiles.clear();
         for j0 in (t.j0..t.j1).step_by(size) {
             for i0 in (t.i0..t.i1).step_by(size) {
-                children.push(Tile {
+                c.tiles.push(Tile {
                     i0,
                     j0,
                     i1: (i0 + size).min(t.i1),
@@ -154,33 +160,53 @@ where
                 });
             }
         }
+        let result = self.children(&sub, level, &mut c, top, out);
+        self.levels[level] = c;
+        result
+    }
+
+    /// Evaluates the children `c.tiles` of a tile at `level` on `tape` (the tile's pruned
+    /// tape) and goes on with each.
+    fn children(
+        &mut self,
+        tape: &Tape,
+        level: usize,
+        c: &mut Children<T>,
+        top: Tile,
+        out: &mut [Pixel],
+    ) -> Result<(), Error> {
         if !self.settings.prune {
-            for child in children {
-                self.tile(&sub, level + 1, child, top, out)?;
+            for &child in &c.tiles {
+                self.tile(tape, level + 1, child, top, out)?;
             }
             return Ok(());
         }
         // All children in one pass over the pruned tape, each with its own choice trace.
-        let mut cols: [Vec<Interval<T>>; 3] = Default::default();
-        for &child in &children {
-            for (col, b) in cols.iter_mut().zip(self.bounds(child)?) {
+        for col in &mut c.cols {
+            col.clear();
+        }
+        for &child in &c.tiles {
+            for (col, b) in c.cols.iter_mut().zip(self.bounds(child)?) {
                 col.push(b);
             }
         }
-        let mut values = vec![Interval::ENTIRE; children.len()];
-        let mut traces = vec![Vec::new(); children.len()];
+        let n = c.tiles.len();
+        c.values.clear();
+        c.values.resize(n, Interval::ENTIRE);
+        c.traces.resize_with(n, Vec::new);
         let clock = self.clock();
-        self.boxes.set_tape(&sub);
+        self.boxes.set_tape(tape);
         self.boxes.eval_traced(
-            &[&cols[0][..], &cols[1][..], &cols[2][..]],
-            &mut values,
-            &mut traces,
+            &[&c.cols[0][..], &c.cols[1][..], &c.cols[2][..]],
+            &mut c.values,
+            &mut c.traces[..n],
         )?;
         if let Some(c) = clock {
             self.stats.interval_time += c.elapsed();
         }
-        for ((child, v), trace) in children.into_iter().zip(values).zip(&traces) {
-            self.evaluated(&sub, level + 1, child, v, trace, top, out)?;
+        for k in 0..n {
+            let (child, v) = (c.tiles[k], c.values[k]);
+            self.evaluated(tape, level + 1, child, v, &c.traces[k], top, out)?;
         }
         Ok(())
     }
@@ -227,6 +253,26 @@ where
             }
         }
         Ok(())
+    }
+}
+
+/// The children of a tile being split, their boxes (by variable slot), interval values and
+/// choice traces: kept per level and reused from tile to tile.
+struct Children<T: Float> {
+    tiles: Vec<Tile>,
+    cols: [Vec<Interval<T>>; 3],
+    values: Vec<Interval<T>>,
+    traces: Vec<Vec<Choice>>,
+}
+
+impl<T: Float> Default for Children<T> {
+    fn default() -> Self {
+        Self {
+            tiles: Vec::new(),
+            cols: Default::default(),
+            values: Vec::new(),
+            traces: Vec::new(),
+        }
     }
 }
 

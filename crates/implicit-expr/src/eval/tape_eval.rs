@@ -15,15 +15,15 @@ pub struct Evaluator<N> {
 }
 
 /// The register file of `width` lanes per register for a tape: constant `i` fills the
-/// lanes of register `i`, the working registers start as zeros (each is written before it is
-/// read). The register count is padded to a power of two, so that the scalar loop can index
-/// with a mask instead of a bounds check.
+/// lanes of register `i`; the working registers keep whatever they held (each is written
+/// before it is read), so switching tapes costs the constants only. The register count is
+/// padded to a power of two, so that the scalar loop can index with a mask instead of a
+/// bounds check; the file only grows.
 fn load_registers<N: Number>(tape: &Tape, width: usize, regs: &mut Vec<N>) {
-    regs.clear();
-    regs.resize(
-        tape.reg_count().next_power_of_two() * width,
-        N::constant(&Constant::ZERO),
-    );
+    let need = tape.reg_count().next_power_of_two() * width;
+    if regs.len() < need {
+        regs.resize(need, N::constant(&Constant::ZERO));
+    }
     for (lanes, c) in regs.chunks_exact_mut(width).zip(tape.consts()) {
         lanes.fill(N::constant(c));
     }

@@ -2,9 +2,9 @@
 //! register tape that every evaluator walks.
 //!
 //! [`Tape::new`] takes the nodes that the outputs depend on, in topological order (the SSA
-//! form), and allocates registers by a linear scan: constants sit in fixed registers that
-//! evaluators fill once per tape, every other value gets a register that is reused after its
-//! last use. An instruction's output register never equals one of its inputs, so slice
+//! form), and allocates registers by a backward linear scan: constants sit in fixed
+//! registers that evaluators fill once per tape, every other value gets a register that is
+//! reused above its definition. An instruction's output register never equals one of its inputs, so slice
 //! evaluators can borrow them as disjoint slices.
 //!
 //! Tapes are cheap to clone (an `Arc`) and immutable; [`Tape::simplify`] makes the shorter
@@ -19,6 +19,7 @@ use std::sync::Arc;
 use crate::constant::Constant;
 use crate::context::{Context, Node, NodeId};
 use crate::error::Error;
+use crate::number::Choice;
 use crate::op::{BinaryOp, UnaryOp};
 
 /// What an instruction does.
@@ -74,6 +75,9 @@ struct TapeData {
     reg_count: u32,
     var_count: u32,
     choice_count: u32,
+    /// Each SSA operation's index in a choice trace ([`regalloc::NO_CHOICE`] when it is not
+    /// a `min` or `max`).
+    choice_index: Vec<u32>,
 }
 
 /// A compiled expression with one or more outputs. See the [module documentation](self).
@@ -128,31 +132,36 @@ impl Tape {
             pos[id.index()] = ssa.len() as u32;
             ssa.push(op);
         }
-        let outputs = roots.iter().map(|r| pos[r.index()]).collect();
-        Ok(Self::from_ssa(ssa, consts, outputs, ctx.var_count() as u32))
+        let outputs: Vec<u32> = roots.iter().map(|r| pos[r.index()]).collect();
+        Ok(Self::compiled(
+            &ssa,
+            &consts,
+            &outputs,
+            ctx.var_count() as u32,
+            |_| Choice::Both,
+        ))
     }
 
-    fn from_ssa(
-        ssa: Vec<SsaOp>,
-        consts: Vec<Constant>,
-        ssa_outputs: Vec<u32>,
+    /// The tape of the values of `ssa` that `outputs` depend on, each decided `min`/`max`
+    /// forwarded to the argument it took (`choice(i)` for the operation at position `i`).
+    fn compiled(
+        ssa: &[SsaOp],
+        consts: &[Constant],
+        outputs: &[u32],
         var_count: u32,
+        choice: impl Fn(usize) -> Choice,
     ) -> Self {
-        let (instrs, outputs, reg_count) =
-            regalloc::allocate(&ssa, consts.len() as u32, &ssa_outputs);
-        let choice_count = ssa
-            .iter()
-            .filter(|o| matches!(o.op, Opcode::Binary(BinaryOp::Min | BinaryOp::Max)))
-            .count() as u32;
+        let c = regalloc::compile(ssa, consts, outputs, choice);
         Tape(Arc::new(TapeData {
-            ssa,
-            ssa_outputs,
-            consts,
-            instrs,
-            outputs,
-            reg_count,
+            ssa: c.ssa,
+            ssa_outputs: c.ssa_outputs,
+            consts: c.consts,
+            instrs: c.instrs,
+            outputs: c.outputs,
+            reg_count: c.reg_count,
             var_count,
-            choice_count,
+            choice_count: c.choice_count,
+            choice_index: c.choice_index,
         }))
     }
 
@@ -227,6 +236,12 @@ impl Tape {
     /// Number of `min`/`max` operations: the length of a choice trace.
     pub fn choice_count(&self) -> usize {
         self.0.choice_count as usize
+    }
+
+    /// The index in a choice trace of the SSA operation at `i`, when it is a `min` or `max`.
+    fn choice_index(&self, i: usize) -> Option<usize> {
+        let k = self.0.choice_index[i];
+        (k != regalloc::NO_CHOICE).then_some(k as usize)
     }
 
     /// Number of instructions of the register tape (the work of one evaluation).

@@ -1,6 +1,19 @@
-//! Linear-scan register allocation of an SSA list.
+//! From an SSA list to a register tape in one backward pass: liveness, the forwarding of
+//! decided `min`/`max` operations and register allocation together (a reverse linear scan,
+//! as fidget does).
+//!
+//! Walking from the outputs towards the inputs, a value gets a register at its last use
+//! (the first one met) and gives it back at its definition, so the pass sees every value's
+//! whole life at once and never visits a dead one twice. A `min`/`max` whose choice is
+//! decided, and a copy, hands its register to the argument it forwards when that argument
+//! has none yet; otherwise it becomes a copy. Constants get their own registers, numbered
+//! before the working ones. The cost is one step per operation of the input and a few per
+//! operation of the output, which is what pruning a tape per tile needs.
 
 use super::{Instr, Opcode, SsaOp};
+use crate::constant::Constant;
+use crate::number::Choice;
+use crate::op::BinaryOp;
 
 /// The SSA positions an operation reads.
 pub(super) fn operands(op: &SsaOp) -> ([u32; 2], usize) {
@@ -11,91 +24,241 @@ pub(super) fn operands(op: &SsaOp) -> ([u32; 2], usize) {
     }
 }
 
-/// Assigns registers: constants `0..const_count` get their own; every other value a register
-/// taken from a free list (or a new one), released after its last use. Outputs are never
-/// released. Returns the instructions, the output registers and the register count.
-pub(super) fn allocate(
-    ssa: &[SsaOp],
-    const_count: u32,
-    outputs: &[u32],
-) -> (Vec<Instr>, Vec<u32>, u32) {
-    SCRATCH.with_borrow_mut(|scratch| allocate_with(ssa, const_count, outputs, scratch))
+/// Whether an operation is a `min` or a `max` (one entry of a choice trace).
+pub(super) fn is_choice(op: &SsaOp) -> bool {
+    matches!(op.op, Opcode::Binary(BinaryOp::Min | BinaryOp::Max))
 }
 
-/// Buffers of [`allocate`], kept per thread so that the many small allocations of a
-/// renderer's pruning (one per tile) reuse their storage.
+/// A compiled tape's parts: the SSA list (constants first), its constants and outputs, the
+/// register instructions (one per non-constant SSA operation, in the same order), the
+/// output registers, the register count, the number of `min`/`max` operations and each SSA
+/// operation's index among them ([`NO_CHOICE`] for the others).
+pub(super) struct Compiled {
+    pub(super) ssa: Vec<SsaOp>,
+    pub(super) consts: Vec<Constant>,
+    pub(super) ssa_outputs: Vec<u32>,
+    pub(super) instrs: Vec<Instr>,
+    pub(super) outputs: Vec<u32>,
+    pub(super) reg_count: u32,
+    pub(super) choice_count: u32,
+    pub(super) choice_index: Vec<u32>,
+}
+
+/// The [`Compiled::choice_index`] of an operation that is not a `min` or `max`.
+pub(super) const NO_CHOICE: u32 = u32::MAX;
+
+/// The register tape of the values of `ssa` that `outputs` depend on, where `choice(i)` tells
+/// which argument the operation at position `i` takes when it is a decided `min`/`max`
+/// (it is forwarded to that argument) and is [`Choice::Both`] otherwise.
+pub(super) fn compile(
+    ssa: &[SsaOp],
+    consts: &[Constant],
+    outputs: &[u32],
+    choice: impl Fn(usize) -> Choice,
+) -> Compiled {
+    SCRATCH.with_borrow_mut(|scratch| scratch.compile(ssa, consts, outputs, choice))
+}
+
+/// A value not (yet) live.
+const UNASSIGNED: u32 = u32::MAX;
+/// Marks a constant's register in [`Scratch::reg`], and a constant's index in
+/// [`Scratch::pos`].
+const CONST: u32 = 1 << 31;
+/// Marks, in [`Scratch::pos`], a forwarded value: the rest is the input position it equals.
+const ALIAS: u32 = 1 << 30;
+
+/// Buffers of [`compile`], kept per thread: a renderer prunes once per tile.
 #[derive(Default)]
 struct Scratch {
-    last_use: Vec<usize>,
+    /// Register of each input value once live: a working register, or `CONST | k`.
     reg: Vec<u32>,
+    /// Where each live input value ended: the index (counted from the end) of the operation
+    /// that computes it, `CONST | k`, or `ALIAS | position` of the value it forwards.
+    pos: Vec<u32>,
+    /// Working registers given back, to reuse.
     free: Vec<u32>,
+    /// The output operations, last first: SSA arguments as input positions, and the
+    /// instruction with working registers and `CONST`-marked constant registers.
+    emitted: Vec<(SsaOp, Instr)>,
 }
 
 thread_local! {
     static SCRATCH: std::cell::RefCell<Scratch> = std::cell::RefCell::new(Scratch::default());
 }
 
-fn allocate_with(
-    ssa: &[SsaOp],
-    const_count: u32,
-    outputs: &[u32],
-    scratch: &mut Scratch,
-) -> (Vec<Instr>, Vec<u32>, u32) {
-    let n = ssa.len();
-    let Scratch {
-        last_use,
-        reg,
-        free,
-    } = scratch;
-    last_use.clear();
-    last_use.resize(n, 0);
-    for (i, op) in ssa.iter().enumerate() {
-        let (args, k) = operands(op);
-        for &a in &args[..k] {
-            last_use[a as usize] = i;
+impl Scratch {
+    fn compile(
+        &mut self,
+        ssa: &[SsaOp],
+        in_consts: &[Constant],
+        in_outputs: &[u32],
+        choice: impl Fn(usize) -> Choice,
+    ) -> Compiled {
+        let n = ssa.len();
+        self.reg.clear();
+        self.reg.resize(n, UNASSIGNED);
+        // Every entry read is written first (at the value's definition, met after its uses).
+        if self.pos.len() < n {
+            self.pos.resize(n, 0);
         }
-    }
-    for &o in outputs {
-        last_use[o as usize] = usize::MAX;
-    }
-    reg.clear();
-    reg.resize(n, u32::MAX);
-    free.clear();
-    let mut next = const_count;
-    let mut instrs = Vec::with_capacity(n);
-    for (i, op) in ssa.iter().enumerate() {
-        if op.op == Opcode::Const {
-            reg[i] = op.a;
-            continue;
-        }
-        let out = free.pop().unwrap_or_else(|| {
-            next += 1;
-            next - 1
-        });
-        reg[i] = out;
-        let (args, k) = operands(op);
-        let mut instr = Instr {
-            op: op.op,
-            out,
-            a: op.a,
-            b: op.b,
-        };
-        if k >= 1 {
-            instr.a = reg[args[0] as usize];
-        }
-        if k == 2 {
-            instr.b = reg[args[1] as usize];
-        }
-        // Release the inputs that die here (after choosing `out`, so `out` differs from them).
-        for (j, &a) in args[..k].iter().enumerate() {
-            let a = a as usize;
-            let dup = j == 1 && args[0] as usize == a;
-            if last_use[a] == i && ssa[a].op != Opcode::Const && !dup {
-                free.push(reg[a]);
+        self.free.clear();
+        self.emitted.clear();
+        let mut consts = Vec::new();
+        let mut working = 0u32;
+        let mut reg_of = |p: u32, reg: &mut [u32], free: &mut Vec<u32>| -> u32 {
+            let p = p as usize;
+            if reg[p] == UNASSIGNED {
+                reg[p] = if ssa[p].op == Opcode::Const {
+                    consts.push(in_consts[ssa[p].a as usize]);
+                    CONST | (consts.len() - 1) as u32
+                } else {
+                    free.pop().unwrap_or_else(|| {
+                        working += 1;
+                        working - 1
+                    })
+                };
             }
+            reg[p]
+        };
+        for &o in in_outputs {
+            reg_of(o, &mut self.reg, &mut self.free);
         }
-        instrs.push(instr);
+        let mut choice_count = 0;
+        for i in (0..n).rev() {
+            let out = self.reg[i];
+            if out == UNASSIGNED {
+                continue;
+            }
+            let op = ssa[i];
+            if op.op == Opcode::Const {
+                self.pos[i] = out;
+                continue;
+            }
+            let forward = match (op.op, choice(i)) {
+                (_, Choice::Left) | (Opcode::Copy, _) => Some(op.a),
+                (_, Choice::Right) => Some(op.b),
+                _ => None,
+            };
+            let (ssa_op, instr) = match forward {
+                // The forwarded value takes over the register.
+                Some(a)
+                    if self.reg[a as usize] == UNASSIGNED
+                        && ssa[a as usize].op != Opcode::Const =>
+                {
+                    self.reg[a as usize] = out;
+                    self.pos[i] = ALIAS | a;
+                    continue;
+                }
+                Some(a) => {
+                    let ra = reg_of(a, &mut self.reg, &mut self.free);
+                    let copy = SsaOp {
+                        op: Opcode::Copy,
+                        a,
+                        b: 0,
+                    };
+                    (
+                        copy,
+                        Instr {
+                            op: Opcode::Copy,
+                            out,
+                            a: ra,
+                            b: 0,
+                        },
+                    )
+                }
+                None => {
+                    let (args, arity) = operands(&op);
+                    let mut instr = Instr {
+                        op: op.op,
+                        out,
+                        a: op.a,
+                        b: op.b,
+                    };
+                    // The arguments' registers are taken while `out` is still held, so the
+                    // output register differs from both.
+                    if arity >= 1 {
+                        instr.a = reg_of(args[0], &mut self.reg, &mut self.free);
+                    }
+                    if arity == 2 {
+                        instr.b = reg_of(args[1], &mut self.reg, &mut self.free);
+                    }
+                    choice_count += u32::from(is_choice(&op));
+                    (op, instr)
+                }
+            };
+            // Above its definition the value is not live: its register is free there.
+            self.free.push(out);
+            self.pos[i] = self.emitted.len() as u32;
+            self.emitted.push((ssa_op, instr));
+        }
+        self.finish(consts, working, choice_count, in_outputs)
     }
-    let out_regs = outputs.iter().map(|&o| reg[o as usize]).collect();
-    (instrs, out_regs, next)
+
+    /// Puts the operations emitted last-first in order: constants first in the SSA list and
+    /// in registers `0..consts.len()`, working registers after them.
+    fn finish(
+        &self,
+        consts: Vec<Constant>,
+        working: u32,
+        choice_count: u32,
+        in_outputs: &[u32],
+    ) -> Compiled {
+        let nc = consts.len() as u32;
+        let m = self.emitted.len() as u32;
+        let reg = |r: u32| if r & CONST != 0 { r & !CONST } else { r + nc };
+        // The final SSA position of input value `p`.
+        let position = |mut p: u32| loop {
+            let v = self.pos[p as usize];
+            if v & CONST != 0 {
+                return v & !CONST;
+            }
+            if v & ALIAS != 0 {
+                p = v & !ALIAS;
+                continue;
+            }
+            return nc + (m - 1 - v);
+        };
+        let mut ssa: Vec<SsaOp> = Vec::with_capacity((nc + m) as usize);
+        ssa.extend((0..nc).map(|c| SsaOp {
+            op: Opcode::Const,
+            a: c,
+            b: 0,
+        }));
+        let mut instrs = Vec::with_capacity(m as usize);
+        let mut choice_index = vec![NO_CHOICE; (nc + m) as usize];
+        let mut choices = 0;
+        for &(op, ins) in self.emitted.iter().rev() {
+            if is_choice(&op) {
+                choice_index[ssa.len()] = choices;
+                choices += 1;
+            }
+            let mut op = op;
+            let mut ins = ins;
+            let (_, arity) = operands(&op);
+            ins.out = reg(ins.out);
+            if arity >= 1 {
+                op.a = position(op.a);
+                ins.a = reg(ins.a);
+            }
+            if arity == 2 {
+                op.b = position(op.b);
+                ins.b = reg(ins.b);
+            }
+            ssa.push(op);
+            instrs.push(ins);
+        }
+        Compiled {
+            ssa,
+            consts,
+            ssa_outputs: in_outputs.iter().map(|&o| position(o)).collect(),
+            instrs,
+            outputs: in_outputs
+                .iter()
+                .map(|&o| reg(self.reg[o as usize]))
+                .collect(),
+            reg_count: nc + working,
+            choice_count,
+            choice_index,
+        }
+    }
 }

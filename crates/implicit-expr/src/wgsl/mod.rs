@@ -28,7 +28,7 @@
 //! let generator = wgsl::Generator::new(&tape, "sphere")?;
 //! let source = generator.interval_source();
 //! assert!(source.contains("fn sphere(x: Interval, y: Interval, z: Interval) -> Interval {"));
-//! assert!(source.contains("i_sqr(v0)"));
+//! assert!(source.contains("i_sqr(v1)"));
 //! assert_eq!(generator.required_functions(), ["i_add", "i_sub", "i_sqr"]);
 //! assert!(generator.point_source().contains("fn sphere_point(x: f32, y: f32, z: f32) -> f32 {"));
 //! # Ok::<(), implicit_expr::Error>(())
