@@ -14,18 +14,26 @@ pub struct Evaluator<N> {
     regs: Vec<N>,
 }
 
-/// The register file of `width` lanes per register for a tape: constant `i` fills the
-/// lanes of register `i`; the working registers keep whatever they held (each is written
-/// before it is read), so switching tapes costs the constants only. The register count is
-/// padded to a power of two, so that the scalar loop can index with a mask instead of a
-/// bounds check; the file only grows.
-fn load_registers<N: Number>(tape: &Tape, width: usize, regs: &mut Vec<N>) {
+/// Makes `regs` a register file of `width` lanes per register for a tape, and fills lanes
+/// `lanes` of its constant registers (constant `i` lives in register `i`). The working
+/// registers keep whatever they held (each is written before it is read), so switching
+/// tapes costs the constants only. The register count is padded to a power of two, so that
+/// the scalar loop can index with a mask instead of a bounds check; the file only grows.
+fn load_registers<N: Number>(
+    tape: &Tape,
+    width: usize,
+    regs: &mut Vec<N>,
+    lanes: std::ops::Range<usize>,
+) {
     let need = tape.reg_count().next_power_of_two() * width;
     if regs.len() < need {
         regs.resize(need, N::constant(&Constant::ZERO));
     }
-    for (lanes, c) in regs.chunks_exact_mut(width).zip(tape.consts()) {
-        lanes.fill(N::constant(c));
+    if lanes.is_empty() {
+        return;
+    }
+    for (reg, c) in regs.chunks_exact_mut(width).zip(tape.consts()) {
+        reg[lanes.clone()].fill(N::constant(c));
     }
 }
 
@@ -33,7 +41,7 @@ impl<N: Number> Evaluator<N> {
     /// An evaluator for `tape`.
     pub fn new(tape: &Tape) -> Self {
         let mut regs = Vec::new();
-        load_registers(tape, 1, &mut regs);
+        load_registers(tape, 1, &mut regs, 0..1);
         Self {
             tape: tape.clone(),
             regs,
@@ -44,7 +52,7 @@ impl<N: Number> Evaluator<N> {
     pub fn set_tape(&mut self, tape: &Tape) {
         if !self.tape.ptr_eq(tape) {
             self.tape = tape.clone();
-            load_registers(tape, 1, &mut self.regs);
+            load_registers(tape, 1, &mut self.regs, 0..1);
         }
     }
 
@@ -201,16 +209,20 @@ pub const SLICE_CHUNK: usize = 64;
 pub struct SliceEvaluator<N> {
     tape: Tape,
     regs: Vec<N>,
+    /// The lanes of the constant registers filled so far for this tape (an evaluation of
+    /// fewer inputs than a chunk fills only the lanes it uses).
+    filled: usize,
 }
 
 impl<N: Number> SliceEvaluator<N> {
     /// An evaluator for `tape`.
     pub fn new(tape: &Tape) -> Self {
         let mut regs = Vec::new();
-        load_registers(tape, SLICE_CHUNK, &mut regs);
+        load_registers(tape, SLICE_CHUNK, &mut regs, 0..0);
         Self {
             tape: tape.clone(),
             regs,
+            filled: 0,
         }
     }
 
@@ -218,7 +230,8 @@ impl<N: Number> SliceEvaluator<N> {
     pub fn set_tape(&mut self, tape: &Tape) {
         if !self.tape.ptr_eq(tape) {
             self.tape = tape.clone();
-            load_registers(tape, SLICE_CHUNK, &mut self.regs);
+            load_registers(tape, SLICE_CHUNK, &mut self.regs, 0..0);
+            self.filled = 0;
         }
     }
 
@@ -227,7 +240,7 @@ impl<N: Number> SliceEvaluator<N> {
     ///
     /// Returns an error when fewer slots than the tape's are given or the lengths differ.
     pub fn eval(&mut self, vars: &[&[N]], out: &mut [N]) -> Result<(), Error> {
-        self.check(vars, out.len())?;
+        self.prepare(vars, out.len())?;
         let output = self.tape.outputs()[0] as usize;
         let mut start = 0;
         while start < out.len() {
@@ -255,7 +268,7 @@ impl<N: Number> SliceEvaluator<N> {
         out: &mut [N],
         traces: &mut [Vec<Choice>],
     ) -> Result<(), Error> {
-        self.check(vars, out.len())?;
+        self.prepare(vars, out.len())?;
         if traces.len() != out.len() {
             return Err(Error::Unsupported(format!(
                 "{} traces given for {} inputs",
@@ -288,7 +301,8 @@ impl<N: Number> SliceEvaluator<N> {
         Ok(())
     }
 
-    fn check(&self, vars: &[&[N]], len: usize) -> Result<(), Error> {
+    /// Checks the inputs, and fills the constant lanes that `len` inputs use.
+    fn prepare(&mut self, vars: &[&[N]], len: usize) -> Result<(), Error> {
         if vars.len() < self.tape.var_count() {
             return Err(Error::MissingVar {
                 slot: vars.len() as u32,
@@ -300,6 +314,11 @@ impl<N: Number> SliceEvaluator<N> {
                 "variable slot {bad} has {} values, the output {len}",
                 vars[bad].len(),
             )));
+        }
+        let lanes = SLICE_CHUNK.min(len);
+        if lanes > self.filled {
+            load_registers(&self.tape, SLICE_CHUNK, &mut self.regs, self.filled..lanes);
+            self.filled = lanes;
         }
         Ok(())
     }
