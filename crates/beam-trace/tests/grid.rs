@@ -365,7 +365,13 @@ fn dims_statistics_and_thread_independence() {
     assert_eq!(grid.dims(), [8, 4, 1]);
     let s = grid.stats();
     assert_eq!(s.cells, 32);
-    assert_eq!(s.leaf_evals, 32);
+    // The octree classification: the whole grid, then the blocks the sphere's surface
+    // crosses, never more than twice the flat classification's one evaluation per cell.
+    assert!(
+        s.leaf_evals >= 1 && s.leaf_evals <= 2 * s.cells,
+        "{}",
+        s.leaf_evals
+    );
     assert!(s.non_empty > 0 && s.non_empty < s.cells);
     assert!(s.functions >= 1);
     // Resolution 0 is one cell.

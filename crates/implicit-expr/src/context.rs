@@ -413,27 +413,43 @@ impl Context {
 
     /// The nodes `root` depends on (itself included), in topological order.
     pub fn reachable(&self, roots: &[NodeId]) -> Vec<NodeId> {
-        let mut live = vec![false; self.nodes.len()];
-        for r in roots {
-            live[r.index()] = true;
-        }
-        for i in (0..self.nodes.len()).rev() {
-            if !live[i] {
-                continue;
+        // A depth-first walk from the roots, so the cost is that of the nodes reached (a
+        // context may hold far more: every reduced formula of a scene's grid cells).
+        let mut seen = vec![0_u64; self.nodes.len().div_ceil(64)];
+        let mut mark = |id: NodeId| {
+            let (w, b) = (id.index() / 64, 1_u64 << (id.index() % 64));
+            let new = seen[w] & b == 0;
+            seen[w] |= b;
+            new
+        };
+        let mut out = Vec::new();
+        let mut stack: Vec<NodeId> = Vec::new();
+        for &r in roots {
+            if mark(r) {
+                stack.push(r);
             }
-            match self.nodes[i] {
-                Node::Unary(_, a) | Node::Pown(a, _) => live[a.index()] = true,
+        }
+        while let Some(id) = stack.pop() {
+            out.push(id);
+            match self.nodes[id.index()] {
+                Node::Unary(_, a) | Node::Pown(a, _) => {
+                    if mark(a) {
+                        stack.push(a);
+                    }
+                }
                 Node::Binary(_, a, b) => {
-                    live[a.index()] = true;
-                    live[b.index()] = true;
+                    for c in [a, b] {
+                        if mark(c) {
+                            stack.push(c);
+                        }
+                    }
                 }
                 Node::Var(_) | Node::Const(_) => {}
             }
         }
-        (0..self.nodes.len())
-            .filter(|&i| live[i])
-            .map(|i| NodeId(i as u32))
-            .collect()
+        // Operands come before their users in a context: index order is topological.
+        out.sort_unstable();
+        out
     }
 
     /// Whether every node `root` depends on is an operation defined on the whole real line

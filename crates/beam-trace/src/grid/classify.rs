@@ -1,14 +1,16 @@
-//! The leaves' sign classes over every cell, flat or from coarser cells.
+//! The leaves' sign classes over every cell, from coarser blocks of cells.
 //!
 //! A cell's classes are what the grid's CSG reduction starts from (see [`super::reduce`]):
 //! per used leaf, proven positive, negative, undefined, or unknown over the cell's
-//! classification box. The flat classification evaluates every leaf on every cell. On a
-//! fine grid most of that work is repeated: the two-level classification first classifies
-//! blocks of up to `BLOCK³` cells (on the hull of their classification boxes), and a cell then
-//! inherits every class its block proved, a proof over the block being one over any part of
-//! it, and evaluates only the leaves still unknown, each with its tape pruned to the block
-//! (equal to the leaf on the block, with the same enclosure over any part of it). Cells of
-//! blocks where every leaf is decided cost nothing. The classes are those of the flat
+//! classification box. Evaluating every leaf on every cell (the flat classification)
+//! repeats most of the work on a fine grid, and costs the number of leaves times the number
+//! of cells. Here the grid is classified as an octree of blocks of cells: the whole grid
+//! first, then each block's halves along every axis of more than one cell, down to single
+//! cells. A block inherits every class its parent proved (a proof over a box is one over
+//! any part of it) and evaluates only the leaves still unknown, each with its tape pruned to
+//! the parent (equal to the leaf there, with the same enclosure over any part of it). A
+//! block where every leaf is decided is final for all its cells, so a leaf costs about the
+//! blocks near its surface rather than every cell. The classes are those of the flat
 //! classification wherever interval evaluation is inclusion-monotone (it is, for every
 //! operation here); either way each one is proven over its cell.
 
@@ -20,16 +22,6 @@ use super::box_eval::BoxEval;
 use super::cells::{cell as cell_of, index};
 use super::reduce::{C_NEG, C_POS, C_UNKNOWN, C_UNKNOWN_DEFINED, classify};
 use crate::ibox::IBox;
-
-/// Cells per block side in the two-level classification, on axes of at least
-/// [`TWO_LEVEL_MIN`] cells (one cell on the others).
-const BLOCK: u32 = 4;
-
-/// Axes with at least this many cells are divided into blocks.
-const TWO_LEVEL_MIN: u32 = 2 * BLOCK;
-
-/// Blocks smaller than this many cells do not pay for their own classification.
-const BLOCK_MIN_CELLS: u32 = 16;
 
 /// The classes of every cell (`nused` per cell, in cell order), per cell the smallest
 /// mignitude over the cell of its leaves of proven sign (a lower bound), and the number of
@@ -117,6 +109,7 @@ pub(super) fn classify_cells(
     boundary: &(dyn Fn(usize, u32) -> f64 + Sync),
     margin: [f64; 3],
 ) -> Classes {
+    // The hull of the classification boxes of cells `lo..hi` (per axis, `hi` excluded).
     let box_of = |lo: [u32; 3], hi: [u32; 3]| -> IBox {
         std::array::from_fn(|a| {
             Interval::new_unchecked(
@@ -126,78 +119,205 @@ pub(super) fn classify_cells(
         })
     };
     let ncells = n.iter().map(|&k| k as usize).product::<usize>();
-    let fine_box = |idx: usize| {
-        let c = cell_of(idx, n);
-        box_of(c, c.map(|i| i + 1))
-    };
     let nused = t.each.len();
-    let side: [u32; 3] = n.map(|k| if k >= TWO_LEVEL_MIN { BLOCK } else { 1 });
-    if nused == 0 || side.iter().product::<u32>() < BLOCK_MIN_CELLS {
-        return flat(t, ncells, &fine_box);
+    if nused == 0 || ncells <= 1 {
+        return flat(t, ncells, &|idx| {
+            let c = cell_of(idx, n);
+            box_of(c, c.map(|i| i + 1))
+        });
     }
-
-    // The blocks: `side` cells per axis each (fewer at the far ends), classified flat on
-    // the hull of their cells' classification boxes.
-    let m: [u32; 3] = std::array::from_fn(|a| n[a].div_ceil(side[a]));
-    let block_cells = |b: [u32; 3]| -> ([u32; 3], [u32; 3]) {
-        let lo: [u32; 3] = std::array::from_fn(|a| b[a] * side[a]);
-        let hi: [u32; 3] = std::array::from_fn(|a| ((b[a] + 1) * side[a]).min(n[a]));
-        (lo, hi)
-    };
-    let nblocks = m.iter().map(|&k| k as usize).product::<usize>();
-    let block_box = |idx: usize| {
-        let (lo, hi) = block_cells(cell_of(idx, m));
-        box_of(lo, hi)
-    };
-    let coarse = flat(t, nblocks, &block_box);
-
-    // Per block, each leaf still unknown with its tape pruned to the block.
-    let pruned: Vec<Vec<(usize, Tape)>> = (0..nblocks)
-        .into_par_iter()
-        .map_init(BoxEval::default, |eval, bi| {
-            let b = block_box(bi);
-            let row = &coarse.classes[bi * nused..(bi + 1) * nused];
-            row.iter()
-                .enumerate()
-                .filter(|(_, c)| matches!(**c, C_UNKNOWN | C_UNKNOWN_DEFINED))
-                .map(|(k, _)| (k, eval.pruned(&t.each[k], &b)))
-                .collect()
+    // The root: every leaf over the whole grid.
+    let root = flat(t, 1, &|_| box_of([0; 3], n));
+    let mut leaf_evals = root.leaf_evals;
+    let unknown = undecided(&root.classes)
+        .map(|k| {
+            (
+                k,
+                BOX_EVAL.with_borrow_mut(|e| e.pruned(&t.each[k], &box_of([0; 3], n))),
+            )
         })
         .collect();
-
-    // The cells: the block's decided classes, the unknown leaves evaluated.
+    let mut level = vec![Node {
+        lo: [0; 3],
+        hi: n,
+        row: root.classes,
+        bound: root.bound[0],
+        unknown,
+    }];
     let mut classes = vec![0_u8; ncells * nused];
     let mut bound = vec![f64::INFINITY; ncells];
-    let block_of = |idx: usize| -> usize {
-        let c = cell_of(idx, n);
-        index(std::array::from_fn(|a| c[a] / side[a]), m)
-    };
-    classes
-        .par_chunks_mut(nused)
-        .zip(bound.par_iter_mut())
-        .enumerate()
-        .for_each_init(BoxEval::default, |eval, (idx, (out, bound))| {
-            let bi = block_of(idx);
-            out.copy_from_slice(&coarse.classes[bi * nused..(bi + 1) * nused]);
-            *bound = coarse.bound[bi];
-            if pruned[bi].is_empty() {
-                return;
-            }
-            let b = fine_box(idx);
-            for (k, tape) in &pruned[bi] {
-                let (f, defined) = eval.on(tape).eval_defined(&b).expect("tape in x y z");
-                out[*k] = classify(f, defined);
-                if matches!(out[*k], C_POS | C_NEG) {
-                    *bound = bound.min(f.mig());
+    // Level by level: each node's children, with the leaves still unknown evaluated over
+    // each child; a child without unknown leaves, or of one cell, is final.
+    while !level.is_empty() {
+        let children: Vec<(Node, u64)> = level
+            .par_iter()
+            .flat_map_iter(|node| node.split())
+            .map_init(BoxEval::default, |eval, (parent, lo, hi)| {
+                let b = box_of(lo, hi);
+                let one_cell = (0..3).all(|a| hi[a] - lo[a] == 1);
+                let mut row = parent.row.clone();
+                let mut bound = parent.bound;
+                let mut unknown = Vec::new();
+                for (k, tape) in &parent.unknown {
+                    let (f, defined) = eval.on(tape).eval_defined(&b).expect("tape in x y z");
+                    row[*k] = classify(f, defined);
+                    if matches!(row[*k], C_POS | C_NEG) {
+                        bound = bound.min(f.mig());
+                    } else if !one_cell {
+                        unknown.push((*k, eval.pruned(tape, &b)));
+                    }
                 }
+                let evals = parent.unknown.len() as u64;
+                let node = Node {
+                    lo,
+                    hi,
+                    row,
+                    bound,
+                    unknown,
+                };
+                (node, evals)
+            })
+            .collect();
+        level = Vec::new();
+        for (node, evals) in children {
+            leaf_evals += evals;
+            if node.unknown.is_empty() {
+                for c in node.cells() {
+                    let idx = index(c, n);
+                    classes[idx * nused..(idx + 1) * nused].copy_from_slice(&node.row);
+                    bound[idx] = node.bound;
+                }
+            } else {
+                level.push(node);
             }
-        });
-    let unknown: u64 = (0..ncells)
-        .map(|idx| pruned[block_of(idx)].len() as u64)
-        .sum();
+        }
+    }
     Classes {
         classes,
         bound,
-        leaf_evals: coarse.leaf_evals + unknown,
+        leaf_evals,
+    }
+}
+
+thread_local! {
+    static BOX_EVAL: std::cell::RefCell<BoxEval> = std::cell::RefCell::new(BoxEval::default());
+}
+
+/// The leaves whose class in `row` is unknown (defined or not).
+fn undecided(row: &[u8]) -> impl Iterator<Item = usize> + '_ {
+    row.iter()
+        .enumerate()
+        .filter(|(_, c)| matches!(**c, C_UNKNOWN | C_UNKNOWN_DEFINED))
+        .map(|(k, _)| k)
+}
+
+/// A block of cells `lo..hi` of the classification: the classes proven over its box (every
+/// used leaf), the smallest mignitude of the signed ones, and the leaves still unknown with
+/// their tapes pruned to the box.
+struct Node {
+    lo: [u32; 3],
+    hi: [u32; 3],
+    row: Vec<u8>,
+    bound: f64,
+    unknown: Vec<(usize, Tape)>,
+}
+
+impl Node {
+    /// The node's children with their cell ranges: each axis of more than one cell halved.
+    fn split(&self) -> impl Iterator<Item = (&Node, [u32; 3], [u32; 3])> + '_ {
+        let halves = |a: usize| -> Vec<(u32, u32)> {
+            let (lo, hi) = (self.lo[a], self.hi[a]);
+            if hi - lo > 1 {
+                let mid = lo + (hi - lo) / 2;
+                vec![(lo, mid), (mid, hi)]
+            } else {
+                vec![(lo, hi)]
+            }
+        };
+        let (x, y, z) = (halves(0), halves(1), halves(2));
+        let mut out = Vec::with_capacity(8);
+        for &(z0, z1) in &z {
+            for &(y0, y1) in &y {
+                for &(x0, x1) in &x {
+                    out.push((self, [x0, y0, z0], [x1, y1, z1]));
+                }
+            }
+        }
+        out.into_iter()
+    }
+
+    /// The cells of the node.
+    fn cells(&self) -> impl Iterator<Item = [u32; 3]> + '_ {
+        (self.lo[2]..self.hi[2]).flat_map(move |z| {
+            (self.lo[1]..self.hi[1])
+                .flat_map(move |y| (self.lo[0]..self.hi[0]).map(move |x| [x, y, z]))
+        })
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use implicit_expr::Context;
+
+    /// Leaves of several kinds (total, with `min`/`max` to prune, partly undefined) and the
+    /// grid's boundaries over `[-2, 2]³`.
+    fn leaves() -> LeafTapes {
+        let formulas = [
+            "x^2 + y^2 + z^2 - 1",
+            "(x - 0.7)^2 + (y + 0.4)^2 + z^2 - 0.09",
+            "max(abs(x) - 1.5, min(abs(y) - 0.2, abs(z + 0.5) - 0.3))",
+            "sqrt(x + 1) - y - 1",
+            "min(x - 1.9, 1.9 - x) + 0.05",
+        ];
+        let mut ctx = Context::new();
+        let nodes: Vec<_> = formulas
+            .iter()
+            .map(|f| implicit_expr::parse::parse(&mut ctx, f, &[]).unwrap())
+            .collect();
+        LeafTapes {
+            all: Tape::new(&ctx, &nodes).unwrap(),
+            each: nodes
+                .iter()
+                .map(|&n| Tape::new(&ctx, &[n]).unwrap())
+                .collect(),
+            total: nodes.iter().map(|&n| ctx.is_total(n)).collect(),
+        }
+    }
+
+    #[test]
+    fn octree_classes_equal_the_flat_ones() {
+        let t = leaves();
+        for n in [[1, 1, 1], [7, 1, 3], [16, 16, 16], [13, 9, 20]] {
+            let step: [f64; 3] = std::array::from_fn(|a| 4.0 / f64::from(n[a]));
+            let boundary = |a: usize, i: u32| {
+                if i >= n[a] {
+                    2.0
+                } else {
+                    -2.0 + f64::from(i) * step[a]
+                }
+            };
+            let margin = [1e-9; 3];
+            let tree = classify_cells(&t, n, &boundary, margin);
+            let ncells = n.iter().map(|&k| k as usize).product::<usize>();
+            let flat = flat(&t, ncells, &|idx| {
+                let c = cell_of(idx, n);
+                std::array::from_fn(|a| {
+                    Interval::new_unchecked(
+                        boundary(a, c[a]) - margin[a],
+                        boundary(a, c[a] + 1) + margin[a],
+                    )
+                })
+            });
+            assert_eq!(tree.classes, flat.classes, "{n:?}");
+            // The bound is a smallest mignitude over the cell's signed leaves: the octree's
+            // comes from the box where each was proven, at most the cell's own.
+            for (a, b) in tree.bound.iter().zip(&flat.bound) {
+                assert!(a <= b, "{n:?}: {a} > {b}");
+            }
+            if ncells >= 4096 {
+                assert!(tree.leaf_evals < flat.leaf_evals / 2, "{}", tree.leaf_evals);
+            }
+        }
     }
 }

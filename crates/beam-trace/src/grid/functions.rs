@@ -33,7 +33,7 @@ use rayon::prelude::*;
 use crate::ibox::IBox;
 
 use super::box_eval::BoxEval;
-use super::cells::EMPTY;
+use super::cells::{EMPTY, cell as cell_of, index};
 
 /// Cells pruned per parallel piece before their tapes are merged into the cache (bounds the
 /// memory of tapes not yet deduplicated).
@@ -178,28 +178,61 @@ impl CellFunctions {
 }
 
 /// The scene function pruned to each cell, built when a cell is first asked for (normals
-/// at hit points): an interval evaluation of the whole function over the cell's
-/// classification box records the `min`/`max` choices, [`Tape::simplify`] keeps the taken
-/// arguments. Equal to the scene function at every point of the box, with the same
-/// gradient wherever the evaluators' `min`/`max` pick a side (they pick the side the
-/// interval evaluation proved).
+/// at hit points): an interval evaluation over the cell's classification box records the
+/// `min`/`max` choices, [`Tape::simplify`] keeps the taken arguments. Equal to the scene
+/// function at every point of the box, with the same gradient wherever the evaluators'
+/// `min`/`max` pick a side (they pick the side the interval evaluation proved).
+///
+/// A cell's tape is pruned from its block's (the scene function pruned to the hull of
+/// [`SCENE_BLOCK`]³ cells, built the same way), so that the whole function is evaluated
+/// once per block rather than once per cell. The result is the tape pruning the whole
+/// function to the cell would give: a `min`/`max` decided over the block is decided the
+/// same way over the cell (the cell's enclosures lie inside the block's), and the argument
+/// it forwards has exactly the enclosure the operation had.
 #[derive(Clone, Debug)]
 pub(super) struct SceneTapes {
     full: Tape,
+    n: [u32; 3],
+    blocks: Vec<OnceLock<Tape>>,
     cells: Vec<OnceLock<Tape>>,
 }
 
+/// Cells per block side of [`SceneTapes`].
+const SCENE_BLOCK: u32 = 4;
+
+thread_local! {
+    static BOX_EVAL: std::cell::RefCell<BoxEval> = std::cell::RefCell::new(BoxEval::default());
+}
+
 impl SceneTapes {
-    /// Nothing built yet for `cells` cells of the scene function `full`.
-    pub(super) fn new(full: Tape, cells: usize) -> Self {
+    /// Nothing built yet for a grid of `n` cells per axis with the scene function `full`.
+    pub(super) fn new(full: Tape, n: [u32; 3]) -> Self {
+        let count = |k: [u32; 3]| k.iter().map(|&k| k as usize).product::<usize>();
+        let m = n.map(|k| k.div_ceil(SCENE_BLOCK));
         Self {
             full,
-            cells: (0..cells).map(|_| OnceLock::new()).collect(),
+            n,
+            blocks: (0..count(m)).map(|_| OnceLock::new()).collect(),
+            cells: (0..count(n)).map(|_| OnceLock::new()).collect(),
         }
     }
 
-    /// The scene function pruned to cell `idx`, whose classification box is `class_box`.
-    pub(super) fn get(&self, idx: usize, class_box: impl FnOnce() -> IBox) -> &Tape {
-        self.cells[idx].get_or_init(|| BoxEval::default().pruned(&self.full, &class_box()))
+    /// The scene function pruned to cell `idx`; `class_box` gives the classification box of
+    /// a cell.
+    pub(super) fn get(&self, idx: usize, class_box: impl Fn([u32; 3]) -> IBox) -> &Tape {
+        self.cells[idx].get_or_init(|| {
+            let cell = cell_of(idx, self.n);
+            let m = self.n.map(|k| k.div_ceil(SCENE_BLOCK));
+            let b = cell.map(|i| i / SCENE_BLOCK);
+            let block = self.blocks[index(b, m)].get_or_init(|| {
+                let lo = b.map(|i| i * SCENE_BLOCK);
+                let hi: [u32; 3] =
+                    std::array::from_fn(|a| ((b[a] + 1) * SCENE_BLOCK).min(self.n[a]) - 1);
+                let (l, h) = (class_box(lo), class_box(hi));
+                let hull: IBox = std::array::from_fn(|a| l[a].convex_hull(h[a]));
+                BOX_EVAL.with_borrow_mut(|e| e.pruned(&self.full, &hull))
+            });
+            BOX_EVAL.with_borrow_mut(|e| e.pruned(block, &class_box(cell)))
+        })
     }
 }

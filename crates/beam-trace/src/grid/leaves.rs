@@ -35,49 +35,58 @@ pub(super) struct CellLeaves {
 }
 
 impl CellLeaves {
-    /// The candidates of every cell that `non_empty` keeps: `classes` holds one class per
-    /// used leaf and cell (`used[k]` the leaf of class column `k`), `bound` per cell the
-    /// smallest mignitude of its leaves of proven sign; `leaf_nodes` are the leaves' nodes in
-    /// `ctx`. Returns `None` when a tape cannot be built (the full search is used then).
+    /// The candidates of every cell that `non_empty` keeps: `rows` holds the distinct
+    /// class vectors (one class per used leaf, `used[k]` the leaf of class column `k`),
+    /// `row_of` each cell's, `bound` per cell the smallest mignitude of its leaves of proven
+    /// sign; `leaf_nodes` are the leaves' nodes in `ctx`. Each distinct vector is looked at
+    /// once. Returns `None` when a tape cannot be built (the full search is used then).
     pub(super) fn build(
         ctx: &Context,
         leaf_nodes: &[NodeId],
         used: &[usize],
-        classes: &[u8],
+        rows: &[&[u8]],
+        row_of: &[u32],
         bound: Vec<f64>,
         non_empty: impl Fn(usize) -> bool,
     ) -> Option<Self> {
-        let ncells = bound.len();
-        let nused = used.len();
         let mut signed = vec![false; leaf_nodes.len()];
         let mut by_set: HashMap<Vec<u32>, u32> = HashMap::new();
         let mut sets = Vec::new();
-        let mut cell_set = vec![EMPTY; ncells];
+        // Each distinct class vector's candidate set (EMPTY: none), built when first used.
+        let mut row_set: Vec<Option<u32>> = vec![None; rows.len()];
+        let mut cell_set = vec![EMPTY; row_of.len()];
         for (idx, set) in cell_set.iter_mut().enumerate() {
-            if !non_empty(idx) || nused == 0 {
+            if !non_empty(idx) || used.is_empty() || row_of[idx] == EMPTY {
+                continue;
+            }
+            let r = row_of[idx] as usize;
+            if let Some(s) = row_set[r] {
+                *set = s;
                 continue;
             }
             signed.fill(false);
-            for (k, &c) in classes[idx * nused..(idx + 1) * nused].iter().enumerate() {
+            for (k, &c) in rows[r].iter().enumerate() {
                 signed[used[k]] = matches!(c, C_POS | C_NEG);
             }
             let leaves: Vec<u32> = (0..leaf_nodes.len() as u32)
                 .filter(|&i| !signed[i as usize])
                 .collect();
-            if leaves.is_empty() {
-                continue;
-            }
-            *set = match by_set.get(&leaves) {
-                Some(&s) => s,
-                None => {
-                    let nodes: Vec<NodeId> =
-                        leaves.iter().map(|&i| leaf_nodes[i as usize]).collect();
-                    let tape = Tape::new(ctx, &nodes).ok()?;
-                    sets.push((tape, leaves.clone()));
-                    by_set.insert(leaves, (sets.len() - 1) as u32);
-                    (sets.len() - 1) as u32
+            *set = if leaves.is_empty() {
+                EMPTY
+            } else {
+                match by_set.get(&leaves) {
+                    Some(&s) => s,
+                    None => {
+                        let nodes: Vec<NodeId> =
+                            leaves.iter().map(|&i| leaf_nodes[i as usize]).collect();
+                        let tape = Tape::new(ctx, &nodes).ok()?;
+                        sets.push((tape, leaves.clone()));
+                        by_set.insert(leaves, (sets.len() - 1) as u32);
+                        (sets.len() - 1) as u32
+                    }
                 }
             };
+            row_set[r] = Some(*set);
         }
         Some(Self {
             sets,

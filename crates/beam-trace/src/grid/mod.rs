@@ -111,7 +111,8 @@ use classify::{Classes, LeafTapes, classify_cells};
 use functions::{CellFunctions, SceneTapes};
 use leaves::CellLeaves;
 pub use leaves::LeafCandidates;
-use reduce::{Sign, combine, reduce};
+use rayon::prelude::*;
+use reduce::{Reduced, Sign, combine, reduce};
 
 pub use cells::EMPTY;
 
@@ -392,7 +393,7 @@ impl Grid {
             lines: Default::default(),
             planes: Default::default(),
             functions: CellFunctions::empty(geometry.ray_function()),
-            scene: SceneTapes::new(geometry.tape().clone(), 0),
+            scene: SceneTapes::new(geometry.tape().clone(), [0; 3]),
             leaves: CellLeaves::default(),
             stats: GridStats::default(),
         };
@@ -433,21 +434,40 @@ impl Grid {
         let leaf_nodes: Vec<NodeId> = leaves.iter().map(|l| l.node).collect();
         let mut by_node: HashMap<NodeId, u32> = HashMap::new();
         let mut by_class: HashMap<&[u8], u32> = HashMap::new();
+        // The distinct class vectors, each one's function, and each cell's vector.
+        let mut rows: Vec<&[u8]> = Vec::new();
+        let mut row_of = vec![EMPTY; ncells];
         let mut reduced_nodes: Vec<NodeId> = Vec::new();
         let mut reduced = vec![EMPTY; ncells];
         let mut non_empty = 0_u64;
-        let position: HashMap<usize, usize> =
-            used.iter().enumerate().map(|(k, &i)| (i, k)).collect();
-        for (idx, cell) in reduced.iter_mut().enumerate() {
+        let mut position = vec![usize::MAX; leaves.len()];
+        for (k, &i) in used.iter().enumerate() {
+            position[i] = k;
+        }
+        for (idx, row) in row_of.iter_mut().enumerate() {
             let key = &classes[idx * nused..(idx + 1) * nused];
-            let f = *by_class.entry(key).or_insert_with(|| {
-                let class = |leaf: usize| key[position[&leaf]];
+            *row = *by_class.entry(key).or_insert_with(|| {
+                rows.push(key);
+                (rows.len() - 1) as u32
+            });
+        }
+        // The reductions in parallel (each depends on its class vector only), the trees
+        // added to the context in row order.
+        let tops: Vec<Reduced> = rows
+            .par_iter()
+            .map(|key| {
+                let class = |leaf: usize| key[position[leaf]];
                 let reds = geometry
                     .objects()
                     .iter()
                     .map(|o| reduce(o, &class))
                     .collect();
-                let top = combine(reds, true);
+                combine(reds, true)
+            })
+            .collect();
+        let row_function: Vec<u32> = tops
+            .iter()
+            .map(|top| {
                 if top.sign != Sign::Unknown {
                     return EMPTY;
                 }
@@ -456,11 +476,11 @@ impl Grid {
                     reduced_nodes.push(node);
                     (reduced_nodes.len() - 1) as u32
                 })
-            });
-            if f != EMPTY {
-                non_empty += 1;
-            }
-            *cell = f;
+            })
+            .collect();
+        for (cell, &row) in reduced.iter_mut().zip(&row_of) {
+            *cell = row_function[row as usize];
+            non_empty += u64::from(*cell != EMPTY);
         }
         let full_tape = |ctx| Tape::new(ctx, &[geometry.root()]).expect("the scene's tape builds");
         let reduced_tapes: Vec<Tape> = reduced_nodes
@@ -480,9 +500,15 @@ impl Grid {
                 geometry.ray_function(),
             )
         };
-        grid.leaves = CellLeaves::build(ctx, &leaf_nodes, &used, &classes, signed_bound, |idx| {
-            cells[idx] != EMPTY
-        })
+        grid.leaves = CellLeaves::build(
+            ctx,
+            &leaf_nodes,
+            &used,
+            &rows,
+            &row_of,
+            signed_bound,
+            |idx| cells[idx] != EMPTY,
+        )
         .unwrap_or_default();
         grid.cells = cells;
         grid.index_occupancy();
@@ -496,7 +522,7 @@ impl Grid {
             leaf_evals,
         };
         grid.functions = functions;
-        grid.scene = SceneTapes::new(geometry.tape().clone(), ncells);
+        grid.scene = SceneTapes::new(geometry.tape().clone(), grid.n);
         grid
     }
 
@@ -573,10 +599,7 @@ impl Grid {
     /// `None` when `p` is outside the grid (or not finite).
     pub fn scene_tape_at(&self, p: DVec3) -> Option<&Tape> {
         let idx = self.cell_at(p)?;
-        Some(
-            self.scene
-                .get(idx, || self.class_box(self.cell_of_index(idx))),
-        )
+        Some(self.scene.get(idx, |c| self.class_box(c)))
     }
 
     /// The leaves that may shade a hit at `p` (see [`LeafCandidates`]), from the cell

@@ -310,6 +310,9 @@ impl GeometryEval {
     /// The leaf whose surface passes nearest `p` (smallest `|f_leaf(p)|`): whose material
     /// shades a hit at `p`.
     pub fn leaf_at(&mut self, p: DVec3) -> usize {
+        if self.leaves.tape().outputs().len() == 1 {
+            return 0;
+        }
         self.leaves
             .eval_outputs(&[p.x, p.y, p.z], &mut self.leaf_values)
             .expect("tape in x y z");
@@ -321,8 +324,12 @@ impl GeometryEval {
     /// found among the candidates when one of them is nearer zero than every leaf left out
     /// can be, else by the full search.
     pub fn leaf_among(&mut self, c: &crate::grid::LeafCandidates<'_>, p: DVec3) -> usize {
-        self.candidates.set_tape(c.tape);
         let n = c.leaves.len();
+        if n == 1 && c.bound == f64::INFINITY {
+            // The only leaf that may vanish in the cell, and none left out.
+            return c.leaves[0] as usize;
+        }
+        self.candidates.set_tape(c.tape);
         self.leaf_values.resize(self.leaf_values.len().max(n), 0.0);
         let found = self
             .candidates
