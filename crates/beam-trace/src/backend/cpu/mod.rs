@@ -6,6 +6,7 @@ mod queries;
 
 pub use queries::CpuQueries;
 
+use std::sync::Mutex;
 use std::time::Instant;
 
 use glam::DVec3;
@@ -82,6 +83,7 @@ impl Backend for Cpu {
                 plan,
                 grid,
                 finder: plan.root_finder.finder(),
+                pool: Mutex::new(Vec::new()),
             }),
             passes: vec![stats],
         })

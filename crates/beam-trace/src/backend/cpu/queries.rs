@@ -1,6 +1,8 @@
 //! The CPU's queries for one scene: per-thread evaluators, and the searches every answer is
 //! made of (beam classification, first roots, shading points).
 
+use std::ops::{Deref, DerefMut};
+use std::sync::Mutex;
 use std::time::Instant;
 
 use interval_core::Interval;
@@ -23,6 +25,36 @@ pub struct CpuQueries<'a> {
     pub(super) plan: &'a Plan,
     pub(super) grid: Option<Grid>,
     pub(super) finder: &'static dyn RootFinder,
+    /// Evaluators given back by finished pieces of work, for the next ones: a scene's
+    /// evaluators (of long tapes, of every object) cost more to make than many queries.
+    pub(super) pool: Mutex<Vec<Evals>>,
+}
+
+/// Per-thread evaluators lent by [`CpuQueries::evals`], given back to its pool when dropped.
+pub(crate) struct Lease<'q> {
+    evals: Option<Evals>,
+    pool: &'q Mutex<Vec<Evals>>,
+}
+
+impl Deref for Lease<'_> {
+    type Target = Evals;
+    fn deref(&self) -> &Evals {
+        self.evals.as_ref().expect("held until dropped")
+    }
+}
+
+impl DerefMut for Lease<'_> {
+    fn deref_mut(&mut self) -> &mut Evals {
+        self.evals.as_mut().expect("held until dropped")
+    }
+}
+
+impl Drop for Lease<'_> {
+    fn drop(&mut self) {
+        if let (Some(e), Ok(mut pool)) = (self.evals.take(), self.pool.lock()) {
+            pool.push(e);
+        }
+    }
 }
 
 /// Per-thread evaluators.
@@ -32,8 +64,17 @@ pub(crate) struct Evals {
 }
 
 impl CpuQueries<'_> {
-    /// Per-thread evaluators; every evaluator of `g` and `g'` runs in the plan's precision.
-    pub(super) fn evals(&self) -> Evals {
+    /// Per-thread evaluators, from the pool when it has some.
+    pub(super) fn evals(&self) -> Lease<'_> {
+        let pooled = self.pool.lock().ok().and_then(|mut p| p.pop());
+        Lease {
+            evals: Some(pooled.unwrap_or_else(|| self.new_evals())),
+            pool: &self.pool,
+        }
+    }
+
+    /// New evaluators; every evaluator of `g` and `g'` runs in the plan's precision.
+    fn new_evals(&self) -> Evals {
         let precision = self.plan.precision;
         let mut geo = self.scene.geometry.evaluator();
         geo.beam.set_precision(precision);
