@@ -38,3 +38,13 @@ impl BoxEval {
         p
     }
 }
+
+thread_local! {
+    static THREAD_EVAL: std::cell::RefCell<BoxEval> = std::cell::RefCell::new(BoxEval::default());
+}
+
+/// `f` with this thread's [`BoxEval`], for work that runs outside a pass with its own
+/// per-thread evaluators (tapes built on first use, the root of a classification).
+pub(super) fn with_thread_eval<R>(f: impl FnOnce(&mut BoxEval) -> R) -> R {
+    THREAD_EVAL.with_borrow_mut(f)
+}

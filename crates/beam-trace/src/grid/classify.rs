@@ -18,7 +18,7 @@ use implicit_expr::{Evaluator, Tape};
 use interval_core::Interval;
 use rayon::prelude::*;
 
-use super::box_eval::BoxEval;
+use super::box_eval::{BoxEval, with_thread_eval};
 use super::cells::{cell as cell_of, index};
 use super::reduce::{C_NEG, C_POS, C_UNKNOWN, C_UNKNOWN_DEFINED, classify};
 use crate::ibox::IBox;
@@ -133,7 +133,7 @@ pub(super) fn classify_cells(
         .map(|k| {
             (
                 k,
-                BOX_EVAL.with_borrow_mut(|e| e.pruned(&t.each[k], &box_of([0; 3], n))),
+                with_thread_eval(|e| e.pruned(&t.each[k], &box_of([0; 3], n))),
             )
         })
         .collect();
@@ -197,10 +197,6 @@ pub(super) fn classify_cells(
         bound,
         leaf_evals,
     }
-}
-
-thread_local! {
-    static BOX_EVAL: std::cell::RefCell<BoxEval> = std::cell::RefCell::new(BoxEval::default());
 }
 
 /// The leaves whose class in `row` is unknown (defined or not).

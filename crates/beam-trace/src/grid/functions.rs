@@ -32,7 +32,7 @@ use rayon::prelude::*;
 
 use crate::ibox::IBox;
 
-use super::box_eval::BoxEval;
+use super::box_eval::{BoxEval, with_thread_eval};
 use super::cells::{EMPTY, cell as cell_of, index};
 
 /// Cells pruned per parallel piece before their tapes are merged into the cache (bounds the
@@ -192,17 +192,15 @@ impl CellFunctions {
 #[derive(Clone, Debug)]
 pub(super) struct SceneTapes {
     full: Tape,
+    /// Cells per axis, and blocks per axis.
     n: [u32; 3],
+    m: [u32; 3],
     blocks: Vec<OnceLock<Tape>>,
     cells: Vec<OnceLock<Tape>>,
 }
 
 /// Cells per block side of [`SceneTapes`].
 const SCENE_BLOCK: u32 = 4;
-
-thread_local! {
-    static BOX_EVAL: std::cell::RefCell<BoxEval> = std::cell::RefCell::new(BoxEval::default());
-}
 
 impl SceneTapes {
     /// Nothing built yet for a grid of `n` cells per axis with the scene function `full`.
@@ -212,6 +210,7 @@ impl SceneTapes {
         Self {
             full,
             n,
+            m,
             blocks: (0..count(m)).map(|_| OnceLock::new()).collect(),
             cells: (0..count(n)).map(|_| OnceLock::new()).collect(),
         }
@@ -222,17 +221,16 @@ impl SceneTapes {
     pub(super) fn get(&self, idx: usize, class_box: impl Fn([u32; 3]) -> IBox) -> &Tape {
         self.cells[idx].get_or_init(|| {
             let cell = cell_of(idx, self.n);
-            let m = self.n.map(|k| k.div_ceil(SCENE_BLOCK));
             let b = cell.map(|i| i / SCENE_BLOCK);
-            let block = self.blocks[index(b, m)].get_or_init(|| {
+            let block = self.blocks[index(b, self.m)].get_or_init(|| {
                 let lo = b.map(|i| i * SCENE_BLOCK);
                 let hi: [u32; 3] =
                     std::array::from_fn(|a| ((b[a] + 1) * SCENE_BLOCK).min(self.n[a]) - 1);
                 let (l, h) = (class_box(lo), class_box(hi));
                 let hull: IBox = std::array::from_fn(|a| l[a].convex_hull(h[a]));
-                BOX_EVAL.with_borrow_mut(|e| e.pruned(&self.full, &hull))
+                with_thread_eval(|e| e.pruned(&self.full, &hull))
             });
-            BOX_EVAL.with_borrow_mut(|e| e.pruned(block, &class_box(cell)))
+            with_thread_eval(|e| e.pruned(block, &class_box(cell)))
         })
     }
 }

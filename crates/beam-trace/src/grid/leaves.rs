@@ -56,7 +56,7 @@ impl CellLeaves {
         let mut row_set: Vec<Option<u32>> = vec![None; rows.len()];
         let mut cell_set = vec![EMPTY; row_of.len()];
         for (idx, set) in cell_set.iter_mut().enumerate() {
-            if !non_empty(idx) || used.is_empty() || row_of[idx] == EMPTY {
+            if !non_empty(idx) || used.is_empty() {
                 continue;
             }
             let r = row_of[idx] as usize;
