@@ -137,7 +137,16 @@ pub fn rejection_test(
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> bool {
-    search(g, ranges, None, settings, false, None, counters).0 == BoxClass::Miss
+    search(
+        g,
+        ranges,
+        None,
+        settings,
+        false,
+        Inherited::default(),
+        counters,
+    )
+    .0 == BoxClass::Miss
 }
 
 /// The inclusion test on one range `t` (Fig. 5.9, made sound as described in the module
@@ -164,7 +173,16 @@ pub fn rejection_search(
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> BoxClass {
-    search(g, ranges, None, settings, false, None, counters).0
+    search(
+        g,
+        ranges,
+        None,
+        settings,
+        false,
+        Inherited::default(),
+        counters,
+    )
+    .0
 }
 
 /// EvaluateBox (Fig. 5.10): the rejection and inclusion tests in one front-to-back search
@@ -177,23 +195,71 @@ pub fn evaluate_box(
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> BoxClass {
-    search(g, ranges, extent, settings, true, None, counters).0
+    search(
+        g,
+        ranges,
+        extent,
+        settings,
+        true,
+        Inherited::default(),
+        counters,
+    )
+    .0
 }
 
-/// [`evaluate_box`] for a beam lying inside a beam whose restriction `inherited` is known:
-/// a range inside `inherited.t` is restricted starting from `inherited.tape` rather than
-/// the whole function. Also returns the restriction of the range where the search ended
+/// What a beam lying inside a classified beam starts its search from.
+#[derive(Copy, Clone, Debug, Default)]
+pub struct Inherited<'a> {
+    /// The parent's restriction: a range inside its `t` is restricted starting from its
+    /// tape rather than the whole function.
+    pub scope: Option<&'a BeamScope>,
+    /// The parent's undecided piece: each range starts as pieces that grow from it (its
+    /// ends, then `near.sup() + w·2^k` with `w` its width) instead of the whole range, so
+    /// that the search starts at the scale where the parent stopped, not from the range's
+    /// length again. The pieces are cut at other points than bisection's; every proof is
+    /// the same kind.
+    pub near: Option<Interval<f64>>,
+}
+
+/// [`evaluate_box`] for a beam lying inside a classified beam, starting from what it
+/// `inherited` from it. Also returns the restriction of the range where the search ended
 /// (the range of a Hit's `T_final` or of an Undecided piece), for the beams inside this
 /// one; `None` for a Miss.
 pub fn evaluate_box_within(
     g: &mut dyn RayFn,
     ranges: &[Interval<f64>],
-    inherited: Option<&BeamScope>,
+    inherited: Inherited<'_>,
     extent: Option<&Extent<'_>>,
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> (BoxClass, Option<BeamScope>) {
     search(g, ranges, extent, settings, true, inherited, counters)
+}
+
+/// Largest number of pieces a range is cut into from [`Inherited::near`].
+const GRADED_PIECES: usize = 48;
+
+/// The pieces of `range` cut at the ends of `near` and at `near.sup() + w·2^k`, in order.
+fn graded(range: Interval<f64>, near: Interval<f64>) -> Vec<Interval<f64>> {
+    let w = near.wid();
+    let mut cuts = vec![near.inf(), near.sup()];
+    if w > 0.0 && w.is_finite() {
+        let mut step = w;
+        while cuts.len() < GRADED_PIECES && near.sup() + step < range.sup() {
+            cuts.push(near.sup() + step);
+            step *= 2.0;
+        }
+    }
+    let mut out = Vec::with_capacity(cuts.len() + 1);
+    let mut lo = range.inf();
+    for c in cuts {
+        if c > lo && c < range.sup() {
+            out.push(Interval::new_unchecked(lo, c));
+            lo = c;
+        }
+    }
+    out.push(Interval::new_unchecked(lo, range.sup()));
+    out
 }
 
 fn search(
@@ -202,35 +268,43 @@ fn search(
     extent: Option<&Extent<'_>>,
     settings: &BeamSettings,
     inclusion: bool,
-    inherited: Option<&BeamScope>,
+    inherited: Inherited<'_>,
     counters: &mut RootCounters,
 ) -> (BoxClass, Option<BeamScope>) {
+    let Inherited {
+        scope: inherited,
+        near,
+    } = inherited;
     let inside = |t: f64| extent.is_none_or(|e| e.holds(t));
-    // Each piece carries the end of the range it came from (how far a look-ahead may go)
+    // Each piece carries the range it came from (its end: how far a look-ahead may go)
     // and the restriction of `g` it lies in.
-    let mut stack: Vec<Piece> = ranges
-        .iter()
-        .rev()
-        .map(|r| Piece {
-            t: *r,
-            end: r.sup(),
+    let mut stack: Vec<Piece> = Vec::new();
+    for r in ranges.iter().rev() {
+        let pieces = match near {
+            Some(n) => graded(*r, n),
+            None => vec![*r],
+        };
+        stack.extend(pieces.into_iter().rev().map(|t| Piece {
+            t,
+            range: *r,
             scope: None,
-        })
-        .collect();
+        }));
+    }
     let mut bisections = 0u64;
     // The range being searched (its end) and its restriction.
     let mut range_end = f64::NAN;
     let mut range_scope: Option<BeamScope> = None;
-    while let Some(Piece { t, end, scope }) = stack.pop() {
+    while let Some(Piece { t, range, scope }) = stack.pop() {
+        let end = range.sup();
         let mut scope = match scope {
-            // The first piece of a range is the range: every later evaluation of its pieces,
-            // look-ahead and T_final lies inside it.
+            // The first piece of a range opens the range: every later evaluation of its
+            // pieces, look-ahead and T_final lies inside it.
             _ if end != range_end => {
                 range_end = end;
                 g.unrestrict();
                 let mut start = None;
                 if let Some(s) = inherited
-                    && t.subset(s.t)
+                    && range.subset(s.t)
                 {
                     g.set_scope(&s.tape);
                     start = Some(s.tape.clone());
@@ -239,12 +313,12 @@ fn search(
                 // shared tape handle copied per piece would cost more than short tapes save).
                 let tape = match g.scope() {
                     Some(tape) if tape.len() > RESTRICT_MIN_LEN => {
-                        g.restrict(t);
+                        g.restrict(range);
                         g.scope()
                     }
                     _ => start,
                 };
-                range_scope = tape.map(|tape| BeamScope { tape, t });
+                range_scope = tape.map(|tape| BeamScope { tape, t: range });
                 range_scope.clone()
             }
             Some(s) => {
@@ -302,20 +376,20 @@ fn search(
         counters.bisections += 1;
         stack.push(Piece {
             t: r,
-            end,
+            range,
             scope: scope.clone(),
         });
-        stack.push(Piece { t: l, end, scope });
+        stack.push(Piece { t: l, range, scope });
     }
     (BoxClass::Miss, None)
 }
 
-/// A piece of a beam's search: its parameters, the end of the range it belongs to, and
-/// the restriction it lies in (`None` for the first piece of a range, or where `g` has no
+/// A piece of a beam's search: its parameters, the range it belongs to, and the
+/// restriction it lies in (`None` for the first piece of a range, or where `g` has no
 /// restrictions).
 struct Piece {
     t: Interval<f64>,
-    end: f64,
+    range: Interval<f64>,
     scope: Option<BeamScope>,
 }
 

@@ -49,9 +49,11 @@
 //! // The centre pixel sees the ball, a corner pixel the background.
 //! assert_ne!(out.image.get(12, 8), scene.background);
 //! assert_eq!(out.image.get(0, 0), scene.background);
-//! // The plan ran primary visibility, normals, shadows and shading, and no IAA.
+//! // The plan ran primary visibility (screen boxes, then the pixels they left undecided
+//! // resolved by their beams), normals, shadows and shading, and no point-ray pass.
 //! assert!(out.stats.pass("screen-boxes").unwrap().ran);
-//! assert!(!out.stats.pass("iaa").unwrap().ran);
+//! assert!(out.stats.pass("pixel-beams").unwrap().ran);
+//! assert!(!out.stats.pass("primary-rays").unwrap().ran);
 //! println!("{}", out.stats);
 //! # Ok::<(), beam_trace::Error>(())
 //! ```
@@ -93,6 +95,6 @@ pub use progress::{NoProgress, Progress};
 pub use ray::{Beam, BeamEval, IBox, Precision, Ray};
 pub use render::{RenderOutput, ShadowMaps, render, render_on};
 pub use root::{Proof, RayFn, RootCounters, RootFinder, RootMethod, RootResult, RootSettings};
-pub use sample::{Hit, Sample};
+pub use sample::{Area, Coverage, Hit, Sample};
 pub use scene::{Geometry, Light, Material, Scene};
 pub use stats::RenderStats;

@@ -17,8 +17,16 @@ use crate::shadow::ShadowSpec;
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub enum Primary {
     /// Screen box structure (thesis 5.4): beams classify boxes; `1` ray per pixel in Hit
-    /// boxes, `rays_per_undecided` in Undecided pixels.
+    /// boxes; the beam of an Undecided pixel is split in four until its parts are decided
+    /// or `max_depth` is reached (the pixel-beams pass), so that whatever the beam may
+    /// meet is kept.
     ScreenBoxes {
+        /// Largest subdivision depth of an Undecided pixel's beam.
+        max_depth: u32,
+    },
+    /// The thesis's screen box structure with point rays: `1` ray per pixel in Hit boxes,
+    /// `rays_per_undecided` stratified rays in Undecided pixels.
+    ScreenRays {
         /// Rays per pixel in Undecided boxes.
         rays_per_undecided: u32,
     },
@@ -27,13 +35,31 @@ pub enum Primary {
         /// Rays per pixel (a square number).
         rays_per_pixel: u32,
     },
-    /// Interval anti-aliasing (thesis 5.5.2): one beam per pixel, subdivided.
+    /// Interval anti-aliasing (thesis 5.5.2) on the screen box structure: the beam of an
+    /// Undecided pixel, or of a Hit pixel whose shading may vary by more than `threshold`,
+    /// is split in four down to `max_depth` (the pixel-beams pass).
     Iaa {
         /// Largest subdivision depth.
         max_depth: u32,
-        /// Largest normal-variation estimator for shading a sub-pixel once.
+        /// Largest spread of the shaded colour over a proven hit region for shading it once
+        /// ([`shading_variation`](crate::aa::shading_variation)).
         threshold: f64,
     },
+}
+
+impl Primary {
+    /// The settings of the pixel-beams pass: the depth limit, and the shading-variation
+    /// threshold when Hit pixels are judged too (anti-aliasing); `None` for the ray modes.
+    pub fn pixel_beams(&self) -> Option<(u32, Option<f64>)> {
+        match *self {
+            Primary::ScreenBoxes { max_depth } => Some((max_depth, None)),
+            Primary::Iaa {
+                max_depth,
+                threshold,
+            } => Some((max_depth, Some(threshold))),
+            Primary::ScreenRays { .. } | Primary::PerPixel { .. } => None,
+        }
+    }
 }
 
 /// The passes of a render and their settings.
@@ -72,8 +98,9 @@ pub enum Pass {
     ScreenBoxes,
     /// Ray-based primary visibility (per pixel, or in undecided screen boxes).
     PrimaryRays,
-    /// Interval anti-aliasing (thesis 5.5.2).
-    Iaa,
+    /// Pixels resolved by their beams: Undecided pixels (and, anti-aliased, Hit pixels of
+    /// varying shading) split in four (thesis 5.5.2), one central ray per decided part.
+    PixelBeams,
     /// Surface normals of the hit samples.
     Normals,
     /// Hard shadows from point lights.
@@ -90,7 +117,7 @@ impl Pass {
         Pass::Grid,
         Pass::ScreenBoxes,
         Pass::PrimaryRays,
-        Pass::Iaa,
+        Pass::PixelBeams,
         Pass::Normals,
         Pass::HardShadows,
         Pass::SoftShadows,
@@ -103,7 +130,7 @@ impl Pass {
             Pass::Grid => "grid",
             Pass::ScreenBoxes => "screen-boxes",
             Pass::PrimaryRays => "primary-rays",
-            Pass::Iaa => "iaa",
+            Pass::PixelBeams => "pixel-beams",
             Pass::Normals => "normals",
             Pass::HardShadows => "hard-shadows",
             Pass::SoftShadows => "soft-shadows",
@@ -135,6 +162,9 @@ impl Plan {
             },
             AaMode::None => match s.primary {
                 PrimaryMode::ScreenBoxes => Primary::ScreenBoxes {
+                    max_depth: s.undecided_depth,
+                },
+                PrimaryMode::ScreenRays => Primary::ScreenRays {
                     rays_per_undecided: s.rays_per_undecided,
                 },
                 PrimaryMode::PerPixel => Primary::PerPixel {
@@ -181,9 +211,9 @@ impl Plan {
     pub fn runs(&self, pass: Pass) -> bool {
         match pass {
             Pass::Grid => self.grid.is_some(),
-            Pass::ScreenBoxes => matches!(self.primary, Primary::ScreenBoxes { .. }),
-            Pass::PrimaryRays => !matches!(self.primary, Primary::Iaa { .. }),
-            Pass::Iaa => matches!(self.primary, Primary::Iaa { .. }),
+            Pass::ScreenBoxes => !matches!(self.primary, Primary::PerPixel { .. }),
+            Pass::PrimaryRays => self.primary.pixel_beams().is_none(),
+            Pass::PixelBeams => self.primary.pixel_beams().is_some(),
             Pass::Normals | Pass::Shading => self.shading,
             Pass::HardShadows => self.shading && self.hard_shadow_lights > 0,
             Pass::SoftShadows => self.shading && self.soft_shadow_lights > 0,
@@ -205,7 +235,7 @@ impl Plan {
                     .to_string()
             }
             Pass::PrimaryRays => match self.primary {
-                Primary::ScreenBoxes { rays_per_undecided } => format!(
+                Primary::ScreenRays { rays_per_undecided } => format!(
                     "1 ray per pixel in Hit boxes (search in T_final), {rays_per_undecided} per pixel in Undecided ones; root finder {}, epsilon {:e}",
                     self.root_finder, self.root.epsilon
                 ),
@@ -213,16 +243,16 @@ impl Plan {
                     "{rays_per_pixel} ray(s) per pixel; root finder {}, epsilon {:e}",
                     self.root_finder, self.root.epsilon
                 ),
-                Primary::Iaa { .. } => String::new(),
+                Primary::ScreenBoxes { .. } | Primary::Iaa { .. } => String::new(),
             },
-            Pass::Iaa => match self.primary {
-                Primary::Iaa {
-                    max_depth,
-                    threshold,
-                } => format!(
-                    "interval anti-aliasing: a beam per pixel, split in four to depth {max_depth}, normal-variation threshold {threshold}"
+            Pass::PixelBeams => match self.primary.pixel_beams() {
+                Some((max_depth, None)) => format!(
+                    "1 ray per pixel in Hit boxes (search in T_final); Undecided pixels' beams split in four to depth {max_depth}, one central ray per part"
                 ),
-                _ => String::new(),
+                Some((max_depth, Some(threshold))) => format!(
+                    "interval anti-aliasing: Undecided pixels' beams, and Hit pixels' whose shading may vary by more than {threshold}, split in four to depth {max_depth}; one central ray per part"
+                ),
+                None => String::new(),
             },
             Pass::Normals => "surface normals from the gradient".to_string(),
             Pass::HardShadows => format!(

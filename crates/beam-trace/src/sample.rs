@@ -43,11 +43,55 @@ impl Hit {
     }
 }
 
-/// One primary sample of a pixel: its weight (area fraction) and what it sees.
+/// What the beam of a sample's share of its pixel proved about that share.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub enum Area {
+    /// No ray of the share meets a surface (a rejected beam).
+    Missed,
+    /// Every ray of the share meets a surface (an inclusion).
+    Covered,
+    /// Nothing proven: some rays of the share may meet a surface (an undecided beam, or a
+    /// point sample, which proves nothing about the area around it).
+    Unknown,
+}
+
+/// One primary sample of a pixel: its weight (area fraction), what it sees, and what is
+/// proven about its share of the pixel.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Sample {
     /// Weight of the sample in its pixel (the weights of a pixel sum to 1).
     pub weight: f32,
     /// The surface point, or `None` for background.
     pub hit: Option<Hit>,
+    /// What its beam proved about its share of the pixel.
+    pub area: Area,
+}
+
+/// Proven bounds on the share of a pixel whose rays meet a surface: every ray of a share
+/// `proven` of the pixel's area meets one, and the rays of at most a share `possible` do.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Coverage {
+    /// The share proven covered (the weights of [`Area::Covered`] samples).
+    pub proven: f32,
+    /// The share that may be covered (the weights of samples that are not
+    /// [`Area::Missed`]).
+    pub possible: f32,
+}
+
+impl Coverage {
+    /// The bounds over a pixel's samples.
+    pub fn of(samples: &[Sample]) -> Coverage {
+        let share = |keep: fn(Area) -> bool| {
+            samples
+                .iter()
+                .filter(|s| keep(s.area))
+                .map(|s| s.weight)
+                .sum::<f32>()
+                .min(1.0)
+        };
+        Coverage {
+            proven: share(|a| a == Area::Covered),
+            possible: share(|a| a != Area::Missed),
+        }
+    }
 }

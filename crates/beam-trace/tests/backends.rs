@@ -84,8 +84,8 @@ impl Queries for PieceQueries<'_> {
     fn hit_points(&self, q: &[HitQuery]) -> Result<Answers<Hit>, Error> {
         self.pieces(q, |c| self.inner.hit_points(c))
     }
-    fn normal_variation(&self, q: &[VariationQuery]) -> Result<Answers<f64>, Error> {
-        self.pieces(q, |c| self.inner.normal_variation(c))
+    fn shading_variation(&self, q: &[VariationQuery]) -> Result<Answers<f64>, Error> {
+        self.pieces(q, |c| self.inner.shading_variation(c))
     }
     fn normals(&self, p: &[DVec3]) -> Result<Answers<Option<DVec3>>, Error> {
         self.pieces(p, |c| self.inner.normals(c))

@@ -152,13 +152,13 @@ fn f32_and_f64_renders_agree() {
         "{}",
         b.plan
     );
-    for name in ["primary-rays", "soft-shadows"] {
+    for name in ["pixel-beams", "soft-shadows"] {
         let p = b.stats.pass(name).unwrap();
         assert!(p.ran && p.total_work() > 0, "{name}:\n{}", b.stats);
     }
     // The f32 enclosures are wider, so the searches do different work.
     let work = |o: &RenderOutput| {
-        ["screen-boxes", "primary-rays", "soft-shadows"]
+        ["screen-boxes", "pixel-beams", "soft-shadows"]
             .map(|n| o.stats.pass(n).unwrap().total_work())
     };
     assert_ne!(

@@ -99,8 +99,8 @@ fn plan_without_lights_skips_normals_shadows_and_shading() {
     let out = run(&scene(16, "", ""));
     assert_passes(
         &out.stats,
-        &["grid", "screen-boxes", "primary-rays"],
-        &["iaa", "normals", "hard-shadows", "shading"],
+        &["grid", "screen-boxes", "pixel-beams"],
+        &["primary-rays", "normals", "hard-shadows", "shading"],
     );
     // Flat colour: hit pixels have the material's colour.
     let c = out.image.get(8, 8);
@@ -115,12 +115,12 @@ fn plan_with_lights_runs_normals_shadows_and_shading() {
         &[
             "grid",
             "screen-boxes",
-            "primary-rays",
+            "pixel-beams",
             "normals",
             "hard-shadows",
             "shading",
         ],
-        &["iaa"],
+        &["primary-rays"],
     );
     let shadows = out.stats.pass("hard-shadows").unwrap();
     assert!(shadows.counter("segments") > 0);
@@ -142,7 +142,7 @@ fn plan_with_shadows_off_runs_no_shadow_rays() {
     assert_passes(
         &out.stats,
         &["normals", "shading"],
-        &["hard-shadows", "iaa"],
+        &["hard-shadows", "primary-rays"],
     );
     assert_eq!(out.plan.hard_shadow_lights, 0);
 }
@@ -150,16 +150,34 @@ fn plan_with_shadows_off_runs_no_shadow_rays() {
 #[test]
 fn plan_for_aa_modes() {
     let none = run(&scene(16, "", "aa = \"none\""));
-    assert_passes(&none.stats, &["screen-boxes", "primary-rays"], &["iaa"]);
+    assert_passes(
+        &none.stats,
+        &["screen-boxes", "pixel-beams"],
+        &["primary-rays"],
+    );
+    let thesis = run(&scene(16, "", "primary = \"screen-rays\""));
+    assert_passes(
+        &thesis.stats,
+        &["screen-boxes", "primary-rays"],
+        &["pixel-beams"],
+    );
 
     let iaa = run(&scene(16, "", "aa = \"iaa\""));
-    assert_passes(&iaa.stats, &["iaa"], &["primary-rays", "screen-boxes"]);
-    assert!(iaa.stats.pass("iaa").unwrap().counter("beams") >= 16 * 16);
-    // Without screen boxes every pixel of the classification image is grey.
-    assert!(iaa.classification.pixels.iter().all(|&p| p == [0.5; 3]));
+    assert_passes(
+        &iaa.stats,
+        &["screen-boxes", "pixel-beams"],
+        &["primary-rays"],
+    );
+    // IAA starts from the screen boxes: more sub-pixel beams, and their variation judged.
+    let beams = |o: &RenderOutput| o.stats.pass("pixel-beams").unwrap().counter("beams");
+    assert!(beams(&iaa) >= beams(&none), "{}\n{}", iaa.stats, none.stats);
 
     let ss = run(&scene(16, "", "aa = \"ss:2\""));
-    assert_passes(&ss.stats, &["primary-rays"], &["iaa", "screen-boxes"]);
+    assert_passes(
+        &ss.stats,
+        &["primary-rays"],
+        &["pixel-beams", "screen-boxes"],
+    );
     assert_eq!(
         ss.stats.pass("primary-rays").unwrap().counter("rays"),
         16 * 16 * 4
@@ -173,7 +191,11 @@ fn plan_per_pixel_runs_no_screen_boxes() {
         "",
         "primary = \"per-pixel\"\nrays_per_pixel = 4",
     ));
-    assert_passes(&out.stats, &["primary-rays"], &["screen-boxes", "iaa"]);
+    assert_passes(
+        &out.stats,
+        &["primary-rays"],
+        &["screen-boxes", "pixel-beams"],
+    );
     assert_eq!(
         out.stats.pass("primary-rays").unwrap().counter("rays"),
         16 * 16 * 4
@@ -185,7 +207,7 @@ fn plan_without_grid() {
     let with = run(&scene(16, "", ""));
     assert_passes(&with.stats, &["grid"], &[]);
     let without = run(&scene(16, "", "grid = 0"));
-    assert_passes(&without.stats, &["screen-boxes", "primary-rays"], &["grid"]);
+    assert_passes(&without.stats, &["screen-boxes", "pixel-beams"], &["grid"]);
     assert_eq!(without.plan.grid, None);
     // The grid only speeds the search up: the same pixels are background.
     let bg = |o: &RenderOutput| -> Vec<bool> {

@@ -3,7 +3,7 @@
 //! pipeline is beam-trace's; nothing here decides what a pass does.
 //!
 //! What the GPU does not answer (placing shading points and normals, which need point and
-//! gradient evaluations; the normal-variation estimator of IAA; the stochastic method's
+//! gradient evaluations; the shading-variation estimator of IAA; the stochastic method's
 //! last-occluder cache, which searches single objects; shading beyond
 //! [`MAX_LIGHTS`] lights) it says in [`Backend::support`], and the routing sends to the CPU.
 
@@ -61,7 +61,7 @@ impl Backend for GpuBackend {
                 no("shading points are placed by point bisection of g, not in a kernel")
             }
             QueryKind::Normals => no("the kernels evaluate no gradients"),
-            QueryKind::NormalVariation => no("the kernels evaluate no gradient enclosures"),
+            QueryKind::ShadingVariation => no("the kernels evaluate no gradient enclosures"),
             QueryKind::SoftShadows => match plan.shadow_method {
                 ShadowSpec::Stochastic { cache: true, .. } => {
                     no("the last-occluder cache searches single objects")
@@ -338,8 +338,8 @@ impl Queries for GpuQueries<'_> {
         unsupported("hit-point")
     }
 
-    fn normal_variation(&self, _: &[VariationQuery]) -> Result<Answers<f64>, Error> {
-        unsupported("normal-variation")
+    fn shading_variation(&self, _: &[VariationQuery]) -> Result<Answers<f64>, Error> {
+        unsupported("shading-variation")
     }
 
     fn normals(&self, _: &[DVec3]) -> Result<Answers<Option<DVec3>>, Error> {

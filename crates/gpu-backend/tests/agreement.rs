@@ -176,7 +176,7 @@ fn the_gpu_routing_names_what_runs_on_the_cpu() {
     let routing = Routing::new(&backend, &s, &plan).to_string();
     for line in [
         "beams on gpu",
-        "normal-variation on the cpu",
+        "shading-variation on the cpu",
         "hit-points on the cpu",
         "soft-shadows on the cpu (the last-occluder cache",
         "normals on the cpu",

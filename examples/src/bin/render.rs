@@ -49,9 +49,13 @@ struct Args {
     /// Anti-aliasing: none, iaa, or ss:N (N × N rays per pixel).
     #[arg(long)]
     aa: Option<AaMode>,
-    /// Primary visibility: screen-boxes or per-pixel.
-    #[arg(long, value_parser = ["screen-boxes", "per-pixel"])]
-    primary: Option<String>,
+    /// Primary visibility: screen-boxes (Undecided pixels resolved by their beams),
+    /// screen-rays (9 point rays per Undecided pixel, the thesis's) or per-pixel.
+    #[arg(long)]
+    primary: Option<PrimaryMode>,
+    /// Largest subdivision depth of an Undecided pixel's beam in screen-boxes mode (0 to 8).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(0..=8))]
+    undecided_depth: Option<u32>,
     /// Rays per pixel in per-pixel mode (a square number).
     #[arg(long)]
     rays_per_pixel: Option<u32>,
@@ -151,12 +155,11 @@ fn load(args: &Args) -> Result<Scene, String> {
     if let Some(aa) = args.aa {
         s.aa = aa;
     }
-    if let Some(p) = &args.primary {
-        s.primary = if p == "per-pixel" {
-            PrimaryMode::PerPixel
-        } else {
-            PrimaryMode::ScreenBoxes
-        };
+    if let Some(p) = args.primary {
+        s.primary = p;
+    }
+    if let Some(d) = args.undecided_depth {
+        s.undecided_depth = d;
     }
     if let Some(n) = args.rays_per_pixel {
         let k = (n as f64).sqrt().round() as u32;

@@ -54,7 +54,7 @@ fn run(args: Args) -> Result<(), String> {
         let mut classic = scene.clone();
         classic.settings.primary = PrimaryMode::PerPixel;
         classic.settings.rays_per_pixel = 9;
-        scene.settings.primary = PrimaryMode::ScreenBoxes;
+        scene.settings.primary = PrimaryMode::ScreenRays;
         let boxes = render(&scene, &NoProgress).map_err(|e| e.to_string())?;
         let plain = render(&classic, &NoProgress).map_err(|e| e.to_string())?;
         let (tb, tc) = (primary_time(&boxes), primary_time(&plain));

@@ -21,9 +21,9 @@ pub enum QueryKind {
     Roots,
     /// Shading points of hits: [`Queries::hit_points`](super::Queries::hit_points).
     HitPoints,
-    /// The normal-variation estimator over a hit region:
-    /// [`Queries::normal_variation`](super::Queries::normal_variation).
-    NormalVariation,
+    /// The spread of the shaded colour over a hit region:
+    /// [`Queries::shading_variation`](super::Queries::shading_variation).
+    ShadingVariation,
     /// Unit normals at points: [`Queries::normals`](super::Queries::normals).
     Normals,
     /// Hard-shadow segments: [`Queries::segments`](super::Queries::segments).
@@ -41,7 +41,7 @@ impl QueryKind {
         QueryKind::Beams,
         QueryKind::Roots,
         QueryKind::HitPoints,
-        QueryKind::NormalVariation,
+        QueryKind::ShadingVariation,
         QueryKind::Normals,
         QueryKind::Segments,
         QueryKind::SoftShadows,
@@ -54,7 +54,7 @@ impl QueryKind {
             QueryKind::Beams => "beams",
             QueryKind::Roots => "roots",
             QueryKind::HitPoints => "hit-points",
-            QueryKind::NormalVariation => "normal-variation",
+            QueryKind::ShadingVariation => "shading-variation",
             QueryKind::Normals => "normals",
             QueryKind::Segments => "segments",
             QueryKind::SoftShadows => "soft-shadows",
@@ -128,8 +128,8 @@ pub struct HitQuery {
     pub t: Interval<f64>,
 }
 
-/// A hit region whose normal variation (thesis eq. 5.10) is wanted: the beam and its proven
-/// section `T_final`.
+/// A hit region whose shading variation is wanted: the beam and its proven section
+/// `T_final`.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct VariationQuery {
     /// The beam.

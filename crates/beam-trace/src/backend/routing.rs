@@ -29,9 +29,9 @@ pub fn pass_queries(pass: Pass, plan: &Plan) -> &'static [QueryKind] {
         Pass::Grid => &[],
         Pass::ScreenBoxes => &[QueryKind::Beams],
         Pass::PrimaryRays => &[QueryKind::Roots, QueryKind::HitPoints],
-        Pass::Iaa => &[
+        Pass::PixelBeams => &[
             QueryKind::Beams,
-            QueryKind::NormalVariation,
+            QueryKind::ShadingVariation,
             QueryKind::Roots,
             QueryKind::HitPoints,
         ],
@@ -190,8 +190,8 @@ impl Queries for Routed<'_> {
     fn hit_points(&self, q: &[HitQuery]) -> Result<Answers<Hit>, Error> {
         self.to(QueryKind::HitPoints).hit_points(q)
     }
-    fn normal_variation(&self, q: &[VariationQuery]) -> Result<Answers<f64>, Error> {
-        self.to(QueryKind::NormalVariation).normal_variation(q)
+    fn shading_variation(&self, q: &[VariationQuery]) -> Result<Answers<f64>, Error> {
+        self.to(QueryKind::ShadingVariation).shading_variation(q)
     }
     fn normals(&self, p: &[DVec3]) -> Result<Answers<Option<DVec3>>, Error> {
         self.to(QueryKind::Normals).normals(p)

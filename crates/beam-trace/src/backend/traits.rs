@@ -33,9 +33,9 @@ pub trait Queries: Sync {
     /// enclosure, the leaf surface that shades it, the direction to the eye.
     fn hit_points(&self, queries: &[HitQuery]) -> Result<Answers<Hit>, Error>;
 
-    /// The normal-variation estimator of each hit region (see
-    /// [`aa::normal_variation`](crate::aa::normal_variation)).
-    fn normal_variation(&self, queries: &[VariationQuery]) -> Result<Answers<f64>, Error>;
+    /// The spread of the shaded colour over each hit region (see
+    /// [`aa::shading_variation`](crate::aa::shading_variation)).
+    fn shading_variation(&self, queries: &[VariationQuery]) -> Result<Answers<f64>, Error>;
 
     /// The unit normal at each point (`None` where the gradient vanishes).
     fn normals(&self, points: &[DVec3]) -> Result<Answers<Option<DVec3>>, Error>;

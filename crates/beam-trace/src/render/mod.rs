@@ -3,7 +3,7 @@
 //! and per-pass statistics.
 //!
 //! ```text
-//! plan -> backend set-up (grid | kernels) -> screen boxes -> primary rays | IAA
+//! plan -> backend set-up (grid | kernels) -> screen boxes -> primary rays | pixel beams
 //!      -> normals -> hard shadows -> soft shadows -> shading -> images + statistics
 //! ```
 //!
@@ -11,8 +11,8 @@
 //! and counters do not depend on the thread count, nor on how a pass cuts its batches.
 
 mod hard_shadows;
-pub mod iaa;
 mod images;
+mod pixel_beams;
 mod pixels;
 mod primary;
 mod shading;
@@ -31,6 +31,7 @@ use crate::error::Error;
 use crate::image::Image;
 use crate::plan::{Pass, Plan, Primary};
 use crate::progress::Progress;
+use crate::sample::Coverage;
 use crate::scene::Scene;
 use crate::shadow::ShadowClass;
 use crate::stats::{PassStats, RenderStats};
@@ -51,6 +52,8 @@ pub struct RenderOutput {
     pub cost_map: Image,
     /// Each pixel's screen box class (`None` where no screen box pass ran).
     pub box_classes: Vec<Option<BoxClass>>,
+    /// Each pixel's proven bounds on the share of its area whose rays meet a surface.
+    pub coverage: Vec<Coverage>,
     /// Soft shadows per pixel; `None` without a soft-shadow pass.
     pub shadows: Option<ShadowMaps>,
     /// The plan that ran.
@@ -103,36 +106,45 @@ pub fn render_on<'a>(
     let (w, h) = (cam.width(), cam.height());
     let npix = w as usize * h as usize;
 
-    let classes = if plan.runs(Pass::ScreenBoxes) {
-        let (classes, stats) = primary::screen_boxes(q, scene, &plan, progress)?;
+    let (classes, scopes) = if plan.runs(Pass::ScreenBoxes) {
+        let (classes, scopes, stats) = primary::screen_boxes(q, scene, &plan, progress)?;
         passes.push(stats);
-        classes
+        (classes, scopes)
     } else {
         passes.push(PassStats::skipped(Pass::ScreenBoxes.name()));
-        vec![None; npix]
+        (vec![None; npix], vec![None; npix])
     };
 
     let (mut samples, cost) = match plan.primary {
-        Primary::Iaa {
-            max_depth,
-            threshold,
-        } => {
+        Primary::ScreenBoxes { .. } | Primary::Iaa { .. } => {
+            let (max_depth, threshold) = plan
+                .primary
+                .pixel_beams()
+                .expect("the beam modes resolve pixels by their beams");
+            let refine = pixel_beams::Refinement {
+                max_depth,
+                threshold,
+            };
             passes.push(PassStats::skipped(Pass::PrimaryRays.name()));
-            let (samples, cost, stats) = iaa::iaa(q, scene, max_depth, threshold, progress)?;
+            let (samples, cost, stats) =
+                pixel_beams::pixel_beams(q, scene, &classes, &scopes, refine, progress)?;
             passes.push(stats);
             (samples, cost)
         }
-        Primary::ScreenBoxes { rays_per_undecided }
+        Primary::ScreenRays { rays_per_undecided }
         | Primary::PerPixel {
             rays_per_pixel: rays_per_undecided,
         } => {
             let (samples, cost, stats) =
                 primary::primary_rays(q, scene, &classes, rays_per_undecided, progress)?;
             passes.push(stats);
-            passes.push(PassStats::skipped(Pass::Iaa.name()));
+            passes.push(PassStats::skipped(Pass::PixelBeams.name()));
             (samples, cost)
         }
     };
+    let coverage: Vec<Coverage> = (0..samples.len())
+        .map(|p| Coverage::of(samples.pixel(p)))
+        .collect();
 
     if plan.runs(Pass::Normals) {
         passes.push(shading::normals(q, &mut samples, progress)?);
@@ -179,6 +191,7 @@ pub fn render_on<'a>(
     Ok(RenderOutput {
         classification: classification_image(w, h, &classes),
         box_classes: classes.iter().map(|c| c.map(|c| c.0)).collect(),
+        coverage,
         cost_map: cost_image(w, h, &cost),
         shadows,
         image: Image {

@@ -15,7 +15,7 @@ use crate::error::Error;
 use crate::plan::{Pass, Plan};
 use crate::progress::Progress;
 use crate::root::{Proof, RootResult};
-use crate::sample::Sample;
+use crate::sample::{Area, Sample};
 use crate::scene::Scene;
 use crate::screen::{PixelRect, needs_split, tiles};
 use crate::stats::PassStats;
@@ -27,6 +27,10 @@ const TILE: u32 = 32;
 /// Each pixel's screen box class, and whether the pixel lies on its box's top or left edge.
 pub(super) type PixelClasses = Vec<Option<(BoxClass, bool)>>;
 
+/// The backend's scope of each Undecided pixel's beam ([`BeamScope`]), for the parts of
+/// the pixel; `None` elsewhere.
+pub(super) type PixelScopes = Vec<Option<BeamScope>>;
+
 /// The screen box pass: tiles classified in one batch, the boxes to split in the next
 /// batch, down to single pixels (Undecided boxes and wide Hit boxes are split; a part
 /// searches only what its parent left open).
@@ -35,12 +39,13 @@ pub(super) fn screen_boxes(
     scene: &Scene,
     plan: &Plan,
     progress: &dyn Progress,
-) -> Result<(PixelClasses, PassStats), Error> {
+) -> Result<(PixelClasses, PixelScopes, PassStats), Error> {
     let cam = &scene.camera;
     let (w, h) = (cam.width(), cam.height());
     let t0 = Instant::now();
     progress.begin(Pass::ScreenBoxes.name(), u64::from(w) * u64::from(h));
     let mut classes: PixelClasses = vec![None; w as usize * h as usize];
+    let mut scopes: PixelScopes = vec![None; w as usize * h as usize];
     let mut c = ScreenBoxCounters::default();
     // Each box with the class and the backend's scope of the box it was split from.
     let mut level: Vec<(PixelRect, Option<BoxClass>, Option<BeamScope>)> = tiles(w, h, TILE)
@@ -67,6 +72,9 @@ pub(super) fn screen_boxes(
         let mut next = Vec::new();
         for ((rect, _, _), answer) in level.iter().zip(answers.values) {
             let class = answer.class;
+            if rect.is_pixel() && matches!(class, BoxClass::Undecided { .. }) {
+                scopes[(rect.y0 * w + rect.x0) as usize] = answer.scope.clone();
+            }
             if needs_split(rect, &class, plan.t_final_width) {
                 next.extend(
                     rect.split()
@@ -90,7 +98,11 @@ pub(super) fn screen_boxes(
         level = next;
     }
     progress.end();
-    Ok((classes, PassStats::of(Pass::ScreenBoxes, t0.elapsed(), &c)))
+    Ok((
+        classes,
+        scopes,
+        PassStats::of(Pass::ScreenBoxes, t0.elapsed(), &c),
+    ))
 }
 
 /// Stratified sample positions inside a pixel: `n` must be a square.
@@ -107,12 +119,23 @@ fn pixel_offsets(n: u32) -> Vec<(f64, f64)> {
 }
 
 /// One ray of a pixel: its weight, the query, and whether its window is a Hit box's
-/// `T_final`, where a root is known to exist.
+/// `T_final`, where a root is known to exist (then the ray's share of the pixel is proven
+/// covered).
 #[derive(Copy, Clone)]
 struct PixelRay {
     weight: f32,
     query: RayQuery,
     in_t_final: bool,
+}
+
+/// What is proven about the share of a pixel of box class `class` that one of its samples
+/// stands for.
+fn sample_area(class: Option<(BoxClass, bool)>) -> Area {
+    match class.map(|c| c.0) {
+        Some(BoxClass::Miss) => Area::Missed,
+        Some(BoxClass::Hit { .. }) => Area::Covered,
+        Some(BoxClass::Undecided { .. }) | None => Area::Unknown,
+    }
 }
 
 /// The number of rays of a pixel of box class `class`: the central ray in a Hit box;
@@ -276,16 +299,19 @@ pub(super) fn primary_rays(
             .enumerate()
             .map(|(i, &k)| {
                 let k = k as usize;
+                let area = sample_area(classes[first + k]);
                 if first_ray[k] == first_ray[k + 1] {
                     return Sample {
                         weight: 1.0,
                         hit: None,
+                        area,
                     };
                 }
                 let j = first_ray[k] + (i - first_sample[k]);
                 Sample {
                     weight: batch[j].weight,
                     hit: hit_of(j),
+                    area,
                 }
             })
             .collect();

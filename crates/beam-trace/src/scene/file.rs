@@ -244,8 +244,9 @@ impl Scene {
     /// aa = "none"                       # none | iaa | ss:N (N × N rays per pixel, N ≤ 16)
     /// iaa_depth = 4
     /// iaa_threshold = 0.05
-    /// primary = "screen-boxes"          # screen-boxes | per-pixel
-    /// rays_per_undecided = 9
+    /// primary = "screen-boxes"          # screen-boxes | screen-rays | per-pixel
+    /// undecided_depth = 1               # screen-boxes: Undecided pixels' beams split to this depth
+    /// rays_per_undecided = 9            # screen-rays: point rays per Undecided pixel
     /// rays_per_pixel = 1
     /// t_final_width = 0.05
     /// grid = 16
@@ -310,7 +311,8 @@ impl Scene {
     /// `max_steps` (at least 1), `sampling_step` (in `(0, 1]`) and `lipschitz` (positive) for
     /// the unreliable baselines, `aa` (see [`AaMode`]'s [`FromStr`]), `iaa_depth` (1 to 8) and
     /// `iaa_threshold` (positive) for `aa = "iaa"`, `primary` (see [`PrimaryMode`]'s
-    /// [`FromStr`]), `rays_per_undecided` and `rays_per_pixel` (square numbers 1 to 256),
+    /// [`FromStr`]), `undecided_depth` (0 to 8), `rays_per_undecided` and `rays_per_pixel`
+    /// (square numbers 1 to 256),
     /// `t_final_width` (positive), `grid` (0 to 256; 0: no grid), `shadows`,
     /// `shadow_method` (see [`ShadowSpec`](crate::shadow::ShadowSpec); default `beam:7`),
     /// `precision` (`"f64"` or `"f32"`, see [`Precision`](crate::ray::Precision); default

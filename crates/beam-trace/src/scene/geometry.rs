@@ -238,6 +238,8 @@ impl Geometry {
             interval: Evaluator::new(&self.f_tape),
             leaves: Evaluator::new(&self.leaf_tape),
             leaf_values: vec![0.0; self.leaves.len()],
+            leaf_boxes: Evaluator::new(&self.leaf_tape),
+            leaf_enclosures: vec![Interval::ENTIRE; self.leaves.len()],
             candidates: Evaluator::new(&self.leaf_tape),
             objects: self.object_rays.iter().map(BeamEval::new).collect(),
             object_values_eval: Evaluator::new(&self.object_tape),
@@ -259,6 +261,9 @@ pub struct GeometryEval {
     interval: Evaluator<Interval<f64>>,
     leaves: Evaluator<f64>,
     leaf_values: Vec<f64>,
+    /// Every leaf's function over a box ([`GeometryEval::leaves_over`]).
+    leaf_boxes: Evaluator<Interval<f64>>,
+    leaf_enclosures: Vec<Interval<f64>>,
     /// The leaves of a cell that may shade a point ([`GeometryEval::leaf_among`]).
     candidates: Evaluator<f64>,
     /// `g` and `g'` of each top-level object alone.
@@ -317,6 +322,30 @@ impl GeometryEval {
             .eval_outputs(&[p.x, p.y, p.z], &mut self.leaf_values)
             .expect("tape in x y z");
         nearest_zero(&self.leaf_values)
+    }
+
+    /// The leaves that may shade a hit inside the box `b` ([`leaf_at`](Self::leaf_at) of a
+    /// point of `b`), increasing: those whose magnitude may be the smallest of every
+    /// leaf's somewhere in `b` (`mig F_i(b) ≤ min_j mag F_j(b)`). Every leaf where an
+    /// enclosure cannot be computed.
+    pub fn leaves_over(&mut self, b: &IBox) -> Vec<usize> {
+        let n = self.leaf_enclosures.len();
+        if n <= 1 {
+            return (0..n).collect();
+        }
+        if self
+            .leaf_boxes
+            .eval_outputs(b, &mut self.leaf_enclosures)
+            .is_err()
+        {
+            return (0..n).collect();
+        }
+        let e = &self.leaf_enclosures;
+        if e.iter().any(|v| v.is_empty() || v.inf().is_nan()) {
+            return (0..n).collect();
+        }
+        let smallest = e.iter().map(|v| v.mag()).fold(f64::INFINITY, f64::min);
+        (0..n).filter(|&i| e[i].mig() <= smallest).collect()
     }
 
     /// [`leaf_at`](Self::leaf_at) with the search narrowed to the candidates of the grid

@@ -84,7 +84,8 @@ pub enum AaMode {
     Iaa {
         /// Largest subdivision depth (thesis: 4).
         max_depth: u32,
-        /// Largest width of the normal-variation estimator for a sub-pixel to be shaded once.
+        /// Largest spread of the shaded colour over a proven hit region for it to be shaded
+        /// once ([`shading_variation`](crate::aa::shading_variation)).
         threshold: f64,
     },
     /// `n × n` stratified rays per pixel (point-sampling supersampling).
@@ -94,7 +95,7 @@ pub enum AaMode {
 impl AaMode {
     /// Default IAA depth limit (thesis 5.5.2: 4).
     pub const IAA_DEPTH: u32 = 4;
-    /// Default IAA normal-variation threshold.
+    /// Default IAA shading-variation threshold (a spread of the colour, channels in `[0, 1]`).
     pub const IAA_THRESHOLD: f64 = 0.05;
 }
 
@@ -126,8 +127,12 @@ impl std::str::FromStr for AaMode {
 #[derive(Copy, Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub enum PrimaryMode {
     /// The screen box structure of thesis 5.4 (beams classify boxes; 1 ray per pixel in
-    /// Hit boxes, `rays_per_undecided` in Undecided ones).
+    /// Hit boxes), Undecided pixels resolved by splitting their beams to
+    /// `undecided_depth`: the default.
     ScreenBoxes,
+    /// The thesis's screen box structure with `rays_per_undecided` point rays in each
+    /// Undecided pixel (a feature thinner than their spacing may be lost).
+    ScreenRays,
     /// Classic interval ray casting: `rays_per_pixel` rays in every pixel.
     PerPixel,
 }
@@ -168,8 +173,12 @@ pub struct RenderSettings {
     pub primary: PrimaryMode,
     /// Anti-aliasing mode.
     pub aa: AaMode,
-    /// Rays per pixel in Undecided screen boxes (a square number; thesis: 9).
+    /// Rays per pixel in Undecided screen boxes of [`PrimaryMode::ScreenRays`] (a square
+    /// number; thesis: 9).
     pub rays_per_undecided: u32,
+    /// Largest subdivision depth of an Undecided pixel's beam in
+    /// [`PrimaryMode::ScreenBoxes`] (parts of `4^-depth` of the pixel).
+    pub undecided_depth: u32,
     /// Rays per pixel of [`PrimaryMode::PerPixel`] (a square number).
     pub rays_per_pixel: u32,
     /// Largest width of `T_final` (relative to the scene diagonal) for a Hit box not to be
@@ -207,6 +216,7 @@ impl Default for RenderSettings {
             primary: PrimaryMode::ScreenBoxes,
             aa: AaMode::None,
             rays_per_undecided: 9,
+            undecided_depth: 1,
             rays_per_pixel: 1,
             t_final_width: 0.05,
             grid_resolution: 16,

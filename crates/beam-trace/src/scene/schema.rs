@@ -142,6 +142,7 @@ pub(super) struct RawRender {
     pub(super) iaa_threshold: Option<f64>,
     pub(super) primary: Option<String>,
     pub(super) rays_per_undecided: Option<i64>,
+    pub(super) undecided_depth: Option<i64>,
     pub(super) rays_per_pixel: Option<i64>,
     pub(super) t_final_width: Option<f64>,
     pub(super) grid: Option<i64>,

@@ -14,18 +14,19 @@ use crate::error::Error;
 impl FromStr for PrimaryMode {
     type Err = String;
 
-    /// `screen-boxes` or `per-pixel`.
+    /// `screen-boxes`, `screen-rays` or `per-pixel`.
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
             "screen-boxes" => Ok(PrimaryMode::ScreenBoxes),
+            "screen-rays" => Ok(PrimaryMode::ScreenRays),
             "per-pixel" => Ok(PrimaryMode::PerPixel),
             _ => {
-                let names = ["screen-boxes", "per-pixel"];
+                let names = ["screen-boxes", "screen-rays", "per-pixel"];
                 let hint = suggest::did_you_mean(s, names)
                     .map(|h| format!("; {h}"))
                     .unwrap_or_default();
                 Err(format!(
-                    "unknown primary mode '{s}'{hint} (one of: screen-boxes, per-pixel)"
+                    "unknown primary mode '{s}'{hint} (one of: screen-boxes, screen-rays, per-pixel)"
                 ))
             }
         }
@@ -81,6 +82,9 @@ pub(super) fn render_settings(doc: &Doc<'_>, r: &RawRender) -> Result<RenderSett
     }
     if let Some(v) = r.rays_per_undecided {
         s.rays_per_undecided = doc.square("render.rays_per_undecided", v)?;
+    }
+    if let Some(v) = r.undecided_depth {
+        s.undecided_depth = doc.int_in("render.undecided_depth", v, 0, 8)?;
     }
     if let Some(v) = r.rays_per_pixel {
         s.rays_per_pixel = doc.square("render.rays_per_pixel", v)?;

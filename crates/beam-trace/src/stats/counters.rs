@@ -112,8 +112,8 @@ counters! {
 }
 
 counters! {
-    /// Interval anti-aliasing.
-    pub struct IaaCounters {
+    /// Pixels resolved by their beams (and interval anti-aliasing).
+    pub struct PixelBeamCounters {
         /// Beams classified (pixels and sub-pixels).
         beams,
         /// Beams rejected.
@@ -126,7 +126,7 @@ counters! {
         depth_limit,
         /// Central rays searched.
         rays,
-        /// Splits on the normal-variation estimator.
+        /// Splits of Hit beams on the shading-variation estimator.
         splits_variation,
     }
     search: search

@@ -18,14 +18,14 @@ use super::query::{
     SoftAnswers, Support, VariationQuery,
 };
 use super::traits::{Backend, Prepared, Queries};
-use crate::aa::normal_variation;
+use crate::aa::{LightSource, shading_variation};
 use crate::error::Error;
 use crate::grid::Grid;
 use crate::plan::{Pass, Plan};
 use crate::ray::Ray;
 use crate::root::RootResult;
 use crate::sample::Hit;
-use crate::scene::Scene;
+use crate::scene::{Material, Scene};
 use crate::shading::{Incoming, phong};
 use crate::shadow::hard::{Visibility, segment_visibility};
 use crate::shadow::{ShadowQuery, ShadowSpec, ShadowWork};
@@ -103,13 +103,34 @@ impl Queries for CpuQueries<'_> {
         Ok(self.map(queries, true, |ev, q, c| self.hit(ev, &q.ray, q.t, c)))
     }
 
-    fn normal_variation(&self, queries: &[VariationQuery]) -> Result<Answers<f64>, Error> {
+    fn shading_variation(&self, queries: &[VariationQuery]) -> Result<Answers<f64>, Error> {
+        let lights: Vec<LightSource> = self
+            .scene
+            .lights
+            .iter()
+            .map(|l| LightSource {
+                position: l.center().to_array(),
+                color: l.color(),
+            })
+            .collect();
         Ok(self.map(queries, true, |ev, q, _| {
             let region = q.beam.points(q.t_final);
             let (_, grad) = ev.geo.gradient_box(&region);
-            let eye = q.beam.origin;
-            let view: [Interval<f64>; 3] = std::array::from_fn(|i| region[i] - eye[i]);
-            normal_variation(grad, view)
+            let leaves = self.scene.geometry.leaves();
+            let materials: Vec<Material> = ev
+                .geo
+                .leaves_over(&region)
+                .into_iter()
+                .map(|i| leaves[i].material)
+                .collect();
+            shading_variation(
+                grad,
+                region,
+                q.beam.origin,
+                &materials,
+                self.scene.ambient,
+                &lights,
+            )
         }))
     }
 

@@ -10,7 +10,7 @@ use rayon::prelude::*;
 
 use crate::backend::query::Answers;
 use crate::backend::query::{BeamQuery, Classified};
-use crate::beam::{BoxClass, Extent, child_window, evaluate_box_within, forward};
+use crate::beam::{BoxClass, Extent, Inherited, child_window, evaluate_box_within, forward};
 use crate::grid::{Grid, GridEval};
 use crate::plan::Plan;
 use crate::ray::{Beam, BeamEval, Ray};
@@ -177,10 +177,19 @@ impl CpuQueries<'_> {
             beam,
             bounds: &bounds,
         };
+        // Inside an Undecided parent the search starts at the scale the parent stopped at.
+        let near = match parent {
+            Some(BoxClass::Undecided { t }) => Some(*t),
+            _ => None,
+        };
+        let inherited = Inherited {
+            scope: query.scope.as_ref(),
+            near,
+        };
         let (class, scope) = evaluate_box_within(
             &mut ev.geo.beam,
             &ranges,
-            query.scope.as_ref(),
+            inherited,
             Some(&extent),
             &self.plan.beam,
             c,

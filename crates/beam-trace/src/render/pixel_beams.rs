@@ -1,0 +1,375 @@
+//! The pixel-beams pass: each pixel resolved by its beam, starting from the screen box
+//! structure's class of the pixel (thesis 5.4-5.5; interval anti-aliasing, 5.5.2).
+//!
+//! A pixel in a Miss box is background; a pixel in a Hit box gets one central ray in the
+//! box's `T_final`. The beam of an Undecided pixel is split in four, and each part is
+//! classified starting from its parent's result (its search window and pruned tape), down
+//! to a depth limit; at the limit an undecided part is shaded with the first surface its
+//! beam may meet, so a feature thinner than a pixel is never lost. With anti-aliasing, a
+//! Hit beam whose shading may vary by more than a threshold over its proven region
+//! ([`shading_variation`](crate::aa::shading_variation)) is split too; the others are
+//! shaded once.
+//!
+//! Each part's sample carries what its beam proved about its area ([`Area`]), from which
+//! the pixel's [`Coverage`](crate::sample::Coverage) bounds follow. The parts of every
+//! pixel of a batch are classified level by level, one batch of beams per level; a pixel's
+//! samples come out in the order of a depth-first walk of its quadrants.
+
+use std::time::Instant;
+
+use interval_core::Interval;
+
+use super::pixels::{Pixels, offsets};
+use super::primary::{PixelClasses, PixelScopes};
+use super::{PixelSamples, RowBatch, row_batches};
+use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery, VariationQuery};
+use crate::beam::{BeamScope, BoxClass, child_window};
+use crate::camera::Camera;
+use crate::error::Error;
+use crate::plan::Pass;
+use crate::progress::Progress;
+use crate::ray::Beam;
+use crate::root::RootResult;
+use crate::sample::{Area, Sample};
+use crate::scene::Scene;
+use crate::stats::PassStats;
+use crate::stats::counters::PixelBeamCounters;
+
+/// How far the pass splits: the depth limit, and the shading-variation threshold above
+/// which a Hit beam is split too (`None`: Hit beams are shaded once, no anti-aliasing).
+#[derive(Copy, Clone, Debug)]
+pub(super) struct Refinement {
+    pub(super) max_depth: u32,
+    pub(super) threshold: Option<f64>,
+}
+
+/// A sub-pixel waiting for its beam.
+#[derive(Clone, Debug)]
+struct Part {
+    /// The pixel, in the batch.
+    pixel: usize,
+    /// Top-left corner and side, in pixels.
+    x0: f64,
+    y0: f64,
+    size: f64,
+    /// Subdivision depth (0: the whole pixel).
+    depth: u32,
+    /// The quadrant path, two bits per level from the top: sorting by it gives the
+    /// depth-first order.
+    path: u64,
+    /// The class of the beam it was split from.
+    parent: Option<BoxClass>,
+    /// The backend's scope of the beam it was split from.
+    scope: Option<BeamScope>,
+    /// Its own class when already known (a whole pixel classified by the screen boxes).
+    known: Option<BoxClass>,
+}
+
+impl Part {
+    fn quadrants(
+        &self,
+        class: BoxClass,
+        scope: Option<BeamScope>,
+    ) -> impl Iterator<Item = Part> + '_ {
+        let h = 0.5 * self.size;
+        [(0.0, 0.0), (h, 0.0), (0.0, h), (h, h)]
+            .into_iter()
+            .enumerate()
+            .map(move |(k, (dx, dy))| Part {
+                pixel: self.pixel,
+                x0: self.x0 + dx,
+                y0: self.y0 + dy,
+                size: h,
+                depth: self.depth + 1,
+                path: self.path | (k as u64) << (62 - 2 * self.depth),
+                parent: Some(class),
+                scope: scope.clone(),
+                known: None,
+            })
+    }
+}
+
+/// A finished part: background, or its central ray's root search and the enclosure to
+/// shade when that ray finds no root; and what its beam proved about its area.
+struct Shaded {
+    pixel: usize,
+    path: u64,
+    weight: f32,
+    ray: Option<(RayQuery, Interval<f64>)>,
+    area: Area,
+}
+
+/// A level of parts classified: each part's beam, class and scope.
+struct Classified {
+    beams: Vec<Beam>,
+    classes: Vec<BoxClass>,
+    scopes: Vec<Option<BeamScope>>,
+}
+
+/// One level of parts classified (a known class is not asked again), the cost added to
+/// each part's pixel.
+fn classify(
+    q: &dyn Queries,
+    cam: &Camera,
+    level: &mut [Part],
+    pixel_cost: &mut [f32],
+    c: &mut PixelBeamCounters,
+) -> Result<Classified, Error> {
+    let beams: Vec<_> = level
+        .iter()
+        .map(|p| cam.beam(p.x0, p.y0, p.x0 + p.size, p.y0 + p.size))
+        .collect();
+    let asked: Vec<usize> = (0..level.len())
+        .filter(|&j| level[j].known.is_none())
+        .collect();
+    let queries: Vec<BeamQuery> = asked
+        .iter()
+        .map(|&j| BeamQuery {
+            beam: beams[j],
+            parent: level[j].parent,
+            scope: level[j].scope.clone(),
+        })
+        .collect();
+    let answers = q.beams(&queries)?;
+    c.beams += queries.len() as u64;
+    c.search.add(&answers.search);
+    let mut classes: Vec<BoxClass> = level
+        .iter()
+        .map(|p| p.known.unwrap_or(BoxClass::Miss))
+        .collect();
+    // A known class comes with the scope its screen box handed on.
+    let mut scopes: Vec<Option<BeamScope>> = level.iter_mut().map(|p| p.scope.take()).collect();
+    for ((&j, a), t) in asked.iter().zip(answers.values).zip(&answers.cost) {
+        classes[j] = a.class;
+        scopes[j] = a.scope;
+        pixel_cost[level[j].pixel] += t;
+    }
+    Ok(Classified {
+        beams,
+        classes,
+        scopes,
+    })
+}
+
+/// Whether each Hit part of `judged` may be shaded once: its shading varies by at most
+/// `threshold` over its proven region.
+fn smooth_hits(
+    q: &dyn Queries,
+    level: &[Part],
+    beams: &[Beam],
+    classes: &[BoxClass],
+    judged: &[usize],
+    threshold: f64,
+    pixel_cost: &mut [f32],
+) -> Result<Vec<bool>, Error> {
+    let queries: Vec<VariationQuery> = judged
+        .iter()
+        .filter_map(|&j| match classes[j] {
+            BoxClass::Hit { t_final } => Some(VariationQuery {
+                beam: beams[j],
+                t_final,
+            }),
+            _ => None,
+        })
+        .collect();
+    let variation = q.shading_variation(&queries)?;
+    let mut smooth = vec![false; level.len()];
+    for ((&j, v), t) in judged.iter().zip(variation.values).zip(&variation.cost) {
+        smooth[j] = v <= threshold;
+        pixel_cost[level[j].pixel] += t;
+    }
+    Ok(smooth)
+}
+
+/// The pixel-beams pass over every pixel: `classes` and `scopes` are the screen box
+/// structure's result per pixel (`None` where no screen box classified the pixel: its
+/// beam is classified here).
+pub(super) fn pixel_beams(
+    q: &dyn Queries,
+    scene: &Scene,
+    classes: &PixelClasses,
+    scopes: &PixelScopes,
+    refine: Refinement,
+    progress: &dyn Progress,
+) -> Result<PixelSamples, Error> {
+    let cam = &scene.camera;
+    let (w, h) = (cam.width(), cam.height());
+    let t0 = Instant::now();
+    progress.begin(Pass::PixelBeams.name(), u64::from(h));
+    let mut c = PixelBeamCounters::default();
+    let npix = w as usize * h as usize;
+    let mut pixels = Pixels::new();
+    let mut cost: Vec<f32> = Vec::with_capacity(npix);
+    for RowBatch { rows, first, n } in row_batches(w, h) {
+        let mut pixel_cost = vec![0f32; n];
+        let level: Vec<Part> = (0..n)
+            .map(|k| {
+                let i = (first + k) as u32;
+                Part {
+                    pixel: k,
+                    x0: f64::from(i % w),
+                    y0: f64::from(i / w),
+                    size: 1.0,
+                    depth: 0,
+                    path: 0,
+                    parent: None,
+                    scope: scopes[first + k].clone(),
+                    known: classes[first + k].map(|c| c.0),
+                }
+            })
+            .collect();
+        let done = subdivide(q, cam, level, refine, &mut pixel_cost, &mut c)?;
+        let samples = shade_parts(q, done, n, &mut pixel_cost, &mut c)?;
+        pixels.append(samples);
+        cost.extend(pixel_cost);
+        progress.advance(u64::from(rows));
+    }
+    progress.end();
+    Ok((
+        pixels,
+        cost,
+        PassStats::of(Pass::PixelBeams, t0.elapsed(), &c),
+    ))
+}
+
+/// The parts of a batch's pixels, level by level, until every part is finished.
+fn subdivide(
+    q: &dyn Queries,
+    cam: &Camera,
+    mut level: Vec<Part>,
+    refine: Refinement,
+    pixel_cost: &mut [f32],
+    c: &mut PixelBeamCounters,
+) -> Result<Vec<Shaded>, Error> {
+    let Refinement {
+        max_depth,
+        threshold,
+    } = refine;
+    let mut done: Vec<Shaded> = Vec::new();
+    while !level.is_empty() {
+        let Classified {
+            beams,
+            classes,
+            scopes,
+        } = classify(q, cam, &mut level, pixel_cost, c)?;
+        let open = |j: usize| level[j].depth < max_depth;
+        let smooth = match threshold {
+            Some(limit) => {
+                let judged: Vec<usize> = (0..level.len())
+                    .filter(|&j| open(j) && matches!(classes[j], BoxClass::Hit { .. }))
+                    .collect();
+                smooth_hits(q, &level, &beams, &classes, &judged, limit, pixel_cost)?
+            }
+            None => vec![true; level.len()],
+        };
+        let mut next = Vec::new();
+        for (j, (p, class)) in level.iter().zip(&classes).enumerate() {
+            let weight = (p.size * p.size) as f32;
+            let centre = cam.ray(p.x0 + 0.5 * p.size, p.y0 + 0.5 * p.size);
+            let mut finish = |ray, area| {
+                done.push(Shaded {
+                    pixel: p.pixel,
+                    path: p.path,
+                    weight,
+                    ray,
+                    area,
+                });
+            };
+            match *class {
+                BoxClass::Miss => {
+                    c.rejected += 1;
+                    finish(None, Area::Missed);
+                }
+                BoxClass::Hit { t_final } if !open(j) || smooth[j] => {
+                    c.shaded_once += 1;
+                    c.rays += 1;
+                    let query = RayQuery {
+                        ray: centre,
+                        window: t_final,
+                    };
+                    finish(Some((query, t_final)), Area::Covered);
+                }
+                BoxClass::Hit { .. } => {
+                    c.splits_variation += 1;
+                    next.extend(p.quadrants(*class, scopes[j].clone()));
+                }
+                BoxClass::Undecided { t } if !open(j) => {
+                    // At the limit: the central ray may miss while some ray of the beam
+                    // meets the surface in `t`: then `t` is shaded, and the feature kept.
+                    c.depth_limit += 1;
+                    c.rays += 1;
+                    let query = RayQuery {
+                        ray: centre,
+                        window: child_window(Some(class)),
+                    };
+                    finish(Some((query, t)), Area::Unknown);
+                }
+                BoxClass::Undecided { .. } => {
+                    c.splits_undecided += 1;
+                    next.extend(p.quadrants(*class, scopes[j].clone()));
+                }
+            }
+        }
+        level = next;
+    }
+    Ok(done)
+}
+
+/// The samples of a batch's finished parts, pixel by pixel in depth-first quadrant order:
+/// the central rays are searched, then every hit's shading point is found.
+fn shade_parts(
+    q: &dyn Queries,
+    done: Vec<Shaded>,
+    n: usize,
+    pixel_cost: &mut [f32],
+    c: &mut PixelBeamCounters,
+) -> Result<Pixels, Error> {
+    let shaded: Vec<usize> = (0..done.len()).filter(|&k| done[k].ray.is_some()).collect();
+    let queries: Vec<RayQuery> = shaded
+        .iter()
+        .filter_map(|&k| done[k].ray.map(|r| r.0))
+        .collect();
+    let roots = q.roots(&queries)?;
+    c.search.add(&roots.search);
+    let hit_queries: Vec<HitQuery> = shaded
+        .iter()
+        .zip(&roots.values)
+        .zip(&roots.cost)
+        .filter_map(|((&k, r), t)| {
+            pixel_cost[done[k].pixel] += t;
+            let (query, fallback) = done[k].ray?;
+            let t = match *r {
+                RootResult::Root { t, .. } | RootResult::Undecided { t } => t,
+                RootResult::NoRoot => fallback,
+            };
+            Some(HitQuery { ray: query.ray, t })
+        })
+        .collect();
+    let hits = q.hit_points(&hit_queries)?;
+    c.search.add(&hits.search);
+    let mut parts: Vec<(usize, u64, Sample)> = done
+        .iter()
+        .map(|d| {
+            (
+                d.pixel,
+                d.path,
+                Sample {
+                    weight: d.weight,
+                    hit: None,
+                    area: d.area,
+                },
+            )
+        })
+        .collect();
+    for ((&k, hit), t) in shaded.iter().zip(hits.values).zip(&hits.cost) {
+        parts[k].2.hit = Some(hit);
+        pixel_cost[done[k].pixel] += t;
+    }
+    parts.sort_by_key(|&(pixel, path, _)| (pixel, path));
+    let mut counts = vec![0; n];
+    for &(pixel, _, _) in &parts {
+        counts[pixel] += 1;
+    }
+    let samples = parts.into_iter().map(|(_, _, s)| s).collect();
+    Ok(Pixels::from_offsets(samples, offsets(counts.into_iter())))
+}
