@@ -17,6 +17,10 @@
 
 use interval_core::Interval;
 
+use std::f64::consts::PI;
+
+use glam::DVec3;
+
 use crate::ibox::{IBox, ipoint};
 use crate::scene::Material;
 
@@ -45,17 +49,50 @@ pub struct LightSource {
     pub color: [f32; 3],
 }
 
+/// A cone of directions: every direction of a box of vectors lies within `angle` of `axis`.
+#[derive(Copy, Clone, Debug)]
+struct Cone {
+    axis: DVec3,
+    angle: f64,
+}
+
+impl Cone {
+    /// The cone of the directions of the vectors of `b`: around its centre, with half-angle
+    /// `asin(r / |c|)` for the box's half-diagonal `r`; `None` when the box may hold the
+    /// zero vector (or is unbounded).
+    fn of(b: &IBox) -> Option<Cone> {
+        let c = DVec3::new(b[0].mid(), b[1].mid(), b[2].mid());
+        let r = DVec3::new(b[0].rad(), b[1].rad(), b[2].rad()).length();
+        let len = c.length();
+        (len.is_finite() && r.is_finite() && r < len).then(|| Cone {
+            axis: c / len,
+            angle: (r / len).asin(),
+        })
+    }
+
+    /// The range of the cosine between a direction of this cone and one of `other`.
+    fn cos_range(&self, other: &Cone) -> (f64, f64) {
+        let a = self.axis.angle_between(other.axis);
+        let d = self.angle + other.angle;
+        ((a + d).min(PI).cos(), (a - d).max(0.0).cos())
+    }
+}
+
 /// The spread of the Phong colour ([`phong`](crate::shading::phong)) over a proven hit
-/// region: the largest width, over the colour channels, of the colour computed with
-/// interval arithmetic from the region's enclosures: `gradient` of the scene function,
-/// `region` of the hit points, `eye` of the viewpoints, for every material in `materials`
-/// (the leaves that may shade the region). Shadows are not part of it: a region shaded once
-/// takes its one sample's shadow query.
+/// region: the largest width, over the colour channels, of the hull of the colours that
+/// the region's normals, view and light directions allow, for every material in
+/// `materials` (the leaves that may shade the region). The normals are the directions of
+/// `gradient` (an enclosure of the scene function's gradient over the region), the view
+/// directions those from the hit points `region` to the viewpoints `eye`; each set is
+/// bounded by a cone around its centre direction, and the cosines of the diffuse and
+/// highlight terms by the angles between the cones' axes plus their half-angles (a
+/// reflection about a normal in a cone of half-angle θ turns by at most 2θ). Shadows are
+/// not part of it: a region shaded once takes its one sample's shadow query.
 ///
 /// Infinite where the region may hold a silhouette (the normal may face both towards and
-/// away from the eye), the gradient may vanish, or the enclosures are unbounded. It is an
-/// estimate for deciding splits, not a proven bound: the highlight's power is taken at
-/// the ends of its base rounded to nearest.
+/// away from the eye), the gradient may vanish, or the enclosures are unbounded. It bounds
+/// the spread up to the rounding of the cone angles (an estimate for deciding splits, not a
+/// rounded proof).
 pub fn shading_variation(
     gradient: IBox,
     region: IBox,
@@ -67,59 +104,65 @@ pub fn shading_variation(
     if materials.is_empty() {
         return f64::INFINITY;
     }
-    let unit = |v: IBox| -> Option<IBox> {
-        let len = (v[0].sqr() + v[1].sqr() + v[2].sqr()).sqrt();
-        (len.inf() > 0.0 && len.sup().is_finite()).then(|| v.map(|c| c / len))
-    };
-    let dot = |a: &IBox, b: &IBox| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-    let (Some(n), Some(e)) = (
-        unit(gradient),
-        unit(std::array::from_fn(|i| eye[i] - region[i])),
-    ) else {
+    let towards = |to: &IBox| -> IBox { std::array::from_fn(|i| to[i] - region[i]) };
+    let (Some(mut n), Some(e)) = (Cone::of(&gradient), Cone::of(&towards(&eye))) else {
         return f64::INFINITY;
     };
     // The normal turned towards the eye: one orientation over the whole region.
-    let ne = dot(&n, &e);
-    let n = if ne.inf() > 0.0 {
-        n
-    } else if ne.sup() < 0.0 {
-        n.map(|c| -c)
-    } else {
+    let (lo, hi) = n.cos_range(&e);
+    if hi < 0.0 {
+        n.axis = -n.axis;
+    } else if lo <= 0.0 {
         return f64::INFINITY;
-    };
-    let zero = ipoint(0.0);
+    }
+    let clamp = |(lo, hi): (f64, f64)| Interval::new_unchecked(lo.max(0.0), hi.max(0.0));
     let mut diffuse = [ipoint(f64::from(ambient)); 3];
     let mut highlight: Vec<([Interval<f64>; 3], Interval<f64>)> = Vec::new();
     for light in lights {
-        let Some(l) = unit(std::array::from_fn(|i| {
-            ipoint(light.position[i]) - region[i]
-        })) else {
+        let Some(l) = Cone::of(&towards(&light.position.map(ipoint))) else {
             return f64::INFINITY;
         };
-        let nl = dot(&n, &l).max(zero);
-        // r = 2 (n·l) n − l, and the highlight's base max(0, e·r).
-        let r: IBox = std::array::from_fn(|i| ipoint(2.0) * nl * n[i] - l[i]);
-        let er = dot(&e, &r).max(zero);
+        let nl = clamp(n.cos_range(&l));
+        // r = 2 (n·l) n − l: the reflection of the light's axis about the normal's axis,
+        // within 2θ_n + θ_l of it.
+        let r = Cone {
+            axis: 2.0 * n.axis.dot(l.axis) * n.axis - l.axis,
+            angle: 2.0 * n.angle + l.angle,
+        };
+        let er = if r.axis.length() > 0.0 {
+            clamp(
+                Cone {
+                    axis: r.axis.normalize(),
+                    ..r
+                }
+                .cos_range(&e),
+            )
+        } else {
+            Interval::new_unchecked(0.0, 1.0)
+        };
         let c = light.color.map(|c| ipoint(f64::from(c)));
         for k in 0..3 {
             diffuse[k] = diffuse[k] + c[k] * nl;
         }
         highlight.push((c, er));
     }
-    let mut spread: f64 = 0.0;
+    // The hull of the colour over every material: leaves of different colours in one
+    // region spread the colour as much as shading does.
+    let mut hull: [Option<Interval<f64>>; 3] = [None; 3];
     for m in materials {
         let p = f64::from(m.shininess);
         let power = |b: Interval<f64>| {
             Interval::new_unchecked(b.inf().min(1.0).powf(p), b.sup().min(1.0).powf(p))
         };
-        for k in 0..3 {
+        for (k, h) in hull.iter_mut().enumerate() {
             let mut colour = ipoint(f64::from(m.color[k])) * diffuse[k];
             for (c, er) in &highlight {
                 colour = colour + ipoint(f64::from(m.specular)) * c[k] * power(*er);
             }
-            spread = spread.max(colour.wid());
+            *h = Some(h.map_or(colour, |h| h.convex_hull(colour)));
         }
     }
+    let spread = hull.iter().flatten().map(|h| h.wid()).fold(0.0, f64::max);
     if spread.is_nan() {
         f64::INFINITY
     } else {

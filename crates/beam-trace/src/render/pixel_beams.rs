@@ -202,6 +202,9 @@ pub(super) fn pixel_beams(
     let mut cost: Vec<f32> = Vec::with_capacity(npix);
     for RowBatch { rows, first, n } in row_batches(w, h) {
         let mut pixel_cost = vec![0f32; n];
+        // With anti-aliasing a Hit pixel's own beam is classified inside its box's
+        // `T_final`: its own, narrower section is the region whose shading is judged.
+        let class = |k: usize| classes[first + k].map(|c| c.0);
         let level: Vec<Part> = (0..n)
             .map(|k| {
                 let i = (first + k) as u32;
@@ -212,9 +215,11 @@ pub(super) fn pixel_beams(
                     size: 1.0,
                     depth: 0,
                     path: 0,
-                    parent: None,
+                    parent: class(k),
                     scope: scopes[first + k].clone(),
-                    known: classes[first + k].map(|c| c.0),
+                    known: class(k).filter(|c| {
+                        refine.threshold.is_none() || !matches!(c, BoxClass::Hit { .. })
+                    }),
                 }
             })
             .collect();
@@ -361,10 +366,36 @@ fn shade_parts(
             )
         })
         .collect();
-    for ((&k, hit), t) in shaded.iter().zip(hits.values).zip(&hits.cost) {
+    for (((&k, hit), t), r) in shaded
+        .iter()
+        .zip(hits.values)
+        .zip(&hits.cost)
+        .zip(&roots.values)
+    {
         parts[k].2.hit = Some(hit);
         pixel_cost[done[k].pixel] += t;
+        if done[k].area == Area::Unknown {
+            // An undecided part at the limit: its surface's share of it is unknown. For a
+            // straight edge through the part the share is in [1/2, 1] when the central
+            // ray meets the surface and in [0, 1/2] when it misses; the part is split
+            // between the surface and the background at those ranges' middles.
+            let share = if matches!(r, RootResult::NoRoot) {
+                0.25
+            } else {
+                0.75
+            };
+            let (pixel, path, sample) = &mut parts[k];
+            let background = Sample {
+                weight: sample.weight * (1.0 - share),
+                hit: None,
+                area: Area::Unknown,
+            };
+            sample.weight *= share;
+            let (pixel, path) = (*pixel, *path);
+            parts.push((pixel, path, background));
+        }
     }
+    // Stable: a part's surface sample stays before its background sample.
     parts.sort_by_key(|&(pixel, path, _)| (pixel, path));
     let mut counts = vec![0; n];
     for &(pixel, _, _) in &parts {

@@ -27,8 +27,8 @@ const TILE: u32 = 32;
 /// Each pixel's screen box class, and whether the pixel lies on its box's top or left edge.
 pub(super) type PixelClasses = Vec<Option<(BoxClass, bool)>>;
 
-/// The backend's scope of each Undecided pixel's beam ([`BeamScope`]), for the parts of
-/// the pixel; `None` elsewhere.
+/// The backend's scope of the box of each pixel that is not a Miss ([`BeamScope`]), for
+/// the parts of the pixel; `None` elsewhere.
 pub(super) type PixelScopes = Vec<Option<BeamScope>>;
 
 /// The screen box pass: tiles classified in one batch, the boxes to split in the next
@@ -72,9 +72,6 @@ pub(super) fn screen_boxes(
         let mut next = Vec::new();
         for ((rect, _, _), answer) in level.iter().zip(answers.values) {
             let class = answer.class;
-            if rect.is_pixel() && matches!(class, BoxClass::Undecided { .. }) {
-                scopes[(rect.y0 * w + rect.x0) as usize] = answer.scope.clone();
-            }
             if needs_split(rect, &class, plan.t_final_width) {
                 next.extend(
                     rect.split()
@@ -92,6 +89,9 @@ pub(super) fn screen_boxes(
             for (x, y) in rect.pixels() {
                 let edge = x == rect.x0 || y == rect.y0;
                 classes[(y * w + x) as usize] = Some((class, edge));
+                if !matches!(class, BoxClass::Miss) {
+                    scopes[(y * w + x) as usize] = answer.scope.clone();
+                }
             }
             progress.advance(rect.area());
         }

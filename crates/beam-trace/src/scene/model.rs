@@ -102,8 +102,32 @@ impl AaMode {
 impl std::str::FromStr for AaMode {
     type Err = String;
 
-    /// `none`, `iaa`, or `ss:N` (`N × N` rays per pixel, `1 <= N <= 16`).
+    /// `none`, `iaa`, `iaa:D` (depth `D`, 1 to 8), `iaa:D:T` (and shading-variation
+    /// threshold `T > 0`), or `ss:N` (`N × N` rays per pixel, `1 <= N <= 16`).
     fn from_str(s: &str) -> Result<Self, String> {
+        if let Some(rest) = s.strip_prefix("iaa:") {
+            let mut parts = rest.split(':');
+            let depth = parts.next().map(str::parse::<u32>);
+            let threshold = parts.next().map(str::parse::<f64>);
+            return match (depth, threshold, parts.next()) {
+                (Some(Ok(d)), t, None) if (1..=8).contains(&d) => match t {
+                    None => Ok(AaMode::Iaa {
+                        max_depth: d,
+                        threshold: AaMode::IAA_THRESHOLD,
+                    }),
+                    Some(Ok(t)) if t > 0.0 && t.is_finite() => Ok(AaMode::Iaa {
+                        max_depth: d,
+                        threshold: t,
+                    }),
+                    Some(_) => Err(format!(
+                        "'{s}': the IAA threshold must be a positive number"
+                    )),
+                },
+                _ => Err(format!(
+                    "'{s}': write iaa:D or iaa:D:T with a depth D from 1 to 8 and a threshold T > 0"
+                )),
+            };
+        }
         match s {
             "none" => Ok(AaMode::None),
             "iaa" => Ok(AaMode::Iaa {
@@ -116,7 +140,7 @@ impl std::str::FromStr for AaMode {
                     "'{s}': the supersampling count must be an integer from 1 to 16"
                 )),
                 None => Err(format!(
-                    "unknown anti-aliasing mode '{s}' (one of: none, iaa, ss:N)"
+                    "unknown anti-aliasing mode '{s}' (one of: none, iaa, iaa:D, iaa:D:T, ss:N)"
                 )),
             },
         }

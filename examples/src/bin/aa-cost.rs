@@ -1,0 +1,163 @@
+//! What anti-aliasing accuracy costs in time: renders a scene (default: the built-in
+//! default scene at 160 × 120) with every primary mode and anti-aliasing setting, and
+//! measures each image against a reference of 16 × 16 stratified rays per pixel over the
+//! edge pixels: those where the reference differs from one central ray per pixel by more
+//! than one 8-bit level in some channel (silhouettes, creases, shadow boundaries).
+//!
+//! ```text
+//! aa-cost [SCENE.toml] [--width W --height H] [--reference N] [--out FILE.md]
+//! ```
+//!
+//! Prints (and with `--out` writes) a markdown table: per mode the render time, the time
+//! ratio to the default mode, the RMSE and the largest error over the edge pixels (the
+//! largest channel difference per pixel), and whether the mode is on the Pareto front of
+//! time against RMSE.
+
+use std::path::{Path, PathBuf};
+use std::process::ExitCode;
+use std::time::Instant;
+
+use beam_trace::scene::{AaMode, PrimaryMode};
+use beam_trace::{Image, NoProgress, Scene, render};
+use clap::Parser;
+
+/// Anti-aliasing modes: time against edge error.
+#[derive(Parser, Debug)]
+#[command(version, about)]
+struct Args {
+    /// A scene file (default: the built-in default scene).
+    scene: Option<PathBuf>,
+    /// Image width.
+    #[arg(long, default_value_t = 160)]
+    width: u32,
+    /// Image height.
+    #[arg(long, default_value_t = 120)]
+    height: u32,
+    /// Rays per pixel side of the reference (N × N stratified rays).
+    #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..=16))]
+    reference: u32,
+    /// Where to write the report too.
+    #[arg(long)]
+    out: Option<PathBuf>,
+}
+
+/// The modes measured: a name, the primary mode and the anti-aliasing mode.
+fn modes() -> Vec<(&'static str, PrimaryMode, AaMode)> {
+    let iaa = |d, t| AaMode::Iaa {
+        max_depth: d,
+        threshold: t,
+    };
+    vec![
+        (
+            "default (screen-boxes)",
+            PrimaryMode::ScreenBoxes,
+            AaMode::None,
+        ),
+        (
+            "screen-rays (9 rays)",
+            PrimaryMode::ScreenRays,
+            AaMode::None,
+        ),
+        ("ss:1", PrimaryMode::ScreenBoxes, AaMode::Supersample(1)),
+        ("ss:2", PrimaryMode::ScreenBoxes, AaMode::Supersample(2)),
+        ("ss:3", PrimaryMode::ScreenBoxes, AaMode::Supersample(3)),
+        ("ss:4", PrimaryMode::ScreenBoxes, AaMode::Supersample(4)),
+        ("iaa:1:0.1", PrimaryMode::ScreenBoxes, iaa(1, 0.1)),
+        ("iaa:2:0.1", PrimaryMode::ScreenBoxes, iaa(2, 0.1)),
+        ("iaa:3:0.1", PrimaryMode::ScreenBoxes, iaa(3, 0.1)),
+        ("iaa:4:0.1", PrimaryMode::ScreenBoxes, iaa(4, 0.1)),
+        ("iaa:2:0.5", PrimaryMode::ScreenBoxes, iaa(2, 0.5)),
+    ]
+}
+
+fn load(path: Option<&Path>, w: u32, h: u32) -> Result<Scene, String> {
+    let mut s = match path {
+        Some(p) => Scene::load(p).map_err(|e| e.to_string())?,
+        None => Scene::default_scene(),
+    };
+    s.camera = s.camera.resized(w, h).map_err(|e| e.to_string())?;
+    Ok(s)
+}
+
+/// Renders `scene` with `primary` and `aa`: the image and the wall time in seconds.
+fn timed(scene: &Scene, primary: PrimaryMode, aa: AaMode) -> Result<(Image, f64), String> {
+    let mut s = scene.clone();
+    s.settings.primary = primary;
+    s.settings.aa = aa;
+    let t0 = Instant::now();
+    let out = render(&s, &NoProgress).map_err(|e| e.to_string())?;
+    Ok((out.image, t0.elapsed().as_secs_f64()))
+}
+
+/// The largest channel difference of each pixel.
+fn errors(a: &Image, b: &Image) -> Vec<f64> {
+    a.pixels
+        .iter()
+        .zip(&b.pixels)
+        .map(|(p, q)| {
+            (0..3)
+                .map(|k| f64::from((p[k] - q[k]).abs()))
+                .fold(0.0, f64::max)
+        })
+        .collect()
+}
+
+fn run(args: &Args) -> Result<(), String> {
+    let scene = load(args.scene.as_deref(), args.width, args.height)?;
+    eprintln!(
+        "reference: {n} × {n} rays per pixel at {} × {}",
+        args.width,
+        args.height,
+        n = args.reference
+    );
+    let (reference, t_ref) = timed(
+        &scene,
+        PrimaryMode::ScreenBoxes,
+        AaMode::Supersample(args.reference),
+    )?;
+    let (central, _) = timed(&scene, PrimaryMode::ScreenBoxes, AaMode::Supersample(1))?;
+    let edges: Vec<usize> = errors(&reference, &central)
+        .iter()
+        .enumerate()
+        .filter(|(_, e)| **e > 1.0 / 255.0)
+        .map(|(i, _)| i)
+        .collect();
+    if edges.is_empty() {
+        return Err("the scene has no edge pixels: nothing to anti-alias".into());
+    }
+    let mut rows = Vec::new();
+    for (name, primary, aa) in modes() {
+        let (img, t) = timed(&scene, primary, aa)?;
+        let e = errors(&img, &reference);
+        let on_edges: Vec<f64> = edges.iter().map(|&i| e[i]).collect();
+        let rmse = (on_edges.iter().map(|x| x * x).sum::<f64>() / on_edges.len() as f64).sqrt();
+        let max = on_edges.iter().copied().fold(0.0, f64::max);
+        eprintln!("{name}: {t:.3} s, edge RMSE {rmse:.4}, max {max:.3}");
+        rows.push((name, t, rmse, max));
+    }
+    let base = rows[0].1;
+    let mut md = format!(
+        "Scene `{}` at {} × {}; reference {n} × {n} stratified rays per pixel ({t_ref:.1} s); {} edge pixels (reference and one central ray differ by more than 1/255).\n\n\
+         | mode | time (s) | time / default | edge RMSE | edge max error | Pareto |\n|---|---:|---:|---:|---:|:---:|\n",
+        scene.name,
+        args.width,
+        args.height,
+        edges.len(),
+        n = args.reference
+    );
+    for &(name, t, rmse, max) in &rows {
+        let dominated = rows
+            .iter()
+            .any(|&(_, t2, r2, _)| t2 <= t && r2 <= rmse && (t2 < t || r2 < rmse));
+        md += &format!(
+            "| {name} | {t:.3} | {:.2} | {rmse:.4} | {max:.3} | {} |\n",
+            t / base,
+            if dominated { "" } else { "yes" }
+        );
+    }
+    examples::report::print_and_save(&md, args.out.as_deref())
+}
+
+fn main() -> ExitCode {
+    examples::report::exit(run(&Args::parse()))
+}
