@@ -3,7 +3,8 @@
 //!
 //! ```text
 //! render [SCENE] [--out FILE.png] [--width W --height H] [--root-finder NAME]
-//!        [--epsilon E] [--aa none|iaa|ss:N] [--threads N] [--stats FILE.json]
+//!        [--epsilon E] [--aa none|iaa|iaa:D:T|ss:N] [--threads N] [--stats FILE.json]
+//!        [--primary screen-boxes|screen-rays|per-pixel] [--undecided-depth D]
 //!        [--classification FILE.png] [--cost-map FILE.png]
 //!        [--shadows stochastic:N|beam:n|beam-all:n|beam-quadtree:n|
 //!                   minkowski:stochastic:N|minkowski:beam:n] [--shadow-classes FILE.png]
@@ -46,7 +47,8 @@ struct Args {
     /// Root enclosure width.
     #[arg(long)]
     epsilon: Option<f64>,
-    /// Anti-aliasing: none, iaa, or ss:N (N × N rays per pixel).
+    /// Anti-aliasing: none, iaa, iaa:D (depth D), iaa:D:T (and shading-variation threshold
+    /// T), or ss:N (N × N rays per pixel).
     #[arg(long)]
     aa: Option<AaMode>,
     /// Primary visibility: screen-boxes (Undecided pixels resolved by their beams),

@@ -241,7 +241,7 @@ impl Scene {
     /// root_finder = "newton-alefeld-hansen"
     /// epsilon = 1e-6
     /// max_steps = 100000
-    /// aa = "none"                       # none | iaa | ss:N (N × N rays per pixel, N ≤ 16)
+    /// aa = "none"                       # none | iaa | iaa:D | iaa:D:T | ss:N (N × N rays per pixel, N ≤ 16)
     /// iaa_depth = 4
     /// iaa_threshold = 0.05
     /// primary = "screen-boxes"          # screen-boxes | screen-rays | per-pixel
