@@ -29,12 +29,16 @@ pub fn pass_queries(pass: Pass, plan: &Plan) -> &'static [QueryKind] {
         Pass::Grid => &[],
         Pass::ScreenBoxes => &[QueryKind::Beams],
         Pass::PrimaryRays => &[QueryKind::Roots, QueryKind::HitPoints],
-        Pass::PixelBeams => &[
-            QueryKind::Beams,
-            QueryKind::ShadingVariation,
-            QueryKind::Roots,
-            QueryKind::HitPoints,
-        ],
+        // Hit regions are judged by their shading only with anti-aliasing.
+        Pass::PixelBeams => match plan.primary.pixel_beams() {
+            Some((_, Some(_))) => &[
+                QueryKind::Beams,
+                QueryKind::ShadingVariation,
+                QueryKind::Roots,
+                QueryKind::HitPoints,
+            ],
+            _ => &[QueryKind::Beams, QueryKind::Roots, QueryKind::HitPoints],
+        },
         Pass::Normals => &[QueryKind::Normals],
         Pass::HardShadows => &[QueryKind::Segments],
         Pass::SoftShadows => &[QueryKind::SoftShadows],
