@@ -4,8 +4,8 @@
 //! Each pixel starts as its beam from the screen box structure. A rejected beam is
 //! background; a beam that the inclusion test proves to hit everywhere is shaded once if
 //! its shading varies little across it, judged by [`shading_variation`] (the thesis's
-//! normal-variation estimator of eq. 5.10, [`normal_variation`], judges the surface's
-//! curvature instead, which splits curved surfaces whose colour hardly changes). Any other
+//! normal-variation estimator of eq. 5.10 judges the surface's curvature instead, which
+//! splits curved surfaces whose colour hardly changes). Any other
 //! beam is split in four, down to a depth limit; the pixel's colour is the area-weighted
 //! sum of its parts.
 //!
@@ -15,29 +15,13 @@
 //! that touches any part of the pixel's beam is never lost: the beam cannot be rejected
 //! there, and the part is shaded with the feature's surface.
 
-use interval_core::Interval;
-
 use std::f64::consts::PI;
 
 use glam::DVec3;
+use interval_core::Interval;
 
 use crate::ibox::{IBox, ipoint};
 use crate::scene::Material;
-
-/// The normal-variation estimator of eq. 5.10: the width of the interval dot product
-/// `N · (P − c)` of the normals' enclosure `N` over the hit region with the viewing
-/// directions, scaled by the largest lengths of both, so that it reads as the spread of the
-/// cosine between normal and view over the region (0 for a flat region seen head-on, at
-/// most 2). A sub-pixel whose spread is at most the threshold is shaded once.
-pub fn normal_variation(normal: [Interval<f64>; 3], view: [Interval<f64>; 3]) -> f64 {
-    let d = normal[0] * view[0] + normal[1] * view[1] + normal[2] * view[2];
-    let length = |v: &[Interval<f64>; 3]| v.iter().map(|c| c.mag() * c.mag()).sum::<f64>().sqrt();
-    let scale = length(&normal) * length(&view);
-    if d.is_empty() || !scale.is_finite() || scale <= 0.0 {
-        return f64::INFINITY;
-    }
-    d.wid() / scale
-}
 
 /// A light as the shading variation sees it: where its direction is taken from, and its
 /// colour times intensity.
@@ -123,23 +107,13 @@ pub fn shading_variation(
             return f64::INFINITY;
         };
         let nl = clamp(n.cos_range(&l));
-        // r = 2 (n·l) n − l: the reflection of the light's axis about the normal's axis,
-        // within 2θ_n + θ_l of it.
+        // r = 2 (n·l) n − l: the reflection of the light's axis about the normal's axis (a
+        // unit vector), within 2θ_n + θ_l of it.
         let r = Cone {
             axis: 2.0 * n.axis.dot(l.axis) * n.axis - l.axis,
             angle: 2.0 * n.angle + l.angle,
         };
-        let er = if r.axis.length() > 0.0 {
-            clamp(
-                Cone {
-                    axis: r.axis.normalize(),
-                    ..r
-                }
-                .cos_range(&e),
-            )
-        } else {
-            Interval::new_unchecked(0.0, 1.0)
-        };
+        let er = clamp(r.cos_range(&e));
         let c = light.color.map(|c| ipoint(f64::from(c)));
         for k in 0..3 {
             diffuse[k] = diffuse[k] + c[k] * nl;

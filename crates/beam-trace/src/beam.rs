@@ -137,16 +137,7 @@ pub fn rejection_test(
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> bool {
-    search(
-        g,
-        ranges,
-        None,
-        settings,
-        false,
-        Inherited::default(),
-        counters,
-    )
-    .0 == BoxClass::Miss
+    rejection_search(g, ranges, settings, counters) == BoxClass::Miss
 }
 
 /// The inclusion test on one range `t` (Fig. 5.9, made sound as described in the module

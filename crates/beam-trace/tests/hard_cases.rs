@@ -1136,7 +1136,7 @@ fn huge_and_tiny_coefficients() {
             "{name}: pixels away from the silhouette differ: {:?}",
             differ.difference(&edge).collect::<Vec<_>>()
         );
-        // Interval anti-aliasing: the normal-variation estimator sees gradients of 1e150
+        // Interval anti-aliasing: the shading-variation estimator sees gradients of 1e150
         // and 1e-150.
         let mut iaa = scene.clone();
         iaa.settings.aa = "iaa".parse().unwrap();

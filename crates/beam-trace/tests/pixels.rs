@@ -1,34 +1,13 @@
 //! Pixels resolved by their beams, on the CPU: the cases of `pixel_cases`.
 
+#[macro_use]
 mod pixel_cases;
 
-use beam_trace::{NoProgress, RenderOutput, Scene, render};
+use beam_trace::{NoProgress, Scene, render};
 
-fn cpu(scene: &Scene) -> RenderOutput {
-    render(scene, &NoProgress).expect("the render succeeds")
+/// Runs `case` with the CPU renderer.
+fn on_cpu(case: fn(pixel_cases::Render<'_>)) {
+    case(&|scene: &Scene| render(scene, &NoProgress).expect("the render succeeds"));
 }
 
-#[test]
-fn wires_of_a_millionth_of_a_pixel_appear_in_every_pixel_they_cross() {
-    pixel_cases::wires_of_a_millionth_of_a_pixel_appear_in_every_pixel_they_cross(&cpu);
-}
-
-#[test]
-fn point_rays_lose_the_wire_the_beams_keep() {
-    pixel_cases::point_rays_lose_the_wire_the_beams_keep(&cpu);
-}
-
-#[test]
-fn two_wires_crossing_inside_a_pixel_both_appear() {
-    pixel_cases::two_wires_crossing_inside_a_pixel_both_appear(&cpu);
-}
-
-#[test]
-fn a_sphere_smaller_than_a_pixel_has_its_coverage_bounded() {
-    pixel_cases::a_sphere_smaller_than_a_pixel_has_its_coverage_bounded(&cpu);
-}
-
-#[test]
-fn the_drops_neck_is_kept_wherever_dense_rays_see_it() {
-    pixel_cases::the_drops_neck_is_kept_wherever_dense_rays_see_it(&cpu);
-}
+pixel_tests!(on_cpu);

@@ -11,6 +11,29 @@ use glam::{DVec2, DVec3};
 /// A renderer under test.
 pub type Render<'a> = &'a dyn Fn(&Scene) -> RenderOutput;
 
+/// The `#[test]` functions of every case, each run by `$with`, a function that takes a case
+/// (`fn(Render<'_>)`) and runs it with the backend under test.
+macro_rules! pixel_tests {
+    ($with:path) => {
+        pixel_tests!(
+            $with:
+            wires_of_a_millionth_of_a_pixel_appear_in_every_pixel_they_cross,
+            point_rays_lose_the_wire_the_beams_keep,
+            two_wires_crossing_inside_a_pixel_both_appear,
+            a_sphere_smaller_than_a_pixel_has_its_coverage_bounded,
+            the_drops_neck_is_kept_wherever_dense_rays_see_it
+        );
+    };
+    ($with:path: $($case:ident),+) => {
+        $(
+            #[test]
+            fn $case() {
+                $with(pixel_cases::$case);
+            }
+        )+
+    };
+}
+
 const W: u32 = 32;
 const H: u32 = 24;
 const EYE_Z: f64 = 10.0;
