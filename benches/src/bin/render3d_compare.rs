@@ -34,8 +34,9 @@
 //! `[-1, 1]³`, clipped to them (`clip = true`: where the solid reaches a face of the cube,
 //! both renderers see the face), a white material on a black background and no light, so
 //! only primary
-//! visibility runs (screen boxes, then one ray per pixel in undecided boxes:
-//! `rays_per_undecided = 1`). At depth `z` our ray is at `(x, y)·(D - z) / D`: a point of the
+//! visibility runs (screen boxes, then one ray per pixel centre in undecided boxes:
+//! `primary = "screen-rays"`, `rays_per_undecided = 1`; the default primary mode would
+//! split undecided pixels' beams and weigh their parts, where fidget takes one sample). At depth `z` our ray is at `(x, y)·(D - z) / D`: a point of the
 //! model appears scaled by `D / (D - z)`, at most `1 / (D - 1)` off the orthographic view,
 //! that is at most `size / (2 (D - 1))` pixels at the border of the image: 0.003 px at 512
 //! and 0.005 px at 1024 for the default `D = 100000` (0.26 and 0.51 px for `D = 1000`, where
@@ -228,6 +229,7 @@ fn scene(path: &Path, size: u32, o: &Options) -> Result<Scene, String> {
          clip = true\n\
          material = {{ color = [1.0, 1.0, 1.0] }}\n\
          [render]\n\
+         primary = \"screen-rays\"\n\
          rays_per_undecided = 1\n\
          precision = \"{}\"\n",
         toml_string(&path.to_string_lossy()),

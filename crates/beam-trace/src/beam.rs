@@ -275,23 +275,23 @@ fn search(
             Some(n) => graded(*r, n),
             None => vec![*r],
         };
+        let first = stack.len() + pieces.len() - 1;
         stack.extend(pieces.into_iter().rev().map(|t| Piece {
             t,
             range: *r,
-            scope: None,
+            within: Within::Range,
         }));
+        stack[first].within = Within::Open;
     }
     let mut bisections = 0u64;
-    // The range being searched (its end) and its restriction.
-    let mut range_end = f64::NAN;
+    // The restriction of the range being searched.
     let mut range_scope: Option<BeamScope> = None;
-    while let Some(Piece { t, range, scope }) = stack.pop() {
+    while let Some(Piece { t, range, within }) = stack.pop() {
         let end = range.sup();
-        let mut scope = match scope {
+        let mut scope = match within {
             // The first piece of a range opens the range: every later evaluation of its
             // pieces, look-ahead and T_final lies inside it.
-            _ if end != range_end => {
-                range_end = end;
+            Within::Open => {
                 g.unrestrict();
                 let mut start = None;
                 if let Some(s) = inherited
@@ -300,8 +300,6 @@ fn search(
                     g.set_scope(&s.tape);
                     start = Some(s.tape.clone());
                 }
-                // Pieces carry a scope only where there is a restriction to return to (a
-                // shared tape handle copied per piece would cost more than short tapes save).
                 let tape = match g.scope() {
                     Some(tape) if tape.len() > RESTRICT_MIN_LEN => {
                         g.restrict(range);
@@ -312,12 +310,20 @@ fn search(
                 range_scope = tape.map(|tape| BeamScope { tape, t: range });
                 range_scope.clone()
             }
-            Some(s) => {
+            // Back to the range's restriction (a piece searched before this one may have
+            // left `g` restricted to a part of the range that does not hold this one).
+            Within::Range => {
+                match &range_scope {
+                    Some(r) => g.set_scope(&r.tape),
+                    None => g.unrestrict(),
+                }
+                range_scope.clone()
+            }
+            Within::Piece(s) => {
                 // Free when it is the restriction set already.
                 g.set_scope(&s.tape);
                 Some(s)
             }
-            None => None,
         };
         if let Some(s) = &scope
             && t.wid() <= RESTRICT_AGAIN * s.t.wid()
@@ -365,23 +371,41 @@ fn search(
         let (l, r) = t.bisect();
         bisections += 1;
         counters.bisections += 1;
+        let within = || match &scope {
+            Some(s) => Within::Piece(s.clone()),
+            None => Within::Range,
+        };
         stack.push(Piece {
             t: r,
             range,
-            scope: scope.clone(),
+            within: within(),
         });
-        stack.push(Piece { t: l, range, scope });
+        stack.push(Piece {
+            t: l,
+            range,
+            within: within(),
+        });
     }
     (BoxClass::Miss, None)
 }
 
 /// A piece of a beam's search: its parameters, the range it belongs to, and the
-/// restriction it lies in (`None` for the first piece of a range, or where `g` has no
-/// restrictions).
+/// restriction it is searched with.
 struct Piece {
     t: Interval<f64>,
     range: Interval<f64>,
-    scope: Option<BeamScope>,
+    within: Within,
+}
+
+/// The restriction of `g` a piece is searched with.
+enum Within {
+    /// The first piece of its range: restrict `g` to the range.
+    Open,
+    /// The range's restriction (a graded piece, or a part of a piece that had no
+    /// restriction of its own).
+    Range,
+    /// A restriction that holds for the piece.
+    Piece(BeamScope),
 }
 
 /// A piece at most this fraction of its restriction's width is restricted again: every two
