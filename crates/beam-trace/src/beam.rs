@@ -213,9 +213,9 @@ pub struct Inherited<'a> {
 }
 
 /// [`evaluate_box`] for a beam lying inside a classified beam, starting from what it
-/// `inherited` from it. Also returns the restriction of the range where the search ended
-/// (the range of a Hit's `T_final` or of an Undecided piece), for the beams inside this
-/// one; `None` for a Miss.
+/// `inherited` from it. Also returns a restriction for the beams and rays inside this one:
+/// of a Hit, `g` restricted to the beam over `T_final`; of an Undecided beam, the
+/// restriction of the range its undecided piece lies in; `None` for a Miss.
 pub fn evaluate_box_within(
     g: &mut dyn RayFn,
     ranges: &[Interval<f64>],
@@ -345,10 +345,7 @@ fn search(
             && inside(t.sup())
             && ends_change_sign(g, t, counters)
         {
-            let class = BoxClass::Hit {
-                t_final: t_final(g, t, settings, counters),
-            };
-            return (class, range_scope);
+            return hit(g, t, settings, counters);
         }
         if t.wid() <= settings.epsilon.max(settings.rel_epsilon * t.inf())
             || bisections >= settings.max_bisections
@@ -361,10 +358,7 @@ fn search(
                 && inside(t.inf())
                 && let Some(t) = look_ahead(g, t, end, &inside, counters)
             {
-                let class = BoxClass::Hit {
-                    t_final: t_final(g, t, settings, counters),
-                };
-                return (class, range_scope);
+                return hit(g, t, settings, counters);
             }
             return (BoxClass::Undecided { t }, range_scope);
         }
@@ -387,6 +381,22 @@ fn search(
         });
     }
     (BoxClass::Miss, None)
+}
+
+/// The answer of an inclusion on `t` (every ray has its first root in `t`, and `g` is set
+/// to a restriction that holds over `t`): the class with `T_final`, and the restriction of
+/// `g` to the beam over `T_final`, what the beams and rays inside this one search (for
+/// functions without restrictions, none).
+fn hit(
+    g: &mut dyn RayFn,
+    t: Interval<f64>,
+    settings: &BeamSettings,
+    counters: &mut RootCounters,
+) -> (BoxClass, Option<BeamScope>) {
+    let t_final = t_final(g, t, settings, counters);
+    g.restrict(t_final);
+    let scope = g.scope().map(|tape| BeamScope { tape, t: t_final });
+    (BoxClass::Hit { t_final }, scope)
 }
 
 /// A piece of a beam's search: its parameters, the range it belongs to, and the

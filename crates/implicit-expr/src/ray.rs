@@ -70,6 +70,43 @@ impl RayFunction {
         })
     }
 
+    /// `g` and `g'` of a `g` given as a tape in the ray's variables ([`RAY_VARS`], no
+    /// parameters): what [`RayEvaluator::scope`] returns after a
+    /// [`restrict`](RayEvaluator::restrict), the function pruned to a region, which then
+    /// gets a derivative of its own (equal to `g'` inside the region wherever `g` is
+    /// differentiable there, and often much shorter).
+    ///
+    /// Returns an error when the tape uses more variable slots than a ray has, or a tape
+    /// cannot be built.
+    pub fn from_ray_tape(g: &Tape) -> Result<Self, Error> {
+        if g.var_count() > RAY_VARS.len() {
+            return Err(Error::Unsupported(format!(
+                "a ray tape has {} variable slots, this one {}",
+                RAY_VARS.len(),
+                g.var_count()
+            )));
+        }
+        let (mut rc, roots) = g.to_context(&RAY_VARS)?;
+        // Every slot of the ray exists in the context, also where the tape does not use it.
+        for name in &RAY_VARS[3..] {
+            rc.named_var(name);
+        }
+        let [g] = roots[..] else {
+            return Err(Error::Unsupported(format!(
+                "a ray tape has one output, this one {}",
+                roots.len()
+            )));
+        };
+        let dg = rc.deriv(g, T);
+        Ok(Self {
+            g: Tape::new(&rc, &[g])?,
+            g_dg: Tape::new(&rc, &[g, dg])?,
+            context: rc,
+            roots: [g, dg],
+            params: Vec::new(),
+        })
+    }
+
     /// The tape of `g` alone (variables as in [`RAY_VARS`], then the parameters).
     pub fn g_tape(&self) -> &Tape {
         &self.g

@@ -111,21 +111,28 @@ impl From<BoxClass> for Classified {
 }
 
 /// A ray whose first root is wanted for parameters in `window` (clipped to `t ≥ 0`).
-#[derive(Copy, Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct RayQuery {
     /// The ray.
     pub ray: Ray,
     /// The parameter window.
     pub window: Interval<f64>,
+    /// The scope of a classified beam the ray lies in ([`Classified::scope`]), which the
+    /// backend that made it may search the ray with where the window lies inside the
+    /// scope's parameters (the CPU: the tape pruned to the beam, with a derivative of its
+    /// own, instead of the grid's cells); `None` where there is none.
+    pub scope: Option<BeamScope>,
 }
 
 /// A hit whose shading point is wanted: the ray and the enclosure `t` of its first root.
-#[derive(Copy, Clone, Debug, PartialEq)]
+#[derive(Clone, Debug, PartialEq)]
 pub struct HitQuery {
     /// The ray.
     pub ray: Ray,
     /// The root enclosure.
     pub t: Interval<f64>,
+    /// The scope of a classified beam the ray lies in, as [`RayQuery::scope`].
+    pub scope: Option<BeamScope>,
 }
 
 /// A hit region whose shading variation is wanted: the beam and its proven section

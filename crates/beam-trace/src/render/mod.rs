@@ -136,7 +136,7 @@ pub fn render_on<'a>(
             rays_per_pixel: rays_per_undecided,
         } => {
             let (samples, cost, stats) =
-                primary::primary_rays(q, scene, &classes, rays_per_undecided, progress)?;
+                primary::primary_rays(q, scene, (&classes, &scopes), rays_per_undecided, progress)?;
             passes.push(stats);
             passes.push(PassStats::skipped(Pass::PixelBeams.name()));
             (samples, cost)

@@ -291,6 +291,7 @@ fn subdivide(
                     let query = RayQuery {
                         ray: centre,
                         window: t_final,
+                        scope: scopes[j].clone(),
                     };
                     finish(Some((query, t_final)), Area::Covered);
                 }
@@ -306,6 +307,7 @@ fn subdivide(
                     let query = RayQuery {
                         ray: centre,
                         window: child_window(Some(class)),
+                        scope: None,
                     };
                     finish(Some((query, t)), Area::Unknown);
                 }
@@ -332,7 +334,7 @@ fn shade_parts(
     let shaded: Vec<usize> = (0..done.len()).filter(|&k| done[k].ray.is_some()).collect();
     let queries: Vec<RayQuery> = shaded
         .iter()
-        .filter_map(|&k| done[k].ray.map(|r| r.0))
+        .filter_map(|&k| done[k].ray.as_ref().map(|r| r.0.clone()))
         .collect();
     let roots = q.roots(&queries)?;
     c.search.add(&roots.search);
@@ -342,12 +344,16 @@ fn shade_parts(
         .zip(&roots.cost)
         .filter_map(|((&k, r), t)| {
             pixel_cost[done[k].pixel] += t;
-            let (query, fallback) = done[k].ray?;
+            let (query, fallback) = done[k].ray.as_ref()?;
             let t = match *r {
                 RootResult::Root { t, .. } | RootResult::Undecided { t } => t,
-                RootResult::NoRoot => fallback,
+                RootResult::NoRoot => *fallback,
             };
-            Some(HitQuery { ray: query.ray, t })
+            Some(HitQuery {
+                ray: query.ray,
+                t,
+                scope: query.scope.clone(),
+            })
         })
         .collect();
     let hits = q.hit_points(&hit_queries)?;

@@ -121,7 +121,7 @@ fn pixel_offsets(n: u32) -> Vec<(f64, f64)> {
 /// One ray of a pixel: its weight, the query, and whether its window is a Hit box's
 /// `T_final`, where a root is known to exist (then the ray's share of the pixel is proven
 /// covered).
-#[derive(Copy, Clone)]
+#[derive(Clone)]
 struct PixelRay {
     weight: f32,
     query: RayQuery,
@@ -149,13 +149,14 @@ fn ray_count(class: Option<(BoxClass, bool)>, stratified: usize) -> usize {
 }
 
 /// Ray `r` of pixel `i` (row-major in a `w`-wide image) of box class `class`: the central
-/// ray, searched in a Hit box's `T_final`; else stratified ray `r`, searched from where the
-/// pixel's beam proved every ray root-free (see [`ray_count`]).
+/// ray, searched in a Hit box's `T_final` (with the box's `scope`); else stratified ray
+/// `r`, searched from where the pixel's beam proved every ray root-free (see
+/// [`ray_count`]).
 fn pixel_ray(
     cam: &Camera,
     i: usize,
     w: u32,
-    class: Option<(BoxClass, bool)>,
+    (class, scope): (Option<(BoxClass, bool)>, &Option<BeamScope>),
     offsets: &[(f64, f64)],
     r: usize,
 ) -> PixelRay {
@@ -166,6 +167,7 @@ fn pixel_ray(
             query: RayQuery {
                 ray: cam.ray(fx + 0.5, fy + 0.5),
                 window: t_final,
+                scope: scope.clone(),
             },
             in_t_final: true,
         },
@@ -176,6 +178,7 @@ fn pixel_ray(
                 query: RayQuery {
                     ray: cam.ray(fx + ox, fy + oy),
                     window: child_window(class.as_ref()),
+                    scope: None,
                 },
                 in_t_final: false,
             }
@@ -186,12 +189,12 @@ fn pixel_ray(
 /// The primary-rays pass: in a Hit box one central ray per pixel searched in `T_final`
 /// (the whole ray again if the search stops at a limit there); elsewhere `rays` stratified
 /// rays per pixel, from where the pixel's beam proved them root-free; a Miss box's pixels
-/// are background without a ray. `classes` holds each pixel's box (none in per-pixel
-/// mode).
+/// are background without a ray. `classes` holds each pixel's box and `scopes` the scope
+/// of the box's beam (none in per-pixel mode).
 pub(super) fn primary_rays(
     q: &dyn Queries,
     scene: &Scene,
-    classes: &[Option<(BoxClass, bool)>],
+    (classes, scopes): (&PixelClasses, &PixelScopes),
     rays: u32,
     progress: &dyn Progress,
 ) -> Result<PixelSamples, Error> {
@@ -219,10 +222,11 @@ pub(super) fn primary_rays(
             .map(|(j, &k)| {
                 let k = k as usize;
                 let r = j - first_ray[k];
-                pixel_ray(cam, first + k, w, classes[first + k], &offsets, r)
+                let p = first + k;
+                pixel_ray(cam, p, w, (classes[p], &scopes[p]), &offsets, r)
             })
             .collect();
-        let queries: Vec<RayQuery> = batch.par_iter().map(|r| r.query).collect();
+        let queries: Vec<RayQuery> = batch.par_iter().map(|r| r.query.clone()).collect();
         let first_try = q.roots(&queries)?;
         c.rays += queries.len() as u64;
         c.search.add(&first_try.search);
@@ -238,6 +242,7 @@ pub(super) fn primary_rays(
                 .map(|&j| RayQuery {
                     ray: batch[j].query.ray,
                     window: forward(),
+                    scope: None,
                 })
                 .collect();
             let again = q.roots(&queries)?;
@@ -269,6 +274,7 @@ pub(super) fn primary_rays(
             .par_iter()
             .map(|&j| HitQuery {
                 ray: batch[j].query.ray,
+                scope: batch[j].query.scope.clone(),
                 t: match results[j] {
                     RootResult::Root { t, .. } | RootResult::Undecided { t } => t,
                     RootResult::NoRoot => unreachable!("only rays that met a surface"),

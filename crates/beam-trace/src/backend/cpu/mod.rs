@@ -3,6 +3,7 @@
 
 mod occluders;
 mod queries;
+mod scoped;
 
 pub use queries::CpuQueries;
 
@@ -83,6 +84,7 @@ impl Backend for Cpu {
                 plan,
                 grid,
                 finder: plan.root_finder.finder(),
+                scoped: Default::default(),
                 pool: Mutex::new(Vec::new()),
             }),
             passes: vec![stats],
@@ -96,11 +98,15 @@ impl Queries for CpuQueries<'_> {
     }
 
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error> {
-        Ok(self.map(queries, true, |ev, q, c| self.cast(ev, &q.ray, q.window, c)))
+        Ok(self.map(queries, true, |ev, q, c| {
+            self.cast(ev, &q.ray, q.window, q.scope.as_ref(), c)
+        }))
     }
 
     fn hit_points(&self, queries: &[HitQuery]) -> Result<Answers<Hit>, Error> {
-        Ok(self.map(queries, true, |ev, q, c| self.hit(ev, &q.ray, q.t, c)))
+        Ok(self.map(queries, true, |ev, q, c| {
+            self.hit(ev, &q.ray, q.t, q.scope.as_ref(), c)
+        }))
     }
 
     fn shading_variation(&self, queries: &[VariationQuery]) -> Result<Answers<f64>, Error> {
@@ -149,7 +155,7 @@ impl Queries for CpuQueries<'_> {
                 origin: q.from,
                 dir: q.to - q.from,
             };
-            let r = self.cast(ev, &ray, Interval::new_unchecked(0.0, 1.0), c);
+            let r = self.cast(ev, &ray, Interval::new_unchecked(0.0, 1.0), None, c);
             segment_visibility(r, self.finder.is_reliable())
         }))
     }

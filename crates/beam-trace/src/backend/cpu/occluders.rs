@@ -52,7 +52,7 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         };
         let r = self
             .queries
-            .cast(self.ev, &ray, Interval::new_unchecked(start, 1.0), c);
+            .cast(self.ev, &ray, Interval::new_unchecked(start, 1.0), None, c);
         let at = match r {
             RootResult::Root { t, .. } | RootResult::Undecided { t } if t.mid().is_finite() => {
                 Some(t.mid())

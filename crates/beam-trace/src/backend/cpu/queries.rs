@@ -10,7 +10,9 @@ use rayon::prelude::*;
 
 use crate::backend::query::Answers;
 use crate::backend::query::{BeamQuery, Classified};
-use crate::beam::{BoxClass, Extent, Inherited, child_window, evaluate_box_within, forward};
+use crate::beam::{
+    BeamScope, BoxClass, Extent, Inherited, child_window, evaluate_box_within, forward,
+};
 use crate::grid::{Grid, GridEval};
 use crate::plan::Plan;
 use crate::ray::{Beam, BeamEval, Ray};
@@ -19,12 +21,16 @@ use crate::sample::Hit;
 use crate::scene::Scene;
 use crate::scene::geometry::GeometryEval;
 
+use super::scoped::{ScopedEval, ScopedFunctions};
+
 /// The CPU's queries for one scene.
 pub struct CpuQueries<'a> {
     pub(super) scene: &'a Scene,
     pub(super) plan: &'a Plan,
     pub(super) grid: Option<Grid>,
     pub(super) finder: &'static dyn RootFinder,
+    /// The functions of the scopes rays are searched with.
+    pub(super) scoped: ScopedFunctions,
     /// Evaluators given back by finished pieces of work, for the next ones: a scene's
     /// evaluators (of long tapes, of every object) cost more to make than many queries.
     pub(super) pool: Mutex<Vec<Evals>>,
@@ -61,6 +67,7 @@ impl Drop for Lease<'_> {
 pub(crate) struct Evals {
     pub(super) geo: GeometryEval,
     pub(super) grid: Option<GridEval>,
+    pub(super) scoped: ScopedEval,
 }
 
 impl CpuQueries<'_> {
@@ -84,6 +91,7 @@ impl CpuQueries<'_> {
         Evals {
             geo,
             grid: self.grid.as_ref().map(|g| g.evaluator_with(precision)),
+            scoped: ScopedEval::new(self.scene.geometry.ray_function(), precision),
         }
     }
 
@@ -197,20 +205,32 @@ impl CpuQueries<'_> {
         Classified { class, scope }
     }
 
-    /// The first root along `ray` for parameters in `t` (clipped to `t ≥ 0`): through the
-    /// grid's cells when there is a grid (each with its reduced function), else with the
-    /// whole scene function inside the scene bounds.
+    /// The first root along `ray` for parameters in `t` (clipped to `t ≥ 0`): with the
+    /// function of the `scope` of the beam the ray lies in where `t` is inside its
+    /// parameters (see [`super::scoped`]), else through the grid's cells when there is a
+    /// grid (each with its reduced function), else with the whole scene function; inside
+    /// the scene bounds.
     pub(super) fn cast(
         &self,
         ev: &mut Evals,
         ray: &Ray,
         t: Interval<f64>,
+        scope: Option<&BeamScope>,
         c: &mut RootCounters,
     ) -> RootResult {
         let root = &self.plan.root;
         let t = t.intersection(forward());
         if t.is_empty() {
             return RootResult::NoRoot;
+        }
+        if let Some(eval) = ev.scoped.within(&self.scoped, scope, t) {
+            return match ray.beam().t_range_within(&self.scene.geometry.bounds(), t) {
+                Some(t) => {
+                    eval.set_ray(ray);
+                    self.finder.first_root(eval, t, root, c)
+                }
+                None => RootResult::NoRoot,
+            };
         }
         match (&self.grid, ev.grid.as_mut()) {
             (Some(g), Some(gev)) => g.first_root_within(gev, ray, t, self.finder, root, c),
@@ -230,23 +250,30 @@ impl CpuQueries<'_> {
     /// (bisection on point values, for shading only: the proof is `t`), on the side of the
     /// ray's origin, so that shadow segments start outside the surface they leave. Where one
     /// grid cell holds the points of `t`, `g` is the cell's function (sign-equivalent to the
-    /// scene function there, and much shorter), else the scene function.
+    /// scene function there, and much shorter); where `t` lies in the parameters of the
+    /// `scope` of the beam the ray lies in, its function (equal to the scene function
+    /// there); else the scene function.
     pub(super) fn hit(
         &self,
         ev: &mut Evals,
         ray: &Ray,
         t: Interval<f64>,
+        scope: Option<&BeamScope>,
         c: &mut RootCounters,
     ) -> Hit {
-        // Inside one cell, its (reduced, pruned) function has the scene function's signs.
-        let cell = self
-            .grid
-            .as_ref()
-            .zip(ev.grid.as_mut())
-            .and_then(|(g, gev)| g.function_over(ray, t).map(|f| gev.get(g, f)));
-        let eval = match cell {
+        let eval = match ev.scoped.within(&self.scoped, scope, t) {
             Some(e) => e,
-            None => &mut ev.geo.beam,
+            // Inside one cell, its (reduced, pruned) function has the scene function's
+            // signs.
+            None => match self
+                .grid
+                .as_ref()
+                .zip(ev.grid.as_mut())
+                .and_then(|(g, gev)| g.function_over(ray, t).map(|f| gev.get(g, f)))
+            {
+                Some(e) => e,
+                None => &mut ev.geo.beam,
+            },
         };
         let tm = shading_parameter(eval, ray, t, c);
         let point = ray.at(tm);
