@@ -78,7 +78,8 @@ impl RayFunction {
     ///
     /// Returns an error when the tape uses more variable slots than a ray has, or a tape
     /// cannot be built.
-    pub fn from_ray_tape(g: &Tape) -> Result<Self, Error> {
+    pub fn from_ray_tape(tape: &Tape) -> Result<Self, Error> {
+        let g = tape;
         if g.var_count() > RAY_VARS.len() {
             return Err(Error::Unsupported(format!(
                 "a ray tape has {} variable slots, this one {}",
@@ -99,7 +100,8 @@ impl RayFunction {
         };
         let dg = rc.deriv(g, T);
         Ok(Self {
-            g: Tape::new(&rc, &[g])?,
+            // The tape computes `g` already.
+            g: tape.clone(),
             g_dg: Tape::new(&rc, &[g, dg])?,
             context: rc,
             roots: [g, dg],

@@ -6,6 +6,7 @@ mod queries;
 mod scoped;
 
 pub use queries::CpuQueries;
+use scoped::ScopedFunctions;
 
 use std::sync::Mutex;
 use std::time::Instant;
@@ -78,13 +79,14 @@ impl Backend for Cpu {
             }
             _ => (None, PassStats::skipped(Pass::Grid.name())),
         };
+        let scoped = ScopedFunctions::new(grid.as_ref());
         Ok(Prepared {
             queries: Box::new(CpuQueries {
                 scene,
                 plan,
                 grid,
                 finder: plan.root_finder.finder(),
-                scoped: Default::default(),
+                scoped,
                 pool: Mutex::new(Vec::new()),
             }),
             passes: vec![stats],

@@ -20,17 +20,44 @@ use implicit_expr::{RayFunction, Tape};
 use interval_core::Interval;
 
 use crate::beam::BeamScope;
+use crate::grid::Grid;
 use crate::ray::{BeamEval, Precision};
 
+/// Scopes longer than this are not compiled for rays (each distinct one costs a symbolic
+/// derivative and a compilation, which a ray through the grid's cells does not).
+const SCOPED_MAX_LEN: usize = 64;
+
+/// The instructions a ray form adds to a formula in `x y z` (`c + t·d` per axis).
+const RAY_FORM: usize = 6;
+
 /// The ray functions of the scopes rays were searched with, by tape content.
-#[derive(Debug, Default)]
+#[derive(Debug)]
 pub(super) struct ScopedFunctions {
     map: RwLock<HashMap<Tape, Option<Arc<RayFunction>>>>,
+    /// The longest scope searched instead of the grid's cells.
+    max_len: usize,
 }
 
 impl ScopedFunctions {
+    /// No function yet. With a `grid`, a scope is searched only where its tape is at most
+    /// half again as long as the ray form of the grid's cell functions on average: walking
+    /// the cells costs about as much as a few instructions per evaluation, and in a scene of
+    /// many objects the cells' CSG reduction leaves less than a beam's pruning does.
+    pub(super) fn new(grid: Option<&Grid>) -> Self {
+        let max_len = match grid {
+            Some(g) => ((g.stats().cell_instrs as usize + RAY_FORM) * 3 / 2).min(SCOPED_MAX_LEN),
+            None => SCOPED_MAX_LEN,
+        };
+        Self {
+            map: RwLock::default(),
+            max_len,
+        }
+    }
+
     /// The ray function of `tape` (a scope's pruned tape), compiled on first use; `None`
-    /// where it cannot be compiled (then the ray is searched as without a scope).
+    /// where it cannot be compiled (then the ray is searched as without a scope). Which
+    /// function a ray is searched with depends on its scope's content only, never on which
+    /// thread asked first.
     fn get(&self, tape: &Tape) -> Option<Arc<RayFunction>> {
         if let Ok(map) = self.map.read()
             && let Some(f) = map.get(tape)
@@ -70,7 +97,8 @@ impl ScopedEval {
         scope: Option<&BeamScope>,
         t: Interval<f64>,
     ) -> Option<&mut BeamEval> {
-        let scope = scope.filter(|s| !t.is_empty() && t.subset(s.t))?;
+        let scope = scope
+            .filter(|s| !t.is_empty() && t.subset(s.t) && s.tape.len() <= functions.max_len)?;
         let f = match &self.last {
             Some((tape, f)) if tape.ptr_eq(&scope.tape) => f.clone(),
             _ => {
