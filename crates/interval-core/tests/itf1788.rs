@@ -19,7 +19,8 @@
 //!   `asin(±1)`, exact powers, overflow to `[MAX, +∞]`); the one documented exception (`tan`
 //!   of an interval whose width lies in `[π↓, π)` without a pole gives `[−∞, +∞]`) is
 //!   accepted and reported;
-//! * `inf`, `sup`, `wid`, `mag`, `mig`: exact equality; `mid`: the documented special values,
+//! * `inf`, `sup`: exact equality, the sign of a zero included (`−0` for `inf`, `+0` for
+//!   `sup`); `wid`, `mag`, `mig`: exact equality; `mid`: the documented special values,
 //!   otherwise a nearest `f64` of the exact midpoint (a tie broken differently from the
 //!   standard's vector is reported, not failed); `rad`: the smallest `r` with
 //!   `[mid − r, mid + r] ⊇ x` for our own `mid`, equal to the standard's value whenever our
@@ -768,6 +769,16 @@ fn check_number(ours: f64, expected: f64) -> Outcome {
     }
 }
 
+/// `inf` and `sup`: the same number with the same sign of zero (IEEE 1788-2015 §12.12.8:
+/// `inf` of a zero lower bound is `−0`, `sup` of a zero upper bound is `+0`).
+fn check_signed_number(ours: f64, expected: f64) -> Outcome {
+    if same(ours, expected) && ours.is_sign_negative() == expected.is_sign_negative() {
+        Ok(None)
+    } else {
+        Err(format!("expected {}, got {}", hex(expected), hex(ours)))
+    }
+}
+
 /// `mid`: NaN for empty, 0 for entire, `∓MAX` for half-unbounded intervals, otherwise a
 /// nearest `f64` to the exact midpoint.
 fn check_mid(x: I, ours: f64, expected: f64) -> Outcome {
@@ -1035,6 +1046,7 @@ fn run(v: &Vector) -> Outcome {
         return match op {
             "mid" => check_mid(x, got, want),
             "rad" => check_rad(x, got, want),
+            "inf" | "sup" => check_signed_number(got, want),
             _ => check_number(got, want),
         };
     }
