@@ -8,9 +8,13 @@
 mod arith;
 pub mod batch;
 mod elementary;
+mod exp_log1p;
 mod fmt;
+mod integer;
+mod inverse_hyperbolic;
 mod relations;
 mod rev;
+mod roots;
 mod set_ops;
 mod trig;
 
