@@ -7,16 +7,20 @@
 
 mod arith;
 pub mod batch;
+mod cancel;
 mod elementary;
 mod exp_log1p;
 mod fmt;
 mod integer;
 mod inverse_hyperbolic;
+mod overlap;
 mod relations;
 mod rev;
 mod roots;
 mod set_ops;
 mod trig;
+
+pub use overlap::Overlap;
 
 use crate::IntervalError;
 use crate::float::Float;
