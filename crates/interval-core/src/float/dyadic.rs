@@ -102,15 +102,6 @@ impl Dyadic {
         .normalize()
     }
 
-    /// `|self|`.
-    pub(crate) fn abs(&self) -> Self {
-        Self {
-            neg: false,
-            mag: self.mag.clone(),
-            exp: self.exp,
-        }
-    }
-
     /// `self + other`, exactly.
     pub(crate) fn add(&self, other: &Self) -> Self {
         if other.mag.is_zero() {

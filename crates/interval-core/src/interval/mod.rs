@@ -1,9 +1,12 @@
 //! The set-based interval type [`Interval`] and its operations.
 //!
 //! Operations live in one file per family, after IEEE 1788-2015: arithmetic (`arith`),
-//! reverse operations (`rev`), elementary functions (`elementary`, `trig`), numeric functions
-//! (this file), boolean relations (`relations`), set operations (`set_ops`), slice operations
-//! (`batch`) and formatting (`fmt`).
+//! cancellative operations (`cancel`), reverse operations (`rev`, `rev_trig`, `rev_pow`),
+//! elementary functions (`elementary`, `trig`, `inverse_hyperbolic`, `exp_log1p`, `roots`),
+//! integer functions (`integer`), numeric functions (this file), boolean relations
+//! (`relations`, `overlap`), set operations (`set_ops`), slice operations (`batch`), exact
+//! reductions of float slices (`reduction`), formatting (`fmt`) and reading literals
+//! (`parse`).
 
 mod arith;
 pub mod batch;
@@ -14,6 +17,8 @@ mod fmt;
 mod integer;
 mod inverse_hyperbolic;
 mod overlap;
+mod parse;
+pub mod reduction;
 mod relations;
 mod rev;
 mod roots;
