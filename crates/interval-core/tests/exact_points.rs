@@ -30,7 +30,10 @@ fn exp2_and_exp10_of_integers() {
     assert_eq!(iv(-0.5, -1e-200).exp10().sup(), 1.0);
     // Between two integers, the powers bound the result exactly.
     assert!(iv(2.0, 2.0f64.next_up()).exp2().inf() == 4.0);
-    assert_eq!(iv32(-149.0, 127.0).exp2(), iv32(f32::from_bits(1), 2f32.powi(127)));
+    assert_eq!(
+        iv32(-149.0, 127.0).exp2(),
+        iv32(f32::from_bits(1), 2f32.powi(127))
+    );
 }
 
 #[test]
@@ -59,5 +62,8 @@ fn pown_of_exact_quotients() {
         iv32(0.01, 0.01).pown(-2),
         iv32(10000.0, 10000.0f32.next_up())
     );
-    assert_eq!(iv(0.1, 0.1).pown(3).inf(), iv(0.1, 0.1).pown(3).sup().next_down());
+    assert_eq!(
+        iv(0.1, 0.1).pown(3).inf(),
+        iv(0.1, 0.1).pown(3).sup().next_down()
+    );
 }

@@ -83,8 +83,8 @@ impl BigUint {
         let mut limbs = Vec::with_capacity(self.limbs.len());
         let mut borrow = 0i64;
         for i in 0..self.limbs.len() {
-            let mut d = i64::from(self.limbs[i]) - i64::from(*other.limbs.get(i).unwrap_or(&0))
-                - borrow;
+            let mut d =
+                i64::from(self.limbs[i]) - i64::from(*other.limbs.get(i).unwrap_or(&0)) - borrow;
             borrow = i64::from(d < 0);
             if d < 0 {
                 d += 1 << 32;
@@ -191,7 +191,15 @@ mod tests {
 
     #[test]
     fn arithmetic_agrees_with_u128() {
-        let vals = [0u64, 1, 7, 0xffff_ffff, 1 << 32, u64::MAX, 0x1234_5678_9abc_def0];
+        let vals = [
+            0u64,
+            1,
+            7,
+            0xffff_ffff,
+            1 << 32,
+            u64::MAX,
+            0x1234_5678_9abc_def0,
+        ];
         for &a in &vals {
             for &b in &vals {
                 let (x, y) = (BigUint::from_u64(a), BigUint::from_u64(b));

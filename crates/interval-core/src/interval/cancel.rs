@@ -80,6 +80,10 @@ mod tests {
         // Equal widths that are not representable: decided exactly.
         let x = iv(-f64::MAX, f64::MAX);
         assert_eq!(x.cancel_minus(x), iv(0.0, 0.0));
-        assert!(iv(0.0, 1.0).cancel_minus(iv(0.0, 1.0f64.next_up())).is_entire());
+        assert!(
+            iv(0.0, 1.0)
+                .cancel_minus(iv(0.0, 1.0f64.next_up()))
+                .is_entire()
+        );
     }
 }

@@ -21,6 +21,8 @@ mod parse;
 pub mod reduction;
 mod relations;
 mod rev;
+mod rev_pow;
+mod rev_trig;
 mod roots;
 mod set_ops;
 mod trig;
@@ -323,8 +325,14 @@ mod tests {
         // bound is +0, whichever zero is stored.
         for (a, b) in [(0.0f64, 0.0), (-0.0, -0.0), (0.0, -0.0), (-0.0, 0.0)] {
             let x = Interval::new(a, b).unwrap();
-            assert!(x.inf() == 0.0 && x.inf().is_sign_negative(), "inf of [{a}, {b}]");
-            assert!(x.sup() == 0.0 && x.sup().is_sign_positive(), "sup of [{a}, {b}]");
+            assert!(
+                x.inf() == 0.0 && x.inf().is_sign_negative(),
+                "inf of [{a}, {b}]"
+            );
+            assert!(
+                x.sup() == 0.0 && x.sup().is_sign_positive(),
+                "sup of [{a}, {b}]"
+            );
         }
         let y = Interval::new(-0.0f32, 1.0).unwrap();
         assert!(y.inf().is_sign_negative() && y.sup() == 1.0);

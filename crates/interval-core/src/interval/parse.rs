@@ -57,9 +57,9 @@ fn read_decimal(text: &str, at: usize) -> Result<Decimal, IntervalError> {
         match ch {
             '0'..='9' => {
                 seen_digit = true;
-                digits = digits.mul_small(10).add(&BigUint::from_u64(u64::from(
-                    ch as u32 - '0' as u32,
-                )));
+                digits = digits
+                    .mul_small(10)
+                    .add(&BigUint::from_u64(u64::from(ch as u32 - '0' as u32)));
                 if seen_point {
                     exp -= 1;
                 }
@@ -75,9 +75,12 @@ fn read_decimal(text: &str, at: usize) -> Result<Decimal, IntervalError> {
         return Err(err(at, "expected a number"));
     }
     if let Some(e) = exponent {
-        let k: i64 = e
-            .parse()
-            .map_err(|_| err(at + (t.len() - body.len()) + mantissa.len() + 1, "bad exponent"))?;
+        let k: i64 = e.parse().map_err(|_| {
+            err(
+                at + (t.len() - body.len()) + mantissa.len() + 1,
+                "bad exponent",
+            )
+        })?;
         exp = exp.saturating_add(k);
     }
     Ok(Decimal::Finite(neg, digits, exp))
@@ -149,11 +152,7 @@ fn enclose<T: Float>(text: &str, neg: bool, digits: &BigUint, exp: i64) -> (T, T
     } else {
         (c, c.next_up())
     };
-    if neg {
-        (sign(hi), sign(lo))
-    } else {
-        (lo, hi)
-    }
+    if neg { (sign(hi), sign(lo)) } else { (lo, hi) }
 }
 
 /// Reads one bound; an omitted bound is `default` (an infinity).
@@ -242,15 +241,24 @@ mod tests {
     #[test]
     fn literals() {
         let inf = f64::INFINITY;
-        assert_eq!(p("[0.1, 2]"), Interval::new(0.1f64.next_down(), 2.0).unwrap());
+        assert_eq!(
+            p("[0.1, 2]"),
+            Interval::new(0.1f64.next_down(), 2.0).unwrap()
+        );
         assert_eq!(p("[0.1]"), Interval::new(0.1f64.next_down(), 0.1).unwrap());
-        assert_eq!(p(" [ -0.1 ] "), Interval::new(-0.1, -0.1f64.next_down()).unwrap());
+        assert_eq!(
+            p(" [ -0.1 ] "),
+            Interval::new(-0.1, -0.1f64.next_down()).unwrap()
+        );
         assert_eq!(p("[1.5]"), Interval::new(1.5, 1.5).unwrap());
         assert!(p("[empty]").is_empty() && p("[ Entire ]").is_entire());
         assert_eq!(p("[-inf, 3]"), Interval::new(-inf, 3.0).unwrap());
         assert_eq!(p("[, 3]"), Interval::new(-inf, 3.0).unwrap());
         assert_eq!(p("[3,]"), Interval::new(3.0, inf).unwrap());
-        assert_eq!(p("[1e400]"), Interval::new(f64::MAX, inf).unwrap_or(Interval::EMPTY));
+        assert_eq!(
+            p("[1e400]"),
+            Interval::new(f64::MAX, inf).unwrap_or(Interval::EMPTY)
+        );
         assert_eq!(p("[1e-400]"), Interval::new(0.0, 5e-324).unwrap());
         assert_eq!(p("[-0]"), Interval::new(0.0, 0.0).unwrap());
         assert_eq!(p("[2.5e-324]"), Interval::new(0.0, 5e-324).unwrap());
@@ -263,9 +271,15 @@ mod tests {
     #[test]
     fn errors_name_the_problem() {
         let e = |s: &str| Interval::<f64>::parse(s).unwrap_err();
-        assert!(matches!(e("1, 2"), IntervalError::Parse { position: 0, .. }));
+        assert!(matches!(
+            e("1, 2"),
+            IntervalError::Parse { position: 0, .. }
+        ));
         assert!(matches!(e("[1, 2"), IntervalError::Parse { .. }));
-        assert!(matches!(e("[1, x]"), IntervalError::Parse { position: 4, .. }));
+        assert!(matches!(
+            e("[1, x]"),
+            IntervalError::Parse { position: 4, .. }
+        ));
         assert!(matches!(e("[]"), IntervalError::Parse { .. }));
         assert!(matches!(e("[1e]"), IntervalError::Parse { .. }));
         assert!(matches!(e("[2, 1]"), IntervalError::Reversed { .. }));

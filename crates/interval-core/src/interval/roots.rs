@@ -148,7 +148,9 @@ impl<T: Float> Interval<T> {
             if r.is_infinite() {
                 return (f64::MAX, f64::INFINITY);
             }
-            let s = Dyadic::of(a).mul(&Dyadic::of(a)).add(&Dyadic::of(b).mul(&Dyadic::of(b)));
+            let s = Dyadic::of(a)
+                .mul(&Dyadic::of(a))
+                .add(&Dyadic::of(b).mul(&Dyadic::of(b)));
             match Dyadic::of(r).mul(&Dyadic::of(r)).cmp(&s) {
                 Ordering::Equal => (r, r),
                 Ordering::Greater => (r.next_down(), r),
@@ -176,11 +178,17 @@ mod tests {
         assert_eq!(iv(-4.0, 16.0).rootn(4), iv(0.0, 2.0));
         assert!(iv(-4.0, -1.0).rootn(2).is_empty());
         assert_eq!(iv(-inf, inf).rootn(3), Interval::ENTIRE);
-        assert_eq!(iv(2.0, 2.0).rootn(2), iv(2f64.sqrt().next_down(), 2f64.sqrt()));
+        assert_eq!(
+            iv(2.0, 2.0).rootn(2),
+            iv(2f64.sqrt().next_down(), 2f64.sqrt())
+        );
         assert_eq!(iv(4.0, 4.0).rootn(-2), iv(0.5, 0.5));
         assert!(iv(1.0, 1.0).rootn(0).is_empty());
         assert_eq!(iv(3.0, 3.0).hypot(iv(-4.0, -4.0)), iv(5.0, 5.0));
-        assert_eq!(iv(f64::MAX, f64::MAX).hypot(iv(f64::MAX, f64::MAX)), iv(f64::MAX, inf));
+        assert_eq!(
+            iv(f64::MAX, f64::MAX).hypot(iv(f64::MAX, f64::MAX)),
+            iv(f64::MAX, inf)
+        );
         assert_eq!(iv(0.0, 0.0).hypot(iv(5e-324, 5e-324)), iv(5e-324, 5e-324));
     }
 }
