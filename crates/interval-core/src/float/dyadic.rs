@@ -162,7 +162,10 @@ impl Dyadic {
             return T::ZERO;
         }
         let p = i64::from(T::MANTISSA_DIGITS);
-        let emin_sub = decompose(T::MIN_POSITIVE_SUBNORMAL.to_f64()).1;
+        // The exponent of the smallest subnormal of T (a power of two: m·2^e with m a power
+        // of two too when T = f32, whose subnormals are normal f64s).
+        let (mtiny, etiny) = decompose(T::MIN_POSITIVE_SUBNORMAL.to_f64());
+        let emin_sub = etiny + i64::from(mtiny.trailing_zeros());
         let (mmax, emax) = decompose(T::MAX.to_f64());
         let top = emax + 64 - i64::from(mmax.leading_zeros()); // MAX < 2^top
         // Round the magnitude toward zero, remembering whether that was exact.
@@ -222,5 +225,11 @@ mod tests {
         assert_eq!(third(0.1).round::<f32>(true), 0.1f32);
         assert_eq!(third(3.0).powi(3).round::<f64>(false), 27.0);
         assert_eq!(third(0.5).cmp(&third(0.25)), Ordering::Greater);
+        // f32 subnormals: 1.5 · 2^-149 lies between the two smallest.
+        let t = third(f64::from(f32::from_bits(1))).mul(&third(1.5));
+        assert_eq!(t.round::<f32>(false), f32::from_bits(1));
+        assert_eq!(t.round::<f32>(true), f32::from_bits(2));
+        let u = third(f64::from(f32::from_bits(1))).mul(&third(0.25));
+        assert_eq!((u.round::<f32>(false), u.round::<f32>(true)), (0.0, f32::from_bits(1)));
     }
 }
