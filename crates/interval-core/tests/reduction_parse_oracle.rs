@@ -19,7 +19,10 @@ fn check_rounded<T: TestFloat>(
     (down, up): (T, T),
     exact: &Rational,
 ) -> Result<(), TestCaseError> {
-    prop_assert!(is_round_down(down, exact), "{name}: down {down:?} vs exact {exact}");
+    prop_assert!(
+        is_round_down(down, exact),
+        "{name}: down {down:?} vs exact {exact}"
+    );
     prop_assert!(is_round_up(up, exact), "{name}: up {up:?} vs exact {exact}");
     Ok(())
 }
@@ -51,7 +54,11 @@ fn check_reductions<T: TestFloat>(xs: &[T], ys: &[T]) -> Result<(), TestCaseErro
     let sqr: Rational = xs.iter().map(|&x| rat(x) * rat(x)).sum();
     check_rounded("sum_sqr", reduction::sum_sqr(xs), &sqr)?;
     let n = xs.len().min(ys.len());
-    let dot: Rational = xs[..n].iter().zip(&ys[..n]).map(|(&x, &y)| rat(x) * rat(y)).sum();
+    let dot: Rational = xs[..n]
+        .iter()
+        .zip(&ys[..n])
+        .map(|(&x, &y)| rat(x) * rat(y))
+        .sum();
     check_rounded("dot", reduction::dot(&xs[..n], &ys[..n]).unwrap(), &dot)?;
     prop_assert!(xs.len() == ys.len() || reduction::dot(xs, ys).is_err());
     Ok(())
@@ -96,7 +103,10 @@ fn check_literal<T: TestFloat>(text: &str, q: &Rational) -> Result<(), TestCaseE
     check_tight(x, Some((q.clone(), q.clone())))
 }
 
-fn check_pair<T: TestFloat>(a: &(String, Rational), b: &(String, Rational)) -> Result<(), TestCaseError> {
+fn check_pair<T: TestFloat>(
+    a: &(String, Rational),
+    b: &(String, Rational),
+) -> Result<(), TestCaseError> {
     let (lo, hi) = if a.1 <= b.1 { (a, b) } else { (b, a) };
     let x: Interval<T> = format!("[{}, {}]", lo.0, hi.0).parse().unwrap();
     check_tight(x, Some((lo.1.clone(), hi.1.clone())))

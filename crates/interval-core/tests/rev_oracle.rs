@@ -76,7 +76,10 @@ fn check_preimage<T: TestFloat>(
     prop_assert!(result.subset(x), "{name}: {result:?} not inside x = {x:?}");
     for z in points_in(x, seeds) {
         if maps_into_c(z) == Some(true) {
-            prop_assert!(result.contains(z), "{name}: {result:?} misses {z:?} (x = {x:?})");
+            prop_assert!(
+                result.contains(z),
+                "{name}: {result:?} misses {z:?} (x = {x:?})"
+            );
         }
     }
     Ok(())
@@ -153,7 +156,9 @@ fn check_binary<T: TestFloat>(
 /// Tight reverse operations: the exact preimage hull rounded outward.
 fn check_tight_rev<T: TestFloat>(c: Interval<T>, n: i32) -> Result<(), TestCaseError> {
     let nonneg = c.intersection(Interval::new(T::ZERO, T::INFINITY).unwrap());
-    let expected_abs = nonneg.bounds().map(|(_, hi)| (Ext::of(hi).neg(), Ext::of(hi)));
+    let expected_abs = nonneg
+        .bounds()
+        .map(|(_, hi)| (Ext::of(hi).neg(), Ext::of(hi)));
     check_tight(c.abs_rev(), expected_abs)?;
     // sqr_rev: [−√hi, √hi] rounded outward.
     let s = c.sqr_rev();
@@ -161,7 +166,10 @@ fn check_tight_rev<T: TestFloat>(c: Interval<T>, n: i32) -> Result<(), TestCaseE
         None => prop_assert!(s.is_empty()),
         Some((_, hi)) => {
             let root = common::SqrtOf(Ext::of(hi));
-            prop_assert!(common::is_round_up(s.sup(), &root), "sqr_rev({c:?}) = {s:?}");
+            prop_assert!(
+                common::is_round_up(s.sup(), &root),
+                "sqr_rev({c:?}) = {s:?}"
+            );
             prop_assert!(s.inf() == -s.sup());
         }
     }
@@ -187,8 +195,14 @@ fn check_cancel<T: TestFloat>(x: Interval<T>, y: Interval<T>) -> Result<(), Test
             } else {
                 let lo = Rational::from(rat(a) - rat(c));
                 let hi = Rational::from(rat(b) - rat(d));
-                let (el, eh) = (round_rational::<T>(&lo, true), round_rational::<T>(&hi, false));
-                prop_assert!(z.inf() == el && z.sup() == eh, "cancel_minus({x:?}, {y:?}) = {z:?}");
+                let (el, eh) = (
+                    round_rational::<T>(&lo, true),
+                    round_rational::<T>(&hi, false),
+                );
+                prop_assert!(
+                    z.inf() == el && z.sup() == eh,
+                    "cancel_minus({x:?}, {y:?}) = {z:?}"
+                );
                 // y + z ⊇ x, and equals it up to the rounding.
                 prop_assert!(x.subset(y + z));
             }

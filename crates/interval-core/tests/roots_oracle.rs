@@ -42,7 +42,11 @@ fn ulps<T: TestFloat>(a: T, b: T) -> u32 {
     n
 }
 
-fn check_rootn<T: TestFloat>(x: Interval<T>, n: u32, seeds: &[(T, f64)]) -> Result<(), TestCaseError> {
+fn check_rootn<T: TestFloat>(
+    x: Interval<T>,
+    n: u32,
+    seeds: &[(T, f64)],
+) -> Result<(), TestCaseError> {
     let got = x.rootn(n as i32);
     let dom = if n % 2 == 0 {
         x.intersection(Interval::new(T::ZERO, T::INFINITY).unwrap())
@@ -50,12 +54,21 @@ fn check_rootn<T: TestFloat>(x: Interval<T>, n: u32, seeds: &[(T, f64)]) -> Resu
         x
     };
     let Some((a, b)) = dom.bounds() else {
-        prop_assert!(got.is_empty(), "rootn({x:?}, {n}) = {got:?}, expected empty");
+        prop_assert!(
+            got.is_empty(),
+            "rootn({x:?}, {n}) = {got:?}, expected empty"
+        );
         return Ok(());
     };
     for p in points_in(dom, seeds) {
-        let (d, u) = (root_big(p.to_f64(), n, Round::Down), root_big(p.to_f64(), n, Round::Up));
-        prop_assert!(encloses(got, &d, &u), "rootn({x:?}, {n}) = {got:?} misses the root of {p:?}");
+        let (d, u) = (
+            root_big(p.to_f64(), n, Round::Down),
+            root_big(p.to_f64(), n, Round::Up),
+        );
+        prop_assert!(
+            encloses(got, &d, &u),
+            "rootn({x:?}, {n}) = {got:?} misses the root of {p:?}"
+        );
     }
     let lo: T = round_mpfr(&root_big(a.to_f64(), n, Round::Down), true);
     let hi: T = round_mpfr(&root_big(b.to_f64(), n, Round::Up), false);
@@ -88,11 +101,20 @@ fn check_hypot<T: TestFloat>(
                 hypot_big(p.to_f64(), q.to_f64(), Round::Down),
                 hypot_big(p.to_f64(), q.to_f64(), Round::Up),
             );
-            prop_assert!(encloses(got, &d, &u), "hypot({x:?}, {y:?}) = {got:?} at ({p:?}, {q:?})");
+            prop_assert!(
+                encloses(got, &d, &u),
+                "hypot({x:?}, {y:?}) = {got:?} at ({p:?}, {q:?})"
+            );
         }
     }
-    let lo: T = round_mpfr(&hypot_big(x.mig().to_f64(), y.mig().to_f64(), Round::Down), true);
-    let hi: T = round_mpfr(&hypot_big(x.mag().to_f64(), y.mag().to_f64(), Round::Up), false);
+    let lo: T = round_mpfr(
+        &hypot_big(x.mig().to_f64(), y.mig().to_f64(), Round::Down),
+        true,
+    );
+    let hi: T = round_mpfr(
+        &hypot_big(x.mag().to_f64(), y.mag().to_f64(), Round::Up),
+        false,
+    );
     prop_assert!(
         got.inf() == lo && got.sup() == hi,
         "hypot({x:?}, {y:?}) = {got:?}, tight [{lo:?}, {hi:?}]"
@@ -135,4 +157,3 @@ fn negative_index_encloses() {
     assert!(r.contains(0.5) && r.contains(2f64.powf(-1.0 / 3.0)));
     assert!(r.inf() >= 0.5f64.next_down() && r.sup() <= 0.7937005259840999);
 }
-

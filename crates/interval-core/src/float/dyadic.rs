@@ -230,6 +230,9 @@ mod tests {
         assert_eq!(t.round::<f32>(false), f32::from_bits(1));
         assert_eq!(t.round::<f32>(true), f32::from_bits(2));
         let u = third(f64::from(f32::from_bits(1))).mul(&third(0.25));
-        assert_eq!((u.round::<f32>(false), u.round::<f32>(true)), (0.0, f32::from_bits(1)));
+        assert_eq!(
+            (u.round::<f32>(false), u.round::<f32>(true)),
+            (0.0, f32::from_bits(1))
+        );
     }
 }
