@@ -48,7 +48,7 @@ fn check_rootn<T: TestFloat>(
     seeds: &[(T, f64)],
 ) -> Result<(), TestCaseError> {
     let got = x.rootn(n as i32);
-    let dom = if n % 2 == 0 {
+    let dom = if n.is_multiple_of(2) {
         x.intersection(Interval::new(T::ZERO, T::INFINITY).unwrap())
     } else {
         x
