@@ -193,8 +193,8 @@ fn check_cancel<T: TestFloat>(x: Interval<T>, y: Interval<T>) -> Result<(), Test
             if wx < wy {
                 prop_assert!(z.is_entire());
             } else {
-                let lo = Rational::from(rat(a) - rat(c));
-                let hi = Rational::from(rat(b) - rat(d));
+                let lo = rat(a) - rat(c);
+                let hi = rat(b) - rat(d);
                 let (el, eh) = (
                     round_rational::<T>(&lo, true),
                     round_rational::<T>(&hi, false),
