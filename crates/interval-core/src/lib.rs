@@ -25,6 +25,9 @@
 //! # Ok::<(), interval_core::IntervalError>(())
 //! ```
 //!
+//! [`testing`] has soundness checks for users' tests against a reference value, and, with
+//! the `proptest` cargo feature, proptest strategies for intervals with all the edge cases.
+//!
 //! The rounding model and the accuracy of every function are documented in
 //! `docs/numerics.md` of the repository.
 
@@ -32,6 +35,7 @@ pub mod decorated;
 pub mod float;
 pub mod interval;
 pub mod modal;
+pub mod testing;
 
 mod error;
 

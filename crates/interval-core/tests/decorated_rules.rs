@@ -119,11 +119,12 @@ fn check_unary<T: TestFloat>(
             );
         }
     }
-    if is_step && got.decoration() >= Decoration::Dac {
-        if let Some(&first) = pts.first() {
-            for &p in &pts {
-                prop_assert!(point(p) == point(first), "{name}({input}) = {got} jumps");
-            }
+    if is_step
+        && got.decoration() >= Decoration::Dac
+        && let Some(&first) = pts.first()
+    {
+        for &p in &pts {
+            prop_assert!(point(p) == point(first), "{name}({input}) = {got} jumps");
         }
     }
     if got.decoration() == Decoration::Com {
