@@ -1,6 +1,6 @@
 //! Helpers for testing code built on interval-core: soundness checks against a reference
 //! value that the caller supplies ([`check_encloses`], [`assert_encloses`], and their
-//! bracket forms), and, with the `proptest` cargo feature, [`strategy`]: proptest strategies
+//! bracket forms), and, with the `proptest` cargo feature, `strategy`: proptest strategies
 //! for floats of every class, intervals, decorated and modal intervals, and points inside an
 //! interval.
 //!
