@@ -177,6 +177,71 @@ impl<T: Float> DecInterval<T> {
     pub fn pown_rev_in(self, x: Self, n: i32) -> Self {
         Self::trivial(&[self, x], self.x.pown_rev_in(x.x, n))
     }
+
+    /// `coshRev(self, x)`, decorated `trv`.
+    pub fn cosh_rev_in(self, x: Self) -> Self {
+        Self::trivial(&[self, x], self.x.cosh_rev_in(x.x))
+    }
+
+    /// `sinRev(self, x)`, decorated `trv`.
+    pub fn sin_rev_in(self, x: Self) -> Self {
+        Self::trivial(&[self, x], self.x.sin_rev_in(x.x))
+    }
+
+    /// `cosRev(self, x)`, decorated `trv`.
+    pub fn cos_rev_in(self, x: Self) -> Self {
+        Self::trivial(&[self, x], self.x.cos_rev_in(x.x))
+    }
+
+    /// `tanRev(self, x)`, decorated `trv`.
+    pub fn tan_rev_in(self, x: Self) -> Self {
+        Self::trivial(&[self, x], self.x.tan_rev_in(x.x))
+    }
+
+    /// `powRev1(self, c, x)`, decorated `trv`.
+    pub fn pow_rev1_in(self, c: Self, x: Self) -> Self {
+        Self::trivial(&[self, c, x], self.x.pow_rev1_in(c.x, x.x))
+    }
+
+    /// `powRev2(self, c, y)`, decorated `trv`.
+    pub fn pow_rev2_in(self, c: Self, y: Self) -> Self {
+        Self::trivial(&[self, c, y], self.x.pow_rev2_in(c.x, y.x))
+    }
+
+    /// `inf` of the interval part (`−0` for a zero lower bound); NaN for NaI.
+    pub fn inf(self) -> T {
+        if self.is_nai() { T::NAN } else { self.x.inf() }
+    }
+
+    /// `sup` of the interval part (`+0` for a zero upper bound); NaN for NaI.
+    pub fn sup(self) -> T {
+        if self.is_nai() { T::NAN } else { self.x.sup() }
+    }
+
+    /// `mid` of the interval part; NaN for NaI and empty.
+    pub fn mid(self) -> T {
+        if self.is_nai() { T::NAN } else { self.x.mid() }
+    }
+
+    /// `wid` of the interval part, rounded up; NaN for NaI and empty.
+    pub fn wid(self) -> T {
+        if self.is_nai() { T::NAN } else { self.x.wid() }
+    }
+
+    /// `rad` of the interval part, rounded up; NaN for NaI and empty.
+    pub fn rad(self) -> T {
+        if self.is_nai() { T::NAN } else { self.x.rad() }
+    }
+
+    /// `mag` of the interval part; NaN for NaI and empty.
+    pub fn mag(self) -> T {
+        if self.is_nai() { T::NAN } else { self.x.mag() }
+    }
+
+    /// `mig` of the interval part; NaN for NaI and empty.
+    pub fn mig(self) -> T {
+        if self.is_nai() { T::NAN } else { self.x.mig() }
+    }
 }
 
 /// Unary point functions of decorated intervals: name, domain rule, documentation.
@@ -292,6 +357,9 @@ mod tests {
         assert_eq!(d(1.0, 2.0).intersection(d(1.5, 3.0)).decoration(), Trv);
         assert!((DecInterval::NAI + d(1.0, 2.0)).is_nai());
         assert!(DecInterval::<f64>::NAI.sin().is_nai());
+        assert!(DecInterval::<f64>::NAI.inf().is_nan());
+        assert!(d(0.0, 1.0).inf().is_sign_negative());
+        assert_eq!(d(-1.0, 1.0).sin_rev_in(d(-1.0, 1.0)).decoration(), Trv);
         assert_eq!(DecInterval::<f64>::EMPTY.exp().decoration(), Trv);
         // Decorations only decrease along a computation.
         let x = d(-1.0, 1.0);
