@@ -3,6 +3,7 @@
 //! cases and their relatives), for `f64` and `f32`.
 
 use interval_core::{Float, Interval};
+use proptest::prelude::*;
 
 fn iv(a: f64, b: f64) -> Interval<f64> {
     Interval::new(a, b).unwrap()
@@ -66,4 +67,25 @@ fn pown_of_exact_quotients() {
         iv(0.1, 0.1).pown(3).inf(),
         iv(0.1, 0.1).pown(3).sup().next_down()
     );
+}
+
+proptest! {
+    /// The range facts hold on random intervals: `exp ≤ 1` on `x ≤ 0`, `≥ 1` on `x ≥ 0`;
+    /// `log2` of `[2ᵏ, 2ᵏ⁺¹)` stays in `[k, k + 1]`; `log ≤ 0` below 1.
+    #[test]
+    fn range_facts(a in -50.0f64..50.0, b in -50.0f64..50.0, m in 1.0f64..2.0, k in -1020i32..1020) {
+        let x = iv(a.min(b), a.max(b));
+        if x.sup() <= 0.0 {
+            prop_assert!(x.exp().sup() <= 1.0);
+        }
+        if x.inf() >= 0.0 {
+            prop_assert!(x.exp().inf() >= 1.0);
+        }
+        let v = m * 2f64.powi(k);
+        let l = iv(v, v).log2();
+        prop_assert!(l.inf() >= f64::from(k) && l.sup() <= f64::from(k) + 1.0, "log2({v:e}) = {l:?}");
+        if v < 1.0 {
+            prop_assert!(iv(v, v).log().sup() <= 0.0);
+        }
+    }
 }

@@ -6,7 +6,7 @@
 //!   brackets for `cosh`, `sin`, `cos`, `tan`, `pow`, where a bracket that straddles a bound
 //!   of `c` is skipped), then `z` lies in `f_rev(c, x)`; and the result lies inside `x`;
 //! * **tightness**: `sqr_rev`, `abs_rev`, `pown_rev` (`1 ≤ n ≤ 64`) equal the outward
-//!   roundings of the exact preimage hull; `cancel_minus`/`cancel_plus` equal the directed
+//!   roundings of the exact preimage hull, `cosh_rev` within one ulp of it; `cancel_minus`/`cancel_plus` equal the directed
 //!   differences of the bounds.
 
 mod common;
@@ -171,6 +171,24 @@ fn check_tight_rev<T: TestFloat>(c: Interval<T>, n: i32) -> Result<(), TestCaseE
                 "sqr_rev({c:?}) = {s:?}"
             );
             prop_assert!(s.inf() == -s.sup());
+        }
+    }
+    // cosh_rev: [−acosh(hi), acosh(hi)] of c ∩ [1, ∞], each bound within 1 ulp of tight.
+    let ch = c.cosh_rev();
+    match c
+        .intersection(Interval::new(T::ONE, T::INFINITY).unwrap())
+        .bounds()
+    {
+        None => prop_assert!(ch.is_empty()),
+        Some((_, hi)) => {
+            let mut u = Big::with_val(PREC, hi.to_f64());
+            u.acosh_round(Round::Up);
+            let tight: T = common::round_mpfr(&u, false);
+            prop_assert!(ch.inf() == -ch.sup(), "cosh_rev({c:?}) = {ch:?}");
+            prop_assert!(
+                ch.sup() == tight || ch.sup() == tight.next_up(),
+                "cosh_rev({c:?}) = {ch:?}, tight sup {tight:?}"
+            );
         }
     }
     // pown_rev for odd n ≥ 3: rootn of the bounds, tight.

@@ -150,6 +150,58 @@ proptest! {
     }
 }
 
+/// `rootn` with `n < 0` (the reciprocal of the tight root, rounded outward): encloses, and
+/// each bound within 2 ulps of the tight one.
+fn check_rootn_negative<T: TestFloat>(x: Interval<T>, k: u32) -> Result<(), TestCaseError> {
+    let got = x.rootn(-(k as i32));
+    let Some((a, b)) = x.bounds() else {
+        prop_assert!(got.is_empty());
+        return Ok(());
+    };
+    // Keep to positive boxes, where x^(-1/k) is decreasing and finite.
+    if !(a > T::ZERO && b.is_finite()) {
+        return Ok(());
+    }
+    let inv = |v: f64, r: Round| {
+        let mut t = root_big(
+            v,
+            k,
+            if r == Round::Down {
+                Round::Up
+            } else {
+                Round::Down
+            },
+        );
+        t.recip_round(r);
+        t
+    };
+    let lo: T = round_mpfr(&inv(b.to_f64(), Round::Down), true);
+    let hi: T = round_mpfr(&inv(a.to_f64(), Round::Up), false);
+    prop_assert!(
+        got.inf() <= lo && got.sup() >= hi,
+        "rootn({x:?}, -{k}) = {got:?}"
+    );
+    prop_assert!(
+        ulps(got.inf(), lo) <= 2 && ulps(hi, got.sup()) <= 2,
+        "rootn({x:?}, -{k}) = {got:?} vs [{lo:?}, {hi:?}]"
+    );
+    Ok(())
+}
+
+proptest! {
+    #![proptest_config(config(CASES))]
+
+    #[test]
+    fn rootn_negative_f64(x in interval::<f64>(), k in 1u32..=20) {
+        check_rootn_negative(x, k)?;
+    }
+
+    #[test]
+    fn rootn_negative_f32(x in interval::<f32>(), k in 1u32..=20) {
+        check_rootn_negative(x, k)?;
+    }
+}
+
 #[test]
 fn negative_index_encloses() {
     let x = Interval::new(2.0, 8.0).unwrap();
