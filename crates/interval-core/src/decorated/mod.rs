@@ -36,6 +36,7 @@
 pub mod ops;
 pub mod rules;
 
+use crate::IntervalError;
 use crate::float::Float;
 use crate::interval::Interval;
 use core::fmt;
@@ -139,6 +140,69 @@ impl<T: Float> DecInterval<T> {
     /// True for an empty interval part (NaI included).
     pub fn is_empty(self) -> bool {
         self.x.is_empty()
+    }
+}
+
+impl<T: Float> DecInterval<T> {
+    /// Reads a decorated interval literal (IEEE 1788 §12.11): a bare literal as in
+    /// [`Interval::parse`] followed by `_com`, `_dac`, `_def`, `_trv` or `_ill`, or without a
+    /// suffix (then [`DecInterval::new`]); `"[nai]"` is NaI. A decoration the interval cannot
+    /// carry (`"[empty]_com"`, `"[1, inf]_com"`) is an error.
+    ///
+    /// # Errors
+    /// [`IntervalError::Parse`] for malformed text or an impossible decoration; the errors of
+    /// [`Interval::parse`] for the bounds.
+    ///
+    /// ```
+    /// use interval_core::{DecInterval, Decoration};
+    /// let x: DecInterval = DecInterval::parse("[0.1, 2]_def")?;
+    /// assert_eq!(x.decoration(), Decoration::Def);
+    /// assert!("[1, 2]".parse::<DecInterval<f32>>()?.decoration() == Decoration::Com);
+    /// assert!(DecInterval::<f64>::parse("[nai]")?.is_nai());
+    /// assert!(DecInterval::<f64>::parse("[empty]_com").is_err());
+    /// # Ok::<(), interval_core::IntervalError>(())
+    /// ```
+    pub fn parse(text: &str) -> Result<Self, IntervalError> {
+        let t = text.trim();
+        if t.eq_ignore_ascii_case("[nai]") {
+            return Ok(Self::NAI);
+        }
+        let close = t.rfind(']').ok_or(IntervalError::Parse {
+            position: text.len(),
+            reason: "expected ']'",
+        })?;
+        let x = Interval::parse(&t[..=close])?;
+        let suffix = &t[close + 1..];
+        let d = match suffix.to_ascii_lowercase().as_str() {
+            "" => return Ok(Self::new(x)),
+            "_com" => Decoration::Com,
+            "_dac" => Decoration::Dac,
+            "_def" => Decoration::Def,
+            "_trv" => Decoration::Trv,
+            "_ill" => Decoration::Ill,
+            _ => {
+                return Err(IntervalError::Parse {
+                    position: text.len() - text.trim_start().len() + close + 1,
+                    reason: "expected a decoration _com, _dac, _def, _trv or _ill",
+                });
+            }
+        };
+        let y = Self::set_dec(x, d);
+        if y.d != d {
+            return Err(IntervalError::Parse {
+                position: text.len() - text.trim_start().len() + close + 1,
+                reason: "the interval cannot carry this decoration",
+            });
+        }
+        Ok(y)
+    }
+}
+
+impl<T: Float> core::str::FromStr for DecInterval<T> {
+    type Err = IntervalError;
+    /// [`DecInterval::parse`].
+    fn from_str(s: &str) -> Result<Self, IntervalError> {
+        Self::parse(s)
     }
 }
 
