@@ -49,8 +49,11 @@ fn check_overlap<T: TestFloat>(x: Interval<T>, y: Interval<T>) -> Result<(), Tes
     Ok(())
 }
 
+/// An integer function: its name, the interval version and the point version.
+type IntegerFn<T> = (&'static str, fn(Interval<T>) -> Interval<T>, fn(f64) -> f64);
+
 fn check_integer<T: TestFloat>(x: Interval<T>, seeds: &[(T, f64)]) -> Result<(), TestCaseError> {
-    let fns: [(&str, fn(Interval<T>) -> Interval<T>, fn(f64) -> f64); 6] = [
+    let fns: [IntegerFn<T>; 6] = [
         ("floor", Interval::floor, f64::floor),
         ("ceil", Interval::ceil, f64::ceil),
         ("trunc", Interval::trunc, f64::trunc),
