@@ -2,7 +2,8 @@
 
 use thiserror::Error;
 
-/// Errors of this crate: an interval that cannot be constructed, or mismatched batch inputs.
+/// Errors of this crate: an interval that cannot be constructed, a literal that cannot be
+/// read, or mismatched slice inputs.
 #[derive(Debug, Clone, Copy, PartialEq, Error)]
 pub enum IntervalError {
     /// A bound was NaN.
@@ -27,6 +28,14 @@ pub enum IntervalError {
         lo: f64,
         /// The upper bound, as `f64`.
         hi: f64,
+    },
+    /// An interval literal (`"[0.1, 2]"`, `"[1.5]"`, `"[empty]"`, ...) could not be read.
+    #[error("invalid interval literal at byte {position}: {reason}")]
+    Parse {
+        /// Byte offset in the text where the problem was found.
+        position: usize,
+        /// What was wrong, e.g. `"expected a number"`.
+        reason: &'static str,
     },
     /// Slices passed to a batch operation have different lengths.
     #[error("{operation}: argument {argument} has length {found}, expected {expected}")]

@@ -8,6 +8,8 @@
 //!   `convex_hull`, ...). `+ - * /`, `fma`, `sqr`, `sqrt` and `recip` are tight, computed
 //!   without changing the FPU rounding mode (see [`float`]); elementary functions are
 //!   enclosures within one ulp of tight, built on correctly rounded CORE-MATH functions.
+//! * [`DecInterval`]: decorated intervals (IEEE 1788 §8, §11) with [`Decoration`]s
+//!   `com`, `dac`, `def`, `trv`, `ill` and the standard's propagation rules.
 //! * [`Modal`]: modal intervals `[a, b]` with `a > b` allowed (improper), with `dual`,
 //!   `prop`, `meet`/`join` and Kaucher arithmetic rounded outward (for `Out(fR(X))`,
 //!   the *-semantics) or inward (for `Inn(fR(X))`, the **-semantics).
@@ -23,15 +25,21 @@
 //! # Ok::<(), interval_core::IntervalError>(())
 //! ```
 //!
+//! [`testing`] has soundness checks for users' tests against a reference value, and, with
+//! the `proptest` cargo feature, proptest strategies for intervals with all the edge cases.
+//!
 //! The rounding model and the accuracy of every function are documented in
 //! `docs/numerics.md` of the repository.
 
+pub mod decorated;
 pub mod float;
 pub mod interval;
 pub mod modal;
+pub mod testing;
 
 mod error;
 
+pub use decorated::{DecInterval, Decoration};
 pub use error::IntervalError;
 pub use float::Float;
 pub use interval::Interval;

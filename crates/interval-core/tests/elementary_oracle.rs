@@ -9,7 +9,12 @@
 //!   computed interval, compared exactly in MPFR;
 //! * **tightness**: the tight bounds of the range (directed roundings of the exact range,
 //!   from MPFR at the endpoints, critical points or corners) are compared with the computed
-//!   bounds, which must equal them or lie at most one ulp outside.
+//!   bounds, which must equal them or lie at most one ulp outside; `pown` with `|n| ≤ 64` on
+//!   finite bounds must equal them exactly.
+//!
+//! The functions covered: `exp`, `exp2`, `exp10`, `expm1`, `log`, `log2`, `log10`, `log1p`,
+//! `sinh`, `cosh`, `tanh`, `asinh`, `acosh`, `atanh`, `asin`, `acos`, `atan`, `sin`, `cos`,
+//! `tan`, `pown`, `pow`, `atan2`.
 
 mod common;
 
@@ -323,6 +328,8 @@ struct Unary {
     dom: (f64, f64),
     /// The domain excludes its lower end (the logarithms: x > 0).
     open_lo: bool,
+    /// The domain excludes its upper end (`atanh`: x < 1).
+    open_hi: bool,
     shape: Shape,
     /// Closure of the range, which the bounds must never leave.
     range: Range,
@@ -378,6 +385,7 @@ const fn mono(name: &'static str, mpfr: fn(&mut Big, Round) -> Ordering, range: 
         mpfr,
         dom: (-INF, INF),
         open_lo: false,
+        open_hi: false,
         shape: Shape::Increasing,
         range,
     }
@@ -389,6 +397,7 @@ const fn logarithm(name: &'static str, mpfr: fn(&mut Big, Round) -> Ordering) ->
         mpfr,
         dom: (0.0, INF),
         open_lo: true,
+        open_hi: false,
         shape: Shape::Increasing,
         range: Range::All,
     }
@@ -408,6 +417,7 @@ const COSH: Unary = Unary {
     mpfr: Big::cosh_round,
     dom: (-INF, INF),
     open_lo: false,
+    open_hi: false,
     shape: Shape::Even,
     range: Range::AtLeastOne,
 };
@@ -416,14 +426,45 @@ const ASIN: Unary = Unary {
     mpfr: Big::asin_round,
     dom: (-1.0, 1.0),
     open_lo: false,
+    open_hi: false,
     shape: Shape::Increasing,
     range: Range::HalfPi,
+};
+const ASINH: Unary = mono("asinh", Big::asinh_round, Range::All);
+const EXPM1: Unary = mono("expm1", Big::exp_m1_round, Range::All);
+const ACOSH: Unary = Unary {
+    name: "acosh",
+    mpfr: Big::acosh_round,
+    dom: (1.0, INF),
+    open_lo: false,
+    open_hi: false,
+    shape: Shape::Increasing,
+    range: Range::NonNegative,
+};
+const ATANH: Unary = Unary {
+    name: "atanh",
+    mpfr: Big::atanh_round,
+    dom: (-1.0, 1.0),
+    open_lo: true,
+    open_hi: true,
+    shape: Shape::Increasing,
+    range: Range::All,
+};
+const LOG1P: Unary = Unary {
+    name: "log1p",
+    mpfr: Big::ln_1p_round,
+    dom: (-1.0, INF),
+    open_lo: true,
+    open_hi: false,
+    shape: Shape::Increasing,
+    range: Range::All,
 };
 const ACOS: Unary = Unary {
     name: "acos",
     mpfr: Big::acos_round,
     dom: (-1.0, 1.0),
     open_lo: false,
+    open_hi: false,
     shape: Shape::Decreasing,
     range: Range::ZeroPi,
 };
@@ -437,7 +478,7 @@ fn check_unary<T: Num>(s: &Unary, f: fn(Interval<T>) -> Interval<T>, x: Interval
         return;
     };
     let (a, b) = (a.to_f64().max(s.dom.0), b.to_f64().min(s.dom.1));
-    if a > b || (s.open_lo && b <= s.dom.0) {
+    if a > b || (s.open_lo && b <= s.dom.0) || (s.open_hi && a >= s.dom.1) {
         assert!(got.is_empty(), "{}: expected empty, got {:?}", ctx(), got);
         return;
     }
@@ -446,7 +487,7 @@ fn check_unary<T: Num>(s: &Unary, f: fn(Interval<T>) -> Interval<T>, x: Interval
             continue;
         };
         let p = p.to_f64();
-        if s.open_lo && p <= s.dom.0 {
+        if (s.open_lo && p <= s.dom.0) || (s.open_hi && p >= s.dom.1) {
             continue;
         }
         let down = eval(s.mpfr, p, Round::Down);
@@ -519,6 +560,16 @@ unary_props! {
     f32, acos_f32, ACOS, acos;
     f64, atan_f64, ATAN, atan;
     f32, atan_f32, ATAN, atan;
+    f64, asinh_f64, ASINH, asinh;
+    f32, asinh_f32, ASINH, asinh;
+    f64, acosh_f64, ACOSH, acosh;
+    f32, acosh_f32, ACOSH, acosh;
+    f64, atanh_f64, ATANH, atanh;
+    f32, atanh_f32, ATANH, atanh;
+    f64, expm1_f64, EXPM1, expm1;
+    f32, expm1_f32, EXPM1, expm1;
+    f64, log1p_f64, LOG1P, log1p;
+    f32, log1p_f32, LOG1P, log1p;
 }
 
 // ---------------------------------------------------------------------------------------
@@ -752,6 +803,17 @@ fn check_pown<T: Num>(x: Interval<T>, n: i32, sel: &[Sel]) {
         }
     }
     assert_near(got, lo, hi, &ctx);
+    // Documented tightness: |n| ≤ 64 on finite bounds is exact, bit for bit.
+    if n.unsigned_abs() <= 64 && a.is_finite() && b.is_finite() {
+        assert!(
+            got.inf() == lo && got.sup() == hi,
+            "{}: {:?} is not the tight [{:e}, {:e}]",
+            ctx(),
+            got,
+            lo,
+            hi
+        );
+    }
 }
 
 proptest! {

@@ -19,12 +19,19 @@
 //!   `asin(±1)`, exact powers, overflow to `[MAX, +∞]`); the one documented exception (`tan`
 //!   of an interval whose width lies in `[π↓, π)` without a pole gives `[−∞, +∞]`) is
 //!   accepted and reported;
-//! * `inf`, `sup`, `wid`, `mag`, `mig`: exact equality; `mid`: the documented special values,
+//! * `inf`, `sup`: exact equality, the sign of a zero included (`−0` for `inf`, `+0` for
+//!   `sup`); `wid`, `mag`, `mig`: exact equality; `mid`: the documented special values,
 //!   otherwise a nearest `f64` of the exact midpoint (a tie broken differently from the
 //!   standard's vector is reported, not failed); `rad`: the smallest `r` with
 //!   `[mid − r, mid + r] ⊇ x` for our own `mid`, equal to the standard's value whenever our
 //!   `mid` is the round-to-nearest-even midpoint;
-//! * relations and predicates: equality of the boolean.
+//! * relations and predicates: equality of the boolean; `overlap`: equality of the state;
+//! * the operations added after the first selection: integer functions, `cancelMinus`,
+//!   `cancelPlus`, `sqrRev`, `absRev`, `pownRev` (`n ≥ 0`), `mulRev`, `mulRevTen`, `rootn`
+//!   (`|n| ≤ 64`) and `hypot` are tight; `asinh`, `acosh`, `atanh`, `expm1`, `log1p`,
+//!   `coshRev`, `sinRev`, `cosRev`, `tanRev` (`*Bin`: with the constraint `x`) and `pownRev`
+//!   with `n < 0` are checked as accurate (within one ulp); `powRev1`, `powRev2` as valid
+//!   (the expected result inside ours, ours inside `x`).
 //!
 //! Every vector is run; all failures are collected and printed together with their line in the
 //! data file. Vectors that fail because of a known defect are listed in [`KNOWN_ISSUES`] with
@@ -33,6 +40,7 @@
 use std::collections::BTreeMap;
 
 use interval_core::Interval;
+use interval_core::interval::Overlap;
 use rug::Rational;
 use rug::float::Constant;
 use rug::ops::Pow;
@@ -103,6 +111,36 @@ const REQUIRED_OPS: &[&str] = &[
     "isEntire",
     "isSingleton",
     "isMember",
+    "floor",
+    "ceil",
+    "trunc",
+    "sign",
+    "roundTiesToEven",
+    "roundTiesToAway",
+    "cancelMinus",
+    "cancelPlus",
+    "sqrRev",
+    "sqrRevBin",
+    "absRev",
+    "absRevBin",
+    "pownRev",
+    "pownRevBin",
+    "mulRev",
+    "mulRevTen",
+    "coshRev",
+    "sinRevBin",
+    "cosRevBin",
+    "tanRevBin",
+    "powRev1",
+    "powRev2",
+    "overlap",
+    "asinh",
+    "acosh",
+    "atanh",
+    "expm1",
+    "log1p",
+    "rootn",
+    "hypot",
 ];
 
 const MAX: f64 = f64::MAX;
@@ -131,6 +169,32 @@ enum Literal {
     Interval(Bare),
     Number(f64),
     Bool(bool),
+    /// A state of the `overlap` relation (`before`, `meets`, ..., `bothEmpty`).
+    State(Overlap),
+}
+
+/// The `overlap` state named `w` in the suite's spelling.
+fn overlap_state(w: &str) -> Option<Overlap> {
+    use Overlap::*;
+    Some(match w {
+        "bothEmpty" => BothEmpty,
+        "firstEmpty" => FirstEmpty,
+        "secondEmpty" => SecondEmpty,
+        "before" => Before,
+        "meets" => Meets,
+        "overlaps" => Overlaps,
+        "starts" => Starts,
+        "containedBy" => ContainedBy,
+        "finishes" => Finishes,
+        "equals" => Equals,
+        "finishedBy" => FinishedBy,
+        "contains" => Contains,
+        "startedBy" => StartedBy,
+        "overlappedBy" => OverlappedBy,
+        "metBy" => MetBy,
+        "after" => After,
+        _ => return None,
+    })
 }
 
 /// One test vector: `op args = expected;`.
@@ -393,6 +457,9 @@ fn parse_literals(
             }
             Tok::Word(w) if w == "true" => out.push(Literal::Bool(true)),
             Tok::Word(w) if w == "false" => out.push(Literal::Bool(false)),
+            Tok::Word(w) if overlap_state(w).is_some() => {
+                out.push(Literal::State(overlap_state(w).expect("checked")));
+            }
             Tok::Word(w) => out.push(Literal::Number(
                 parse_number(w).map_err(|e| format!("line {line}: {e}"))?,
             )),
@@ -768,6 +835,16 @@ fn check_number(ours: f64, expected: f64) -> Outcome {
     }
 }
 
+/// `inf` and `sup`: the same number with the same sign of zero (IEEE 1788-2015 §12.12.8:
+/// `inf` of a zero lower bound is `−0`, `sup` of a zero upper bound is `+0`).
+fn check_signed_number(ours: f64, expected: f64) -> Outcome {
+    if same(ours, expected) && ours.is_sign_negative() == expected.is_sign_negative() {
+        Ok(None)
+    } else {
+        Err(format!("expected {}, got {}", hex(expected), hex(ours)))
+    }
+}
+
 /// `mid`: NaN for empty, 0 for entire, `∓MAX` for half-unbounded intervals, otherwise a
 /// nearest `f64` to the exact midpoint.
 fn check_mid(x: I, ours: f64, expected: f64) -> Outcome {
@@ -902,6 +979,14 @@ fn unary_tight(op: &str) -> Option<fn(I) -> I> {
         "sqr" => I::sqr,
         "sqrt" => I::sqrt,
         "abs" => I::abs,
+        "floor" => I::floor,
+        "ceil" => I::ceil,
+        "trunc" => I::trunc,
+        "sign" => I::sign,
+        "roundTiesToEven" => I::round_ties_to_even,
+        "roundTiesToAway" => I::round_ties_to_away,
+        "sqrRev" => I::sqr_rev,
+        "absRev" => I::abs_rev,
         _ => return None,
     })
 }
@@ -916,6 +1001,12 @@ fn binary_tight(op: &str) -> Option<fn(I, I) -> I> {
         "max" => I::max,
         "intersection" => I::intersection,
         "convexHull" => I::convex_hull,
+        "cancelMinus" => I::cancel_minus,
+        "cancelPlus" => I::cancel_plus,
+        "sqrRevBin" => I::sqr_rev_in,
+        "absRevBin" => I::abs_rev_in,
+        "mulRev" => I::mul_rev,
+        "hypot" => I::hypot,
         _ => return None,
     })
 }
@@ -937,6 +1028,15 @@ fn unary_accurate(op: &str) -> Option<fn(I) -> I> {
         "sinh" => I::sinh,
         "cosh" => I::cosh,
         "tanh" => I::tanh,
+        "asinh" => I::asinh,
+        "acosh" => I::acosh,
+        "atanh" => I::atanh,
+        "expm1" => I::expm1,
+        "log1p" => I::log1p,
+        "coshRev" => I::cosh_rev,
+        "sinRev" => I::sin_rev,
+        "cosRev" => I::cos_rev,
+        "tanRev" => I::tan_rev,
         _ => return None,
     })
 }
@@ -945,6 +1045,20 @@ fn binary_accurate(op: &str) -> Option<fn(I, I) -> I> {
     Some(match op {
         "pow" => I::pow,
         "atan2" => I::atan2,
+        "coshRevBin" => I::cosh_rev_in,
+        "sinRevBin" => I::sin_rev_in,
+        "cosRevBin" => I::cos_rev_in,
+        "tanRevBin" => I::tan_rev_in,
+        _ => return None,
+    })
+}
+
+/// Operations documented as valid (an enclosure) without an ulp bound: the expected, tight,
+/// result must be contained in ours.
+fn ternary_valid(op: &str) -> Option<fn(I, I, I) -> I> {
+    Some(match op {
+        "powRev1" => I::pow_rev1_in,
+        "powRev2" => I::pow_rev2_in,
         _ => return None,
     })
 }
@@ -1035,6 +1149,7 @@ fn run(v: &Vector) -> Outcome {
         return match op {
             "mid" => check_mid(x, got, want),
             "rad" => check_rad(x, got, want),
+            "inf" | "sup" => check_signed_number(got, want),
             _ => check_number(got, want),
         };
     }
@@ -1061,6 +1176,66 @@ fn run(v: &Vector) -> Outcome {
                 check_tight(got, want)
             } else {
                 check_accurate(op, &[x], Some(n), got, want)
+            }
+        }
+        "mulRevTen" => {
+            arity(v, 3, 1)?;
+            let (b, c, x) = (
+                interval_at(args, 0)?,
+                interval_at(args, 1)?,
+                interval_at(args, 2)?,
+            );
+            check_tight(b.mul_rev_in(c, x), interval_at(exp, 0)?)
+        }
+        "powRev1" | "powRev2" => {
+            arity(v, 3, 1)?;
+            let f = ternary_valid(op).expect("listed");
+            let (b, c, x) = (
+                interval_at(args, 0)?,
+                interval_at(args, 1)?,
+                interval_at(args, 2)?,
+            );
+            let (got, want) = (f(b, c, x), interval_at(exp, 0)?);
+            if want.subset(got) && got.subset(x) {
+                Ok(None)
+            } else {
+                Err(format!(
+                    "{} does not enclose {} within x",
+                    show(got),
+                    show(want)
+                ))
+            }
+        }
+        "pownRev" | "pownRevBin" | "rootn" => {
+            let bin = op == "pownRevBin";
+            arity(v, if bin { 3 } else { 2 }, 1)?;
+            let c = interval_at(args, 0)?;
+            let x = if bin {
+                interval_at(args, 1)?
+            } else {
+                I::ENTIRE
+            };
+            let n = number_at(args, if bin { 2 } else { 1 })?;
+            if n != n.trunc() || n.abs() > 64.0 {
+                return Err(format!("exponent {n} is not an integer in [-64, 64]"));
+            }
+            let n = n as i32;
+            if op == "rootn" {
+                return check_tight(c.rootn(n), interval_at(exp, 0)?);
+            }
+            let got = c.pown_rev_in(x, n);
+            if n >= 0 {
+                check_tight(got, interval_at(exp, 0)?)
+            } else {
+                check_accurate(op, &[c], Some(n), got, interval_at(exp, 0)?)
+            }
+        }
+        "overlap" => {
+            arity(v, 2, 1)?;
+            let got = interval_at(args, 0)?.overlap(interval_at(args, 1)?);
+            match exp.first() {
+                Some(Literal::State(want)) if *want == got => Ok(None),
+                other => Err(format!("expected {other:?}, got {got:?}")),
             }
         }
         "mulRevToPair" => {

@@ -73,6 +73,8 @@ macro_rules! forward_inherent {
     };
 }
 
+pub(crate) mod big;
+pub(crate) mod dyadic;
 mod eft;
 #[cfg(all(target_arch = "x86_64", target_feature = "avx512f"))]
 mod embedded;

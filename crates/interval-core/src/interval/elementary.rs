@@ -21,6 +21,13 @@
 
 use super::Interval;
 use crate::float::Float;
+use crate::float::dyadic::Dyadic;
+use core::cmp::Ordering;
+
+/// The largest `|n|` for which `pown` computes `xⁿ` exactly (a significand of at most
+/// `53·|n|` bits) and rounds it once each way; larger powers use directed chains and the
+/// correctly rounded `pow`, within one ulp.
+const EXACT_POWER_MAX: u32 = 64;
 
 /// A lower bound of the exact value whose round-to-nearest `f64` value is `r`: `r` itself
 /// when the value is known to be exact, otherwise the next `f64` below.
@@ -60,6 +67,39 @@ pub(super) fn increasing<T: Float>(
     outward(lo, hi)
 }
 
+/// Enclosure of an increasing function `f` over `[a, b]` from its correctly rounded values,
+/// intersected with the exact brackets `known(a)`, `known(b)` of the function's values at the
+/// endpoints (range facts such as `exp(x) ≤ 1` for `x ≤ 0` or `k ≤ log2(x) < k + 1` for
+/// `2ᵏ ≤ x < 2ᵏ⁺¹`, which make a bound tight wherever the exact value is a float or the
+/// rounded value crossed such a float), and clamped to `[min, max]`.
+#[inline(always)]
+pub(super) fn increasing_known<T: Float>(
+    a: T,
+    b: T,
+    f: fn(f64) -> f64,
+    known: fn(f64) -> (f64, f64),
+    min: f64,
+    max: f64,
+) -> Interval<T> {
+    let (a, b) = (a.to_f64(), b.to_f64());
+    let ra = f(a);
+    let rb = if a == b { ra } else { f(b) };
+    let lo = below(ra, false).max(known(a).0).max(min);
+    let hi = above(rb, false).min(known(b).1).min(max);
+    outward(lo, hi)
+}
+
+/// The exponent `k` with `2ᵏ ≤ x < 2ᵏ⁺¹`, for a positive finite `x` (subnormals included).
+fn ilogb(x: f64) -> i64 {
+    let bits = x.to_bits();
+    let biased = ((bits >> 52) & 0x7ff) as i64;
+    if biased == 0 {
+        -1074 + 63 - i64::from((bits & ((1 << 52) - 1)).leading_zeros())
+    } else {
+        biased - 1023
+    }
+}
+
 /// True for a positive power of two (normal or subnormal) in `f64`.
 fn is_pow2(x: f64) -> bool {
     if !(x > 0.0 && x.is_finite()) {
@@ -80,27 +120,130 @@ const POW10: [f64; 23] = [
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
 
-fn is_zero(x: f64) -> bool {
-    x == 0.0
+/// `2ᵏ` for `−1074 ≤ k ≤ 1023`, from its bit pattern (subnormal powers included).
+fn exact_pow2(k: i32) -> f64 {
+    if k >= -1022 {
+        f64::from_bits(((k + 1023) as u64) << 52)
+    } else {
+        f64::from_bits(1u64 << (k + 1074))
+    }
 }
 
-fn is_one(x: f64) -> bool {
-    x == 1.0
+/// `2ᵏ` as a lower bound (`k` an integer): exact in range, 0 below it, `MAX` above it.
+fn pow2_below(k: f64) -> f64 {
+    if k < -1074.0 {
+        0.0
+    } else if k > 1023.0 {
+        f64::MAX
+    } else {
+        exact_pow2(k as i32)
+    }
 }
 
-/// `exp2(x)` is exact for the integers whose power of two is an `f64` (subnormals included).
-fn exp2_exact(x: f64) -> bool {
-    x == x.trunc() && (-1074.0..=1023.0).contains(&x)
+/// `2ᵏ` as an upper bound (`k` an integer): exact in range, the smallest subnormal below it,
+/// `+∞` above it.
+fn pow2_above(k: f64) -> f64 {
+    if k < -1074.0 {
+        f64::MIN_POSITIVE_SUBNORMAL
+    } else if k > 1023.0 {
+        f64::INFINITY
+    } else {
+        exact_pow2(k as i32)
+    }
 }
 
-/// `exp10(x)` is exact for the integers `0 ≤ x ≤ 22`.
-fn exp10_exact(x: f64) -> bool {
-    x == x.trunc() && (0.0..=22.0).contains(&x)
+/// Exact brackets of `eˣ`: `1` at 0, `≤ 1` for `x < 0`, `≥ 1` for `x > 0`.
+fn exp_known(x: f64) -> (f64, f64) {
+    if x == 0.0 {
+        (1.0, 1.0)
+    } else if x < 0.0 {
+        (0.0, 1.0)
+    } else {
+        (1.0, f64::INFINITY)
+    }
 }
 
-/// `log10(x)` is exact for `x = 10^k`, `0 ≤ k ≤ 22`.
-fn log10_exact(x: f64) -> bool {
-    (1.0..=1e22).contains(&x) && POW10.contains(&x)
+/// Exact brackets of `2ˣ`: `2^⌊x⌋ ≤ 2ˣ ≤ 2^⌈x⌉` (exact at the integers of the `f64` range).
+fn exp2_known(x: f64) -> (f64, f64) {
+    if !x.is_finite() {
+        return if x > 0.0 {
+            (f64::MAX, f64::INFINITY)
+        } else {
+            (0.0, 0.0)
+        };
+    }
+    (pow2_below(x.floor()), pow2_above(x.ceil()))
+}
+
+/// Exact brackets of `10ˣ`: `10^⌊x⌋ ≤ 10ˣ ≤ 10^⌈x⌉` where those are `f64`s (`0..=22`),
+/// `10ˣ ≤ 1` for `x ≤ 0`.
+fn exp10_known(x: f64) -> (f64, f64) {
+    if !x.is_finite() {
+        return if x > 0.0 {
+            (f64::MAX, f64::INFINITY)
+        } else {
+            (0.0, 0.0)
+        };
+    }
+    let (f, c) = (x.floor(), x.ceil());
+    let lo = if (0.0..=22.0).contains(&f) {
+        POW10[f as usize]
+    } else {
+        0.0
+    };
+    let hi = if (0.0..=22.0).contains(&c) {
+        POW10[c as usize]
+    } else if c < 0.0 {
+        1.0
+    } else {
+        f64::INFINITY
+    };
+    (lo, hi)
+}
+
+/// Exact brackets of `ln x` for `x ≥ 0`: `0` at 1, its sign elsewhere, `−∞` at 0.
+fn log_known(x: f64) -> (f64, f64) {
+    if x == 0.0 {
+        (f64::NEG_INFINITY, f64::NEG_INFINITY)
+    } else if x == 1.0 {
+        (0.0, 0.0)
+    } else if x < 1.0 {
+        (f64::NEG_INFINITY, 0.0)
+    } else {
+        (0.0, f64::INFINITY)
+    }
+}
+
+/// Exact brackets of `log2 x` for `x ≥ 0`: `k ≤ log2 x < k + 1` for `2ᵏ ≤ x < 2ᵏ⁺¹` (so
+/// `k` exactly at `x = 2ᵏ`), `−∞` at 0.
+fn log2_known(x: f64) -> (f64, f64) {
+    if x == 0.0 {
+        return (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    }
+    if x == f64::INFINITY {
+        return (f64::MAX, f64::INFINITY);
+    }
+    let k = ilogb(x) as f64;
+    (k, if is_pow2(x) { k } else { k + 1.0 })
+}
+
+/// Exact brackets of `log10 x` for `x ≥ 0`: `k ≤ log10 x < k + 1` for `10ᵏ ≤ x < 10ᵏ⁺¹`
+/// with `0 ≤ k ≤ 21` (`k` exactly at `x = 10ᵏ`, `k ≤ 22`), the sign elsewhere, `−∞` at 0.
+fn log10_known(x: f64) -> (f64, f64) {
+    if x == 0.0 {
+        return (f64::NEG_INFINITY, f64::NEG_INFINITY);
+    }
+    if x < 1.0 {
+        return (f64::NEG_INFINITY, 0.0);
+    }
+    let k = POW10.iter().rposition(|&p| p <= x).unwrap_or(0);
+    if POW10[k] == x {
+        (k as f64, k as f64)
+    } else if k < 22 {
+        (k as f64, k as f64 + 1.0)
+    } else {
+        (22.0, f64::INFINITY)
+    }
 }
 
 /// `+0.0` for either zero, the value itself otherwise.
@@ -129,10 +272,14 @@ fn mag_pow<T: Float>(m: T, k: u32) -> (T, T) {
         base_lo = base_lo.mul_down(base_lo);
         base_hi = base_hi.mul_up(base_hi);
     }
-    // Equal or adjacent chains already hold the tight bounds within one ulp (the tight
-    // lower and upper bounds both lie in [acc_lo, acc_hi]): skip the costly `pow`.
-    if acc_hi <= acc_lo.next_up() {
+    // Equal chains are exact.
+    if acc_hi == acc_lo {
         return (acc_lo, acc_hi);
+    }
+    // Moderate powers of finite values: the exact power, rounded once each way.
+    if k <= EXACT_POWER_MAX && m.is_finite() {
+        let p = Dyadic::of(m).powi(k);
+        return (p.round(false), p.round(true));
     }
     let r = core_math::pow(plus_zero(m.to_f64()), f64::from(k));
     (
@@ -146,12 +293,35 @@ fn mag_pow<T: Float>(m: T, k: u32) -> (T, T) {
 fn inv_mag_pow<T: Float>(m: T, k: u32) -> (T, T) {
     let (p_lo, p_hi) = mag_pow(m, k);
     let r = core_math::pow(m.to_f64(), -f64::from(k));
-    (
-        T::ONE
-            .div_down(p_hi)
-            .max_nan(T::from_f64_down(below(r, false))),
-        T::ONE.div_up(p_lo).min_nan(T::from_f64_up(above(r, false))),
-    )
+    let mut lo = T::ONE
+        .div_down(p_hi)
+        .max_nan(T::from_f64_down(below(r, false)));
+    let mut hi = T::ONE.div_up(p_lo).min_nan(T::from_f64_up(above(r, false)));
+    if k <= EXACT_POWER_MAX && m.is_finite() && lo != hi {
+        // Move each bound inward while its neighbour still encloses 1/mᵏ, deciding
+        // `c ≥ 1/mᵏ` exactly as `c·mᵏ ≥ 1`. The bracket is within an ulp or two of tight,
+        // so a few steps suffice.
+        let p = Dyadic::of(m).powi(k);
+        let one = Dyadic::of(1.0f64);
+        let vs_recip = |c: T| Dyadic::of(c).mul(&p).cmp(&one);
+        for _ in 0..4 {
+            let c = hi.next_down();
+            if c >= lo && c.is_finite() && vs_recip(c) != Ordering::Less {
+                hi = c;
+            } else {
+                break;
+            }
+        }
+        for _ in 0..4 {
+            let c = lo.next_up();
+            if c <= hi && c.is_finite() && vs_recip(c) != Ordering::Greater {
+                lo = c;
+            } else {
+                break;
+            }
+        }
+    }
+    (lo, hi)
 }
 
 /// Whether CORE-MATH's `pow(x, y)` (with `x ≥ 0`) is the exact value, or the exact limit,
@@ -189,9 +359,12 @@ fn pow_corner(x: f64, y: f64) -> (f64, f64) {
 impl<T: Float> Interval<T> {
     /// `xⁿ` for an integer `n` (IEEE 1788 `pown`), over the set `{xⁿ : x ∈ self, x ≠ 0 if n < 0}`.
     ///
-    /// **Accuracy:** each bound is within 1 ulp of the tight bound, and exact whenever the
-    /// power is computed exactly by directed multiplication (for example small integers to
-    /// small powers). `n = 0, 1, 2, −1` are tight (`[1, 1]`, `self`, [`Interval::sqr`],
+    /// **Accuracy:** tight for `|n| ≤ 64` on finite bounds: `xᵏ` is computed exactly (an
+    /// exact dyadic significand of at most `53·k` bits) and rounded once each way, and a bound
+    /// of `x⁻ᵏ` is moved inward while `c·xᵏ` compared exactly with 1 allows it (so
+    /// `pown([0.01, 2.33], −2)` has the upper bound 10000). For `|n| > 64` each bound is
+    /// within 1 ulp of the tight bound (directed chains and the correctly rounded `pow`).
+    /// `n = 0, 1, 2, −1` are tight (`[1, 1]`, `self`, [`Interval::sqr`],
     /// [`Interval::recip`]).
     ///
     /// **Why:** `|x|^|n|` is computed on nonnegative magnitudes by binary powering twice, once
@@ -297,7 +470,9 @@ impl<T: Float> Interval<T> {
     /// `eˣ`.
     ///
     /// **Accuracy:** each bound within 1 ulp of the tight bound; tight at `x = 0`
-    /// (`exp(0) = 1`), at `x = −∞` (lower bound 0) and on overflow (`[MAX, +∞]`).
+    /// (`exp(0) = 1`), at `x = −∞` (lower bound 0) and on overflow (`[MAX, +∞]`); the upper
+    /// bound of a non-positive interval is exactly 1, as is the lower bound of a
+    /// non-negative one (`eˣ ≤ 1` for `x ≤ 0`, `≥ 1` for `x ≥ 0`).
     /// **Why:** CORE-MATH `exp` is correctly rounded (proved), so one outward step from its
     /// result encloses the exact value; `exp` is increasing and positive.
     ///
@@ -319,11 +494,11 @@ impl<T: Float> Interval<T> {
         if self.is_empty() {
             return self;
         }
-        increasing(
+        increasing_known(
             self.lo,
             self.hi,
             core_math::exp,
-            is_zero,
+            exp_known,
             0.0,
             f64::INFINITY,
         )
@@ -332,7 +507,8 @@ impl<T: Float> Interval<T> {
     /// `2ˣ`.
     ///
     /// **Accuracy:** each bound within 1 ulp of the tight bound; tight at every integer `x`
-    /// with `−1074 ≤ x ≤ 1023` (`2ˣ` exact, subnormals included), at `x = −∞` and on overflow.
+    /// with `−1074 ≤ x ≤ 1023` (`2ˣ` exact, subnormals included), at `x = −∞` and on overflow;
+    /// a bound never passes the power of two of the next integer (`2^⌊x⌋ ≤ 2ˣ ≤ 2^⌈x⌉`).
     /// **Why:** CORE-MATH `exp2` is correctly rounded, so one outward step encloses; increasing.
     ///
     /// | `self`      | result          |
@@ -350,11 +526,11 @@ impl<T: Float> Interval<T> {
         if self.is_empty() {
             return self;
         }
-        increasing(
+        increasing_known(
             self.lo,
             self.hi,
             core_math::exp2,
-            exp2_exact,
+            exp2_known,
             0.0,
             f64::INFINITY,
         )
@@ -363,7 +539,8 @@ impl<T: Float> Interval<T> {
     /// `10ˣ`.
     ///
     /// **Accuracy:** each bound within 1 ulp of the tight bound; tight at the integers
-    /// `0 ≤ x ≤ 22` (`10ˣ` exact in `f64`), at `x = −∞` and on overflow.
+    /// `0 ≤ x ≤ 22` (`10ˣ` exact in `f64`), at `x = −∞` and on overflow; a bound never passes
+    /// `10^⌊x⌋`, `10^⌈x⌉` where those are `f64`s, nor 1 for `x ≤ 0`.
     /// **Why:** CORE-MATH `exp10` is correctly rounded, so one outward step encloses;
     /// increasing.
     ///
@@ -376,30 +553,31 @@ impl<T: Float> Interval<T> {
         if self.is_empty() {
             return self;
         }
-        increasing(
+        increasing_known(
             self.lo,
             self.hi,
             core_math::exp10,
-            exp10_exact,
+            exp10_known,
             0.0,
             f64::INFINITY,
         )
     }
 
     /// Enclosure of an increasing logarithm over `self ∩ (0, +∞]`.
-    fn log_like(self, f: fn(f64) -> f64, exact_at: fn(f64) -> bool) -> Self {
+    fn log_like(self, f: fn(f64) -> f64, known: fn(f64) -> (f64, f64)) -> Self {
         if self.is_empty() || self.hi <= T::ZERO {
             return Self::EMPTY;
         }
         let lo = if self.lo > T::ZERO { self.lo } else { T::ZERO };
-        increasing(lo, self.hi, f, exact_at, f64::NEG_INFINITY, f64::INFINITY)
+        increasing_known(lo, self.hi, f, known, f64::NEG_INFINITY, f64::INFINITY)
     }
 
     /// Natural logarithm `ln x` over `self ∩ (0, +∞]` (IEEE 1788 `log`). See also the alias
     /// [`Interval::ln`].
     ///
     /// **Accuracy:** each bound within 1 ulp of the tight bound; tight at `x = 1`
-    /// (`log(1) = 0`), at `x = 0` (lower bound `−∞`) and at `+∞`.
+    /// (`log(1) = 0`), at `x = 0` (lower bound `−∞`) and at `+∞`; bounds keep the sign of
+    /// `log` (`≤ 0` below 1, `≥ 0` above).
     /// **Why:** CORE-MATH `log` is correctly rounded, so one outward step encloses; increasing.
     ///
     /// | `self`       | result        |
@@ -418,7 +596,7 @@ impl<T: Float> Interval<T> {
     /// # Ok::<(), interval_core::IntervalError>(())
     /// ```
     pub fn log(self) -> Self {
-        self.log_like(core_math::log, is_one)
+        self.log_like(core_math::log, log_known)
     }
 
     /// Natural logarithm: an alias of [`Interval::log`] (the IEEE 1788 name), with the same
@@ -431,7 +609,8 @@ impl<T: Float> Interval<T> {
     /// Base-2 logarithm over `self ∩ (0, +∞]`.
     ///
     /// **Accuracy:** each bound within 1 ulp of the tight bound; tight at every power of two
-    /// `x = 2ᵏ` (`log2 = k`, subnormal powers included), at 0 (`−∞`) and `+∞`.
+    /// `x = 2ᵏ` (`log2 = k`, subnormal powers included), at 0 (`−∞`) and `+∞`; a bound never
+    /// leaves `[k, k + 1]` for `2ᵏ ≤ x < 2ᵏ⁺¹`, so `log2([1, MAX]) = [0, 1024]`.
     /// **Why:** CORE-MATH `log2` is correctly rounded, so one outward step encloses; increasing.
     ///
     /// | `self`       | result        |
@@ -440,13 +619,14 @@ impl<T: Float> Interval<T> {
     /// | `[0, 1]`     | `[−∞, 0]`     |
     /// | `[8, 8]`     | `[3, 3]`      |
     pub fn log2(self) -> Self {
-        self.log_like(core_math::log2, is_pow2)
+        self.log_like(core_math::log2, log2_known)
     }
 
     /// Base-10 logarithm over `self ∩ (0, +∞]`.
     ///
     /// **Accuracy:** each bound within 1 ulp of the tight bound; tight at `x = 10ᵏ` for
-    /// `0 ≤ k ≤ 22` (`log10 = k`), at 0 (`−∞`) and `+∞`.
+    /// `0 ≤ k ≤ 22` (`log10 = k`), at 0 (`−∞`) and `+∞`; a bound never leaves `[k, k + 1]`
+    /// for `10ᵏ ≤ x < 10ᵏ⁺¹` (`k ≤ 21`), nor passes 0 for `x ≤ 1`.
     /// **Why:** CORE-MATH `log10` is correctly rounded, so one outward step encloses;
     /// increasing.
     ///
@@ -456,7 +636,7 @@ impl<T: Float> Interval<T> {
     /// | `[0, 1]`      | `[−∞, 0]`     |
     /// | `[1, 1000]`   | `[0, 3]`      |
     pub fn log10(self) -> Self {
-        self.log_like(core_math::log10, log10_exact)
+        self.log_like(core_math::log10, log10_known)
     }
 
     /// Real power `xʸ = e^(y·ln x)` over the IEEE 1788 domain
@@ -539,7 +719,7 @@ impl<T: Float> Interval<T> {
             self.lo,
             self.hi,
             core_math::sinh,
-            is_zero,
+            |x| x == 0.0,
             f64::NEG_INFINITY,
             f64::INFINITY,
         )
@@ -584,7 +764,7 @@ impl<T: Float> Interval<T> {
         if self.is_empty() {
             return self;
         }
-        increasing(self.lo, self.hi, core_math::tanh, is_zero, -1.0, 1.0)
+        increasing(self.lo, self.hi, core_math::tanh, |x| x == 0.0, -1.0, 1.0)
     }
 }
 
@@ -598,6 +778,23 @@ mod tests {
         assert!(is_pow2(f64::from_bits(1)) && is_pow2(f64::from_bits(1 << 20)));
         assert!(!is_pow2(3.0) && !is_pow2(0.0) && !is_pow2(-2.0) && !is_pow2(f64::INFINITY));
         assert!(!is_pow2(f64::from_bits(3)));
+    }
+
+    #[test]
+    fn range_facts_bracket_the_exact_values() {
+        assert_eq!(exact_pow2(-1074), f64::MIN_POSITIVE_SUBNORMAL);
+        assert_eq!(exact_pow2(1023), 2f64.powi(1023));
+        assert_eq!(ilogb(f64::MAX), 1023);
+        assert_eq!(ilogb(f64::MIN_POSITIVE_SUBNORMAL), -1074);
+        assert_eq!(ilogb(f64::from_bits(3)), -1073);
+        assert_eq!(log2_known(f64::MAX), (1023.0, 1024.0));
+        assert_eq!(log2_known(0.25), (-2.0, -2.0));
+        assert_eq!(log10_known(1e22), (22.0, 22.0));
+        assert_eq!(log10_known(999.0), (2.0, 3.0));
+        assert_eq!(exp2_known(-1074.5), (0.0, f64::MIN_POSITIVE_SUBNORMAL));
+        assert_eq!(exp2_known(2.5), (4.0, 8.0));
+        assert_eq!(exp10_known(-0.5), (0.0, 1.0));
+        assert_eq!(exp10_known(3.0), (1000.0, 1000.0));
     }
 
     #[test]

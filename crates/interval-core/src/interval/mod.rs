@@ -1,18 +1,33 @@
 //! The set-based interval type [`Interval`] and its operations.
 //!
 //! Operations live in one file per family, after IEEE 1788-2015: arithmetic (`arith`),
-//! reverse operations (`rev`), elementary functions (`elementary`, `trig`), numeric functions
-//! (this file), boolean relations (`relations`), set operations (`set_ops`), slice operations
-//! (`batch`) and formatting (`fmt`).
+//! cancellative operations (`cancel`), reverse operations (`rev`, `rev_trig`, `rev_pow`),
+//! elementary functions (`elementary`, `trig`, `inverse_hyperbolic`, `exp_log1p`, `roots`),
+//! integer functions (`integer`), numeric functions (this file), boolean relations
+//! (`relations`, `overlap`), set operations (`set_ops`), slice operations (`batch`), exact
+//! reductions of float slices (`reduction`), formatting (`fmt`) and reading literals
+//! (`parse`).
 
 mod arith;
 pub mod batch;
+mod cancel;
 mod elementary;
+mod exp_log1p;
 mod fmt;
+mod integer;
+mod inverse_hyperbolic;
+mod overlap;
+mod parse;
+pub mod reduction;
 mod relations;
 mod rev;
+mod rev_pow;
+mod rev_trig;
+mod roots;
 mod set_ops;
 mod trig;
+
+pub use overlap::Overlap;
 
 use crate::IntervalError;
 use crate::float::Float;
@@ -137,21 +152,27 @@ impl<T: Float> Interval<T> {
         })
     }
 
-    /// Lower bound; `+∞` for the empty interval (IEEE 1788 `inf`).
+    /// Lower bound; `+∞` for the empty interval (IEEE 1788 `inf`). A zero lower bound is
+    /// returned as `−0` (IEEE 1788-2015 §12.12.8), whatever sign the stored zero carries.
     #[inline]
     pub fn inf(self) -> T {
         if self.is_empty() {
             T::INFINITY
+        } else if self.lo == T::ZERO {
+            -T::ZERO
         } else {
             self.lo
         }
     }
 
-    /// Upper bound; `−∞` for the empty interval (IEEE 1788 `sup`).
+    /// Upper bound; `−∞` for the empty interval (IEEE 1788 `sup`). A zero upper bound is
+    /// returned as `+0` (IEEE 1788-2015 §12.12.8), whatever sign the stored zero carries.
     #[inline]
     pub fn sup(self) -> T {
         if self.is_empty() {
             T::NEG_INFINITY
+        } else if self.hi == T::ZERO {
+            T::ZERO
         } else {
             self.hi
         }
@@ -296,5 +317,26 @@ mod tests {
         assert_eq!(iv(1.0, 2.0).mid(), 1.5);
         assert_eq!(Interval::<f64>::ENTIRE.mid(), 0.0);
         assert_eq!(iv(f64::NEG_INFINITY, 1.0).mid(), -f64::MAX);
+    }
+
+    #[test]
+    fn zero_bounds_have_the_standard_signs() {
+        // IEEE 1788-2015 §12.12.8: inf of a zero lower bound is −0, sup of a zero upper
+        // bound is +0, whichever zero is stored.
+        for (a, b) in [(0.0f64, 0.0), (-0.0, -0.0), (0.0, -0.0), (-0.0, 0.0)] {
+            let x = Interval::new(a, b).unwrap();
+            assert!(
+                x.inf() == 0.0 && x.inf().is_sign_negative(),
+                "inf of [{a}, {b}]"
+            );
+            assert!(
+                x.sup() == 0.0 && x.sup().is_sign_positive(),
+                "sup of [{a}, {b}]"
+            );
+        }
+        let y = Interval::new(-0.0f32, 1.0).unwrap();
+        assert!(y.inf().is_sign_negative() && y.sup() == 1.0);
+        let z = Interval::new(-1.0f32, -0.0).unwrap();
+        assert!(z.sup().is_sign_positive() && z.inf() == -1.0);
     }
 }

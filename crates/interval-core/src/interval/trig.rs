@@ -34,11 +34,11 @@ use super::elementary::{above, below, increasing, outward, plus_zero};
 use crate::float::Float;
 
 /// The largest `f64` below π (`std::f64::consts::PI`).
-const PI_DOWN: f64 = core::f64::consts::PI;
+pub(super) const PI_DOWN: f64 = core::f64::consts::PI;
 /// The smallest `f64` above π.
-const PI_UP: f64 = PI_DOWN.next_up();
+pub(super) const PI_UP: f64 = PI_DOWN.next_up();
 /// `2π↓`, exactly twice [`PI_DOWN`], below 2π.
-const TWO_PI_DOWN: f64 = core::f64::consts::TAU;
+pub(super) const TWO_PI_DOWN: f64 = core::f64::consts::TAU;
 /// The largest `f64` below π/2 (`π↓ / 2`).
 const HALF_PI_DOWN: f64 = core::f64::consts::FRAC_PI_2;
 /// The smallest `f64` above π/2.
