@@ -43,4 +43,5 @@ pub use decorated::{DecInterval, Decoration};
 pub use error::IntervalError;
 pub use float::Float;
 pub use interval::Interval;
+pub use interval::overlap::Overlap;
 pub use modal::{Inner, Modal, Outer, Rounding};

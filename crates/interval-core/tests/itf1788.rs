@@ -40,7 +40,7 @@
 use std::collections::BTreeMap;
 
 use interval_core::Interval;
-use interval_core::interval::Overlap;
+use interval_core::Overlap;
 use rug::Rational;
 use rug::float::Constant;
 use rug::ops::Pow;

@@ -7,7 +7,7 @@ mod common;
 
 use common::{TestFloat, config, interval, point_seeds, points_in};
 use interval_core::Interval;
-use interval_core::interval::Overlap;
+use interval_core::Overlap;
 use proptest::prelude::*;
 
 /// The states whose defining conditions hold for `x`, `y`.

@@ -16,7 +16,7 @@ mod exp_log1p;
 mod fmt;
 mod integer;
 mod inverse_hyperbolic;
-mod overlap;
+pub mod overlap;
 mod parse;
 pub mod reduction;
 mod relations;
@@ -26,8 +26,6 @@ mod rev_trig;
 mod roots;
 mod set_ops;
 mod trig;
-
-pub use overlap::Overlap;
 
 use crate::IntervalError;
 use crate::float::Float;

@@ -48,7 +48,7 @@ impl<T: Float> Interval<T> {
     ///
     /// ```
     /// use interval_core::Interval;
-    /// use interval_core::interval::Overlap;
+    /// use interval_core::Overlap;
     /// let x = Interval::new(1.0, 2.0)?;
     /// assert_eq!(x.overlap(Interval::new(2.0, 3.0)?), Overlap::Meets);
     /// assert_eq!(x.overlap(Interval::new(0.0, 3.0)?), Overlap::ContainedBy);
