@@ -79,15 +79,14 @@ impl RayFunction {
     /// Returns an error when the tape uses more variable slots than a ray has, or a tape
     /// cannot be built.
     pub fn from_ray_tape(tape: &Tape) -> Result<Self, Error> {
-        let g = tape;
-        if g.var_count() > RAY_VARS.len() {
+        if tape.var_count() > RAY_VARS.len() {
             return Err(Error::Unsupported(format!(
                 "a ray tape has {} variable slots, this one {}",
                 RAY_VARS.len(),
-                g.var_count()
+                tape.var_count()
             )));
         }
-        let (mut rc, roots) = g.to_context(&RAY_VARS)?;
+        let (mut rc, roots) = tape.to_context(&RAY_VARS)?;
         // Every slot of the ray exists in the context, also where the tape does not use it.
         for name in &RAY_VARS[3..] {
             rc.named_var(name);

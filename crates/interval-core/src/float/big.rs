@@ -116,6 +116,23 @@ impl BigUint {
         r
     }
 
+    /// `self^k`, by squaring and multiplying.
+    pub(crate) fn pow(&self, k: u64) -> Self {
+        let mut acc = Self::from_u64(1);
+        let mut base = self.clone();
+        let mut e = k;
+        while e > 0 {
+            if e & 1 == 1 {
+                acc = acc.mul(&base);
+            }
+            e >>= 1;
+            if e > 0 {
+                base = base.mul(&base);
+            }
+        }
+        acc
+    }
+
     /// `self · m` for a small factor.
     pub(crate) fn mul_small(&self, m: u32) -> Self {
         self.mul(&Self::from_u64(u64::from(m)))

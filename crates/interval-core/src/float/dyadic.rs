@@ -135,19 +135,12 @@ impl Dyadic {
 
     /// `self^k`, exactly.
     pub(crate) fn powi(&self, k: u32) -> Self {
-        let mut acc = Self::of(1.0f64);
-        let mut base = self.clone();
-        let mut e = k;
-        while e > 0 {
-            if e & 1 == 1 {
-                acc = acc.mul(&base);
-            }
-            e >>= 1;
-            if e > 0 {
-                base = base.mul(&base);
-            }
+        Self {
+            neg: self.neg && k % 2 == 1,
+            mag: self.mag.pow(u64::from(k)),
+            exp: self.exp * i64::from(k),
         }
-        acc
+        .normalize()
     }
 
     /// The exact order of `self` and `other`.

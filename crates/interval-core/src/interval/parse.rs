@@ -89,29 +89,12 @@ fn read_decimal(text: &str, at: usize) -> Result<Decimal, IntervalError> {
 /// The exact order of the finite float `c` against `±digits · 10^exp`.
 fn cmp_decimal(c: f64, neg: bool, digits: &BigUint, exp: i64) -> Ordering {
     let d = Dyadic::from_parts(neg, digits.clone(), 0);
-    let ten_k = |k: u64| Dyadic::from_parts(false, pow5(k), k as i64);
+    let ten_k = |k: u64| Dyadic::from_parts(false, BigUint::from_u64(5).pow(k), k as i64);
     if exp >= 0 {
         Dyadic::of(c).cmp(&d.mul(&ten_k(exp as u64)))
     } else {
         Dyadic::of(c).mul(&ten_k(exp.unsigned_abs())).cmp(&d)
     }
-}
-
-/// `5^k`.
-fn pow5(k: u64) -> BigUint {
-    let mut acc = BigUint::from_u64(1);
-    let mut base = BigUint::from_u64(5);
-    let mut e = k;
-    while e > 0 {
-        if e & 1 == 1 {
-            acc = acc.mul(&base);
-        }
-        e >>= 1;
-        if e > 0 {
-            base = base.mul(&base);
-        }
-    }
-    acc
 }
 
 /// The tightest bounds `(lo, hi)` in `T` of the decimal number `text` (already validated as

@@ -224,23 +224,29 @@ impl CpuQueries<'_> {
             return RootResult::NoRoot;
         }
         if let Some(eval) = ev.scoped.within(&self.scoped, scope, t) {
-            return match ray.beam().t_range_within(&self.scene.geometry.bounds(), t) {
-                Some(t) => {
-                    eval.set_ray(ray);
-                    self.finder.first_root(eval, t, root, c)
-                }
-                None => RootResult::NoRoot,
-            };
+            return self.first_root_in_bounds(eval, ray, t, c);
         }
         match (&self.grid, ev.grid.as_mut()) {
             (Some(g), Some(gev)) => g.first_root_within(gev, ray, t, self.finder, root, c),
-            _ => match ray.beam().t_range_within(&self.scene.geometry.bounds(), t) {
-                Some(t) => {
-                    ev.geo.beam.set_ray(ray);
-                    self.finder.first_root(&mut ev.geo.beam, t, root, c)
-                }
-                None => RootResult::NoRoot,
-            },
+            _ => self.first_root_in_bounds(&mut ev.geo.beam, ray, t, c),
+        }
+    }
+
+    /// The first root along `ray` for parameters in `t` inside the scene bounds, searched
+    /// with `eval`'s function (the ray is set on it).
+    fn first_root_in_bounds(
+        &self,
+        eval: &mut BeamEval,
+        ray: &Ray,
+        t: Interval<f64>,
+        c: &mut RootCounters,
+    ) -> RootResult {
+        match ray.beam().t_range_within(&self.scene.geometry.bounds(), t) {
+            Some(t) => {
+                eval.set_ray(ray);
+                self.finder.first_root(eval, t, &self.plan.root, c)
+            }
+            None => RootResult::NoRoot,
         }
     }
 
