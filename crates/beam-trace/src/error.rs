@@ -38,6 +38,9 @@ pub enum Error {
         /// What is wrong.
         message: String,
     },
+    /// Data handed in or read back is malformed (a float map's size, a PFM file's header).
+    #[error("{0}")]
+    Data(String),
     /// A render backend cannot run the scene, or failed.
     #[error("{backend} backend: {message}")]
     Backend {

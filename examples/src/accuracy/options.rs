@@ -30,6 +30,10 @@ pub struct Args {
     /// Smoke run: tiny images, a small reference and fewer settings.
     #[arg(long)]
     pub quick: bool,
+    /// Only these methods (comma-separated, as `--shadows` writes them), without the
+    /// epsilon and precision variants.
+    #[arg(long, value_delimiter = ',')]
+    pub methods: Option<Vec<String>>,
 }
 
 /// The settings the time ratios are relative to.
@@ -77,7 +81,13 @@ impl Options {
             height,
             reference_samples: args.reference_samples.unwrap_or(n),
             out_dir,
-            settings: settings(args.quick)?,
+            settings: match &args.methods {
+                Some(methods) => methods
+                    .iter()
+                    .map(|m| m.parse().map(Setting::new))
+                    .collect::<Result<_, _>>()?,
+                None => settings(args.quick)?,
+            },
         })
     }
 

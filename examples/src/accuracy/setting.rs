@@ -15,18 +15,20 @@ pub(crate) enum Family {
     BeamOther,
     MinkowskiStochastic,
     MinkowskiBeam,
+    Certified,
     Epsilon,
     F32,
 }
 
 impl Family {
-    pub(crate) const ALL: [Family; 8] = [
+    pub(crate) const ALL: [Family; 9] = [
         Family::Stochastic,
         Family::StochasticCache,
         Family::Beam,
         Family::BeamOther,
         Family::MinkowskiStochastic,
         Family::MinkowskiBeam,
+        Family::Certified,
         Family::Epsilon,
         Family::F32,
     ];
@@ -39,6 +41,7 @@ impl Family {
             Family::BeamOther => "beam-all / beam-quadtree",
             Family::MinkowskiStochastic => "minkowski:stochastic:N",
             Family::MinkowskiBeam => "minkowski:beam:n",
+            Family::Certified => "certified:TOL",
             Family::Epsilon => "root epsilon varied",
             Family::F32 => "f32 precision",
         }
@@ -79,6 +82,11 @@ pub(crate) const FULL: &[&str] = &[
     "minkowski:beam:4",
     "minkowski:beam:7",
     "minkowski:beam:16",
+    "certified:0.5",
+    "certified:0.25",
+    "certified:0.1",
+    "certified:0.05",
+    "certified:0.02",
 ];
 
 /// Methods of a `--quick` run.
@@ -93,6 +101,8 @@ pub(crate) const QUICK: &[&str] = &[
     "beam-quadtree:8",
     "minkowski:stochastic:16",
     "minkowski:beam:4",
+    "certified:0.25",
+    "certified:0.05",
 ];
 
 /// What a run changes besides the shadow method.
@@ -165,6 +175,13 @@ impl Setting {
             ShadowSpec::Minkowski {
                 fine: Fine::Beams { n },
             } => format!("mb{n}"),
+            ShadowSpec::Certified { tolerance, budget } => {
+                if budget == ShadowSpec::DEFAULT_BUDGET {
+                    format!("c{tolerance}")
+                } else {
+                    format!("c{tolerance}/{budget}")
+                }
+            }
         };
         match self.variant {
             Variant::Default => method,
@@ -194,6 +211,7 @@ impl Setting {
                 },
             ) => Family::MinkowskiStochastic,
             (_, ShadowSpec::Minkowski { .. }) => Family::MinkowskiBeam,
+            (_, ShadowSpec::Certified { .. }) => Family::Certified,
         }
     }
 }

@@ -7,8 +7,8 @@
 //!        [--primary screen-boxes|screen-rays|per-pixel] [--undecided-depth D]
 //!        [--classification FILE.png] [--cost-map FILE.png]
 //!        [--shadows stochastic:N|beam:n|beam-all:n|beam-quadtree:n|
-//!                   minkowski:stochastic:N|minkowski:beam:n] [--shadow-classes FILE.png]
-//!        [--precision f64|f32]
+//!                   minkowski:stochastic:N|minkowski:beam:n|certified:TOL[:BUDGET]]
+//!        [--shadow-classes FILE.png] [--shadow-fraction PREFIX] [--precision f64|f32]
 //! ```
 //!
 //! `SCENE` is a TOML scene file or the name of a catalog surface.
@@ -62,7 +62,9 @@ struct Args {
     #[arg(long)]
     rays_per_pixel: Option<u32>,
     /// Soft-shadow method of area lights: stochastic:N (stochastic:N:cache), beam:n,
-    /// beam-all:n, beam-quadtree:n, minkowski:stochastic:N or minkowski:beam:n.
+    /// beam-all:n, beam-quadtree:n, minkowski:stochastic:N, minkowski:beam:n, or
+    /// certified:TOL[:BUDGET] (the visible fraction proven to lie in a bound at most TOL
+    /// wide, with at most BUDGET beams per point, default 1024).
     #[arg(long)]
     shadows: Option<ShadowSpec>,
     /// Where the searches run: cpu (the reliable CPU renderer) or gpu (wgpu compute).
@@ -72,6 +74,11 @@ struct Args {
     /// penumbra orange).
     #[arg(long)]
     shadow_classes: Option<PathBuf>,
+    /// Write, per area light `i`, the per-pixel visible fraction and its proven bounds as
+    /// PFM files (`PREFIX-light<i>-fraction.pfm`, `-lower.pfm`, `-upper.pfm`) and the bound
+    /// width as an image (`PREFIX-light<i>-width.png`: black proven exactly, white unknown).
+    #[arg(long)]
+    shadow_fraction: Option<String>,
     /// Floating-point format of the interval evaluations of g and g' on rays and beams:
     /// f64 (default) or f32 (as a GPU evaluates; sound, wider enclosures).
     #[arg(long)]
@@ -213,6 +220,10 @@ fn run(args: Args) -> Result<(), String> {
     {
         check_writable(p).map_err(|e| format!("cannot write output: {e}"))?;
     }
+    if let Some(prefix) = &args.shadow_fraction {
+        check_writable(&shadow_file(prefix, 0, "width.png"))
+            .map_err(|e| format!("cannot write output: {e}"))?;
+    }
     println!(
         "scene {}: {} × {} pixels, {} surface(s), {} light(s), {} thread(s)",
         scene.name,
@@ -260,10 +271,44 @@ fn run(args: Args) -> Result<(), String> {
         maps.image.write_png(p).map_err(|e| e.to_string())?;
         println!("wrote {}", p.display());
     }
+    if let Some(prefix) = &args.shadow_fraction {
+        write_shadow_fractions(&out, prefix)?;
+    }
     if let Some(p) = &args.stats {
         let json = serde_json::to_string_pretty(&out.stats).map_err(|e| e.to_string())?;
         write_atomic(p, |f| std::io::Write::write_all(f, json.as_bytes()))
             .map_err(|e| e.to_string())?;
+        println!("wrote {}", p.display());
+    }
+    Ok(())
+}
+
+/// The file of area light `light`'s map `what` under `prefix`.
+fn shadow_file(prefix: &str, light: usize, what: &str) -> PathBuf {
+    PathBuf::from(format!("{prefix}-light{light}-{what}"))
+}
+
+/// `--shadow-fraction`: each area light's fraction and bound maps and bound-width image.
+fn write_shadow_fractions(out: &beam_trace::RenderOutput, prefix: &str) -> Result<(), String> {
+    let maps = out.shadows.as_ref().ok_or_else(|| {
+        "--shadow-fraction: the scene has no area light with shadows on, so no soft-shadow pass \
+         ran"
+        .to_string()
+    })?;
+    for light in 0..maps.fractions.len() {
+        let [fraction, lower, upper] = maps.light_maps(light).ok_or("no such light")?;
+        for (map, what) in [
+            (fraction, "fraction.pfm"),
+            (lower, "lower.pfm"),
+            (upper, "upper.pfm"),
+        ] {
+            let p = shadow_file(prefix, light, what);
+            map.write_pfm(&p).map_err(|e| e.to_string())?;
+            println!("wrote {}", p.display());
+        }
+        let p = shadow_file(prefix, light, "width.png");
+        let image = maps.bound_width_image(light).ok_or("no such light")?;
+        image.write_png(&p).map_err(|e| e.to_string())?;
         println!("wrote {}", p.display());
     }
     Ok(())

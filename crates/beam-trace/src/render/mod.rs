@@ -28,6 +28,7 @@ use crate::backend::cpu::Cpu;
 use crate::backend::{Backend, Routing};
 use crate::beam::BoxClass;
 use crate::error::Error;
+use crate::float_map::FloatMap;
 use crate::image::Image;
 use crate::plan::{Pass, Plan, Primary};
 use crate::progress::Progress;
@@ -70,10 +71,58 @@ pub struct ShadowMaps {
     /// Per area light (in the scene's order of area lights), the visible fraction averaged
     /// over the pixel's shaded samples; NaN where none is shaded.
     pub fractions: Vec<Vec<f32>>,
+    /// Per area light, the proven lower bound of each pixel's mean visible fraction (the
+    /// fraction the shading uses: 0 for samples facing away from the light); NaN where no
+    /// sample is shaded.
+    pub lower: Vec<Vec<f32>>,
+    /// Per area light, the proven upper bound, likewise.
+    pub upper: Vec<Vec<f32>>,
+    /// Width of the maps in pixels.
+    pub width: u32,
+    /// Height of the maps in pixels.
+    pub height: u32,
     /// The classes as an image (the soft-shadow paper's Fig. 7): proven lit green, proven
     /// umbra blue, penumbra orange, facing away from every area light blue-grey, no shaded
     /// surface dark grey.
     pub image: Image,
+}
+
+impl ShadowMaps {
+    /// Area light `light`'s fraction, lower and upper bound maps, `None` past the last area
+    /// light.
+    pub fn light_maps(&self, light: usize) -> Option<[FloatMap; 3]> {
+        let map = |v: &Vec<Vec<f32>>| FloatMap {
+            width: self.width,
+            height: self.height,
+            values: v[light].clone(),
+        };
+        (light < self.fractions.len())
+            .then(|| [map(&self.fractions), map(&self.lower), map(&self.upper)])
+    }
+
+    /// Area light `light`'s bound widths as an image: black where the fraction is proven
+    /// exactly, brighter with the width (`sqrt(width)`, white for the unknown `[0, 1]`),
+    /// dark red where no sample is shaded; `None` past the last area light.
+    pub fn bound_width_image(&self, light: usize) -> Option<Image> {
+        let (lower, upper) = (self.lower.get(light)?, self.upper.get(light)?);
+        let pixels = lower
+            .iter()
+            .zip(upper)
+            .map(|(&lo, &hi)| {
+                let w = hi - lo;
+                if w.is_finite() {
+                    [w.max(0.0).sqrt(); 3]
+                } else {
+                    [0.25, 0.0, 0.0]
+                }
+            })
+            .collect();
+        Some(Image {
+            width: self.width,
+            height: self.height,
+            pixels,
+        })
+    }
 }
 
 /// Renders `scene` on the CPU: plans the passes, runs them, and returns the image and
@@ -178,6 +227,10 @@ pub fn render_on<'a>(
             image: shadow_class_image(w, h, &soft.classes),
             classes: soft.classes,
             fractions: soft.fractions,
+            lower: soft.lower,
+            upper: soft.upper,
+            width: w,
+            height: h,
         });
     } else {
         passes.push(PassStats::skipped(Pass::SoftShadows.name()));

@@ -7,6 +7,9 @@ use std::time::Instant;
 use super::pixels::Pixels;
 use crate::backend::Queries;
 use crate::error::Error;
+use interval_core::Interval;
+
+use crate::ibox::ipoint;
 use crate::plan::{Pass, Plan};
 use crate::progress::Progress;
 use crate::sample::SHADOW_OFFSET;
@@ -26,6 +29,10 @@ pub(super) struct SoftShadows {
     /// Per area light, per pixel: the visible fraction averaged over the pixel's shaded
     /// samples (NaN where there is none).
     pub(super) fractions: Vec<Vec<f32>>,
+    /// Per area light, per pixel: the proven lower bound of that mean (NaN likewise).
+    pub(super) lower: Vec<Vec<f32>>,
+    /// Per area light, per pixel: the proven upper bound of that mean (NaN likewise).
+    pub(super) upper: Vec<Vec<f32>>,
 }
 
 /// For each area light in turn (so that each has its own time), the visible fraction from
@@ -48,8 +55,10 @@ pub(super) fn soft_shadows(
     let npix = pixels.len();
     let mut classes: Vec<Option<ShadowClass>> = vec![None; npix];
     let mut per_light = Vec::new();
-    let mut fractions = Vec::new();
+    let mut maps: Vec<LightMaps> = Vec::new();
     let mut total = SoftShadowCounters::default();
+    let mut total_widths = BoundWidths::default();
+    let tolerance = plan.shadow_method.method().tolerance();
     for (li, light) in scene.lights.iter().enumerate() {
         let Some(light) = light.as_area() else {
             continue;
@@ -89,13 +98,15 @@ pub(super) fn soft_shadows(
             progress.advance(chunk.len() as u64);
         }
         progress.end();
-        // Per pixel: the fraction averaged over its shaded samples, and its class.
+        // Per pixel: the fraction and its bounds averaged over its shaded samples, and
+        // its class.
         let mut answer = slots.iter().zip(&answers).peekable();
-        let mut light_fractions = Vec::with_capacity(npix);
+        let mut light_maps = LightMaps::with_capacity(npix);
+        let mut widths = BoundWidths::default();
         for (p, pixel_class) in classes.iter_mut().enumerate() {
             let mut class: Option<ShadowClass> = None;
             let mut shadowed = false;
-            let (mut sum, mut weight) = (0f32, 0f32);
+            let mut mean = PixelMean::default();
             for j in pixels.range(p) {
                 let s = &pixels.samples[j];
                 if s.hit.is_none() {
@@ -107,13 +118,13 @@ pub(super) fn soft_shadows(
                         (*lv, lv.class())
                     }
                     _ => {
+                        // No direct light from it: the fraction the shading uses is 0.
                         c.back_facing += 1;
-                        (LightVisibility::estimate(0.0), ShadowClass::BackFacing)
+                        (LightVisibility::UMBRA, ShadowClass::BackFacing)
                     }
                 };
                 vis[j * nl + li] = lv.fraction;
-                sum += s.weight * lv.fraction;
-                weight += s.weight;
+                mean.add(s.weight, &lv);
                 shadowed |= lv.fraction < 1.0;
                 class = Some(ShadowClass::merge(class, sample_class));
             }
@@ -127,22 +138,147 @@ pub(super) fn soft_shadows(
             if let Some(cl) = class {
                 *pixel_class = Some(ShadowClass::merge(*pixel_class, cl));
             }
-            light_fractions.push(if weight > 0.0 { sum / weight } else { f32::NAN });
+            let lv = mean.value();
+            if let Some(lv) = lv {
+                widths.add(lv.upper - lv.lower, tolerance);
+            }
+            light_maps.push(lv);
         }
+        widths.count(&mut c);
         total.add(&c);
-        fractions.push(light_fractions);
+        total_widths.merge(&widths);
+        maps.push(light_maps);
         per_light.push(PassStats::new(
             &format!("light {li} ({name})"),
             tl.elapsed(),
             &crate::stats::Counters::list(&c),
         ));
     }
+    total_widths.count(&mut total);
     Ok(SoftShadows {
         pass: PassStats::of(Pass::SoftShadows, t0.elapsed(), &total),
         lights: per_light,
         classes,
-        fractions,
+        fractions: maps.iter().map(|m| m.fraction.clone()).collect(),
+        lower: maps.iter().map(|m| m.lower.clone()).collect(),
+        upper: maps.into_iter().map(|m| m.upper).collect(),
     })
+}
+
+/// One light's per-pixel maps: the fraction and its proven bounds (NaN where no sample is
+/// shaded).
+struct LightMaps {
+    fraction: Vec<f32>,
+    lower: Vec<f32>,
+    upper: Vec<f32>,
+}
+
+impl LightMaps {
+    fn with_capacity(n: usize) -> Self {
+        Self {
+            fraction: Vec::with_capacity(n),
+            lower: Vec::with_capacity(n),
+            upper: Vec::with_capacity(n),
+        }
+    }
+
+    fn push(&mut self, lv: Option<LightVisibility>) {
+        let lv = lv.unwrap_or(LightVisibility {
+            fraction: f32::NAN,
+            lower: f32::NAN,
+            upper: f32::NAN,
+        });
+        self.fraction.push(lv.fraction);
+        self.lower.push(lv.lower);
+        self.upper.push(lv.upper);
+    }
+}
+
+/// The weighted mean of a pixel's samples' visibility: the estimate in `f32` as the shading
+/// weighs it, the bounds in outward-rounded interval arithmetic, so that the pixel's true
+/// mean fraction lies in the mean bound.
+struct PixelMean {
+    sum: f32,
+    weight: f32,
+    lower: Interval<f64>,
+    upper: Interval<f64>,
+    weights: Interval<f64>,
+}
+
+impl Default for PixelMean {
+    fn default() -> Self {
+        Self {
+            sum: 0.0,
+            weight: 0.0,
+            lower: ipoint(0.0),
+            upper: ipoint(0.0),
+            weights: ipoint(0.0),
+        }
+    }
+}
+
+impl PixelMean {
+    fn add(&mut self, weight: f32, lv: &LightVisibility) {
+        let w = ipoint(f64::from(weight));
+        self.sum += weight * lv.fraction;
+        self.weight += weight;
+        self.lower = self.lower + w * ipoint(f64::from(lv.lower));
+        self.upper = self.upper + w * ipoint(f64::from(lv.upper));
+        self.weights = self.weights + w;
+    }
+
+    /// The mean, `None` without a weighed sample.
+    fn value(&self) -> Option<LightVisibility> {
+        if self.weight <= 0.0 {
+            return None;
+        }
+        let lower = (self.lower / self.weights)
+            .cast::<f32>()
+            .inf()
+            .clamp(0.0, 1.0);
+        let upper = (self.upper / self.weights)
+            .cast::<f32>()
+            .sup()
+            .clamp(0.0, 1.0);
+        Some(LightVisibility {
+            fraction: self.sum / self.weight,
+            lower,
+            upper,
+        })
+    }
+}
+
+/// The widths of the pixels' proven bounds.
+#[derive(Default)]
+struct BoundWidths {
+    pixels: u64,
+    certified: u64,
+    sum: f64,
+    max: f32,
+}
+
+impl BoundWidths {
+    fn add(&mut self, width: f32, tolerance: f32) {
+        self.pixels += 1;
+        self.certified += u64::from(width <= tolerance);
+        self.sum += f64::from(width);
+        self.max = self.max.max(width);
+    }
+
+    fn merge(&mut self, o: &BoundWidths) {
+        self.pixels += o.pixels;
+        self.certified += o.certified;
+        self.sum += o.sum;
+        self.max = self.max.max(o.max);
+    }
+
+    /// Writes the figures into `c` (replacing what an addition of counters summed).
+    fn count(&self, c: &mut SoftShadowCounters) {
+        let ppm = |x: f64| (x * 1e6).round() as u64;
+        c.certified_pixels = self.certified;
+        c.bound_width_mean_ppm = ppm(self.sum / self.pixels.max(1) as f64);
+        c.bound_width_max_ppm = ppm(f64::from(self.max));
+    }
 }
 
 /// Queries per batch.

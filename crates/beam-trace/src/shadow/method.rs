@@ -178,6 +178,12 @@ pub trait ShadowMethod: Send + Sync {
     /// The method and its settings, as the command line writes them (`beam:7`).
     fn name(&self) -> String;
 
+    /// The width of the bound `[lower, upper]` at which the method stops refining (0 for
+    /// the methods that refine to a fixed amount of work instead).
+    fn tolerance(&self) -> f32 {
+        0.0
+    }
+
     /// The visible fraction of `q.light` from `q.origin`.
     fn visibility(
         &self,

@@ -12,6 +12,8 @@
 //! * [`beam`]: one interval shadow beam over the whole light proves a point fully lit;
 //!   only the points it cannot clear trace `n × n` sub-beams (the reliable soft-shadow
 //!   method; also its always-`n²` and quadtree variants);
+//! * [`certified`]: the light subdivided as a quadtree until the visible fraction is
+//!   proven to lie in a bound no wider than a tolerance, with an estimate inside it;
 //! * [`minkowski`]: the penumbra detection of the Minkowski-operator method carried to
 //!   implicit surfaces: a lit test on the occluders grown by the light, an umbra test,
 //!   and a fine method only in the penumbra left.
@@ -21,6 +23,7 @@
 //! bounds on the visible fraction, and counts its work in [`ShadowWork`].
 
 pub mod beam;
+pub mod certified;
 pub mod hard;
 mod method;
 pub mod minkowski;
@@ -33,9 +36,10 @@ pub use method::{
     LightVisibility, Occluders, Occlusion, ShadowClass, ShadowMethod, ShadowQuery, ShadowWork,
 };
 pub use patch::Patch;
-pub use spec::{Fine, ShadowSpec, Strategy};
+pub use spec::{Fine, ShadowSpec, Strategy, Tolerance};
 
 use beam::BeamShadows;
+use certified::Certified;
 use minkowski::Minkowski;
 use stochastic::Stochastic;
 
@@ -46,6 +50,9 @@ impl ShadowSpec {
             ShadowSpec::Stochastic { samples, cache } => Box::new(Stochastic { samples, cache }),
             ShadowSpec::Beam { n, strategy } => Box::new(BeamShadows { n, strategy }),
             ShadowSpec::Minkowski { fine } => Box::new(Minkowski { fine }),
+            ShadowSpec::Certified { tolerance, budget } => {
+                Box::new(Certified { tolerance, budget })
+            }
         }
     }
 }

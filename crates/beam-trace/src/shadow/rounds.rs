@@ -365,6 +365,8 @@ mod tests {
             "minkowski:beam:4",
             "minkowski:stochastic:9",
             "stochastic:16",
+            "certified:0.1:64",
+            "certified:0.5",
         ] {
             let spec: ShadowSpec = spec.parse().unwrap();
             let method = spec.method();

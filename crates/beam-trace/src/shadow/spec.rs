@@ -31,10 +31,55 @@ pub enum Fine {
     },
 }
 
+/// The width of a certified bound on a visible fraction, in millionths (so that a spec
+/// compares and hashes exactly): `0.05` is `Tolerance(50_000)`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+pub struct Tolerance(pub u32);
+
+impl Tolerance {
+    /// Millionths per unit.
+    pub const SCALE: u32 = 1_000_000;
+
+    /// The width.
+    pub fn value(self) -> f64 {
+        f64::from(self.0) / f64::from(Self::SCALE)
+    }
+}
+
+impl fmt::Display for Tolerance {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}", self.value())
+    }
+}
+
+impl FromStr for Tolerance {
+    type Err = String;
+
+    /// A decimal in `(0, 1]` with at most six digits after the point.
+    fn from_str(text: &str) -> Result<Self, String> {
+        let v: f64 = text
+            .parse()
+            .map_err(|_| format!("the tolerance must be a number, got '{text}'"))?;
+        if !(v > 0.0 && v <= 1.0) {
+            return Err(format!(
+                "the tolerance must lie in (0, 1] (a width of the visible fraction), got '{text}'"
+            ));
+        }
+        let m = (v * f64::from(Self::SCALE)).round();
+        if (m / f64::from(Self::SCALE) - v).abs() > 1e-12 || m < 1.0 {
+            return Err(format!(
+                "the tolerance takes at most six digits after the point, got '{text}'"
+            ));
+        }
+        Ok(Tolerance(m as u32))
+    }
+}
+
 /// A soft-shadow method and its settings.
 ///
 /// Written `stochastic:N` (`stochastic:N:cache` with the last-occluder cache), `beam:n`,
-/// `beam-all:n`, `beam-quadtree:n`, `minkowski:stochastic:N` or `minkowski:beam:n`.
+/// `beam-all:n`, `beam-quadtree:n`, `minkowski:stochastic:N`, `minkowski:beam:n`,
+/// `certified:TOL` or `certified:TOL:BUDGET`.
 ///
 /// ```
 /// use beam_trace::shadow::{ShadowSpec, Strategy};
@@ -65,6 +110,14 @@ pub enum ShadowSpec {
         /// The method of the undecided points.
         fine: Fine,
     },
+    /// The visible fraction proven to lie in a bound, refined to `tolerance`
+    /// ([`crate::shadow::certified`]).
+    Certified {
+        /// Width of the bound at which the refinement stops.
+        tolerance: Tolerance,
+        /// Largest number of beams per point and light.
+        budget: u32,
+    },
 }
 
 impl ShadowSpec {
@@ -72,6 +125,10 @@ impl ShadowSpec {
     pub const MAX_SAMPLES: u32 = 65_536;
     /// Largest number of sub-beams per side.
     pub const MAX_SIDE: u32 = 64;
+    /// Beams per point and light of `certified:TOL` without a budget.
+    pub const DEFAULT_BUDGET: u32 = 1024;
+    /// Largest budget of beams per point and light.
+    pub const MAX_BUDGET: u32 = 1 << 20;
 }
 
 impl Default for ShadowSpec {
@@ -108,12 +165,20 @@ impl fmt::Display for ShadowSpec {
             ShadowSpec::Minkowski {
                 fine: Fine::Beams { n },
             } => write!(f, "minkowski:beam:{n}"),
+            ShadowSpec::Certified { tolerance, budget } => {
+                if budget == ShadowSpec::DEFAULT_BUDGET {
+                    write!(f, "certified:{tolerance}")
+                } else {
+                    write!(f, "certified:{tolerance}:{budget}")
+                }
+            }
         }
     }
 }
 
 const FORMS: &str = "stochastic:N, stochastic:N:cache, beam:n, beam-all:n, beam-quadtree:n, \
-                     minkowski:stochastic:N, minkowski:beam:n";
+                     minkowski:stochastic:N, minkowski:beam:n, certified:TOL, \
+                     certified:TOL:BUDGET";
 
 fn count(s: &str, text: &str, what: &str, max: u32) -> Result<u32, String> {
     match text.parse::<u32>() {
@@ -131,6 +196,7 @@ impl FromStr for ShadowSpec {
         let parts: Vec<&str> = s.split(':').collect();
         let samples = |t: &str| count(s, t, "number of samples", ShadowSpec::MAX_SAMPLES);
         let side = |t: &str| count(s, t, "number of sub-beams per side", ShadowSpec::MAX_SIDE);
+        let tolerance = |t: &str| t.parse::<Tolerance>().map_err(|e| format!("'{s}': {e}"));
         let beam = |strategy, n: &str| {
             Ok(ShadowSpec::Beam {
                 n: side(n)?,
@@ -157,6 +223,14 @@ impl FromStr for ShadowSpec {
             ["minkowski", "beam", n] => Ok(ShadowSpec::Minkowski {
                 fine: Fine::Beams { n: side(n)? },
             }),
+            ["certified", tol] => Ok(ShadowSpec::Certified {
+                tolerance: tolerance(tol)?,
+                budget: ShadowSpec::DEFAULT_BUDGET,
+            }),
+            ["certified", tol, budget] => Ok(ShadowSpec::Certified {
+                tolerance: tolerance(tol)?,
+                budget: count(s, budget, "budget of beams", ShadowSpec::MAX_BUDGET)?,
+            }),
             _ => Err(format!("unknown shadow method '{s}' (one of: {FORMS})")),
         }
     }
@@ -176,6 +250,9 @@ mod tests {
             "beam-quadtree:8",
             "minkowski:stochastic:32",
             "minkowski:beam:4",
+            "certified:0.05",
+            "certified:0.001:64",
+            "certified:1",
         ] {
             let spec: ShadowSpec = s.parse().unwrap();
             assert_eq!(spec.to_string(), s);
@@ -192,5 +269,20 @@ mod tests {
         let e = "cone:3".parse::<ShadowSpec>().unwrap_err();
         assert!(e.contains("unknown shadow method 'cone:3'"), "{e}");
         assert!("minkowski:beam:65".parse::<ShadowSpec>().is_err());
+        let e = "certified:0".parse::<ShadowSpec>().unwrap_err();
+        assert!(e.contains("(0, 1]"), "{e}");
+        let e = "certified:0.0000001".parse::<ShadowSpec>().unwrap_err();
+        assert!(e.contains("six digits"), "{e}");
+        let e = "certified:0.05:0".parse::<ShadowSpec>().unwrap_err();
+        assert!(e.contains("budget of beams"), "{e}");
+        let e = "certified:x".parse::<ShadowSpec>().unwrap_err();
+        assert!(e.contains("'certified:x'") && e.contains("a number"), "{e}");
+        assert_eq!(
+            "certified:0.05:1024"
+                .parse::<ShadowSpec>()
+                .unwrap()
+                .to_string(),
+            "certified:0.05"
+        );
     }
 }

@@ -188,6 +188,13 @@ counters! {
         rays,
         /// Segments decided by the last-occluder cache.
         cache_hits,
+        /// Pixels whose proven bound on the visible fraction is at most the method's
+        /// tolerance wide (0 for methods without one: proven lit or umbra).
+        certified_pixels,
+        /// Mean width of the pixels' proven bounds, in millionths.
+        bound_width_mean_ppm,
+        /// Largest width of a pixel's proven bound, in millionths.
+        bound_width_max_ppm,
     }
     search: search
 }

@@ -1,0 +1,234 @@
+//! Certified soft shadows: the visible fraction of an area light proven to lie in a bound
+//! `[lo, hi]`, refined until `hi − lo` is at most a tolerance, with an estimate inside it.
+//!
+//! The light is subdivided as a quadtree over its parameters `(u, v)`, level by level
+//! (every part of a level has the same area, so the largest undecided parts are always
+//! split first). For each part a shadow beam from the point over the part is searched with
+//! the rejection and inclusion tests:
+//!
+//! * **rejected** ([`BoxClass::Miss`]): no segment from the point to the part meets a
+//!   surface, so the whole part is visible: its area is added to `lo`;
+//! * **included** ([`BoxClass::Hit`]): every segment meets a surface between the point and
+//!   the light (a proven sign change of a continuous `g` on every ray of the beam), so the
+//!   whole part is hidden: its area is taken from `hi`;
+//! * **undecided**: split into four at the next level, each searched from where the part's
+//!   beam cleared every ray.
+//!
+//! The refinement stops when `hi − lo ≤ tolerance`, or when the next level would exceed the
+//! per-point budget of beams (only as many undecided parts are split as the budget allows,
+//! the bound then stays wider than the tolerance and is reported as it is), or at
+//! [`MAX_LEVEL`]. Areas are dyadic, so `lo` and `hi` are exact sums.
+//!
+//! The estimate that shades the point is `lo` plus, for each part left undecided, its area
+//! times the share of stratified shadow segments into it found free: each part's share is
+//! an unbiased estimate of its visible part (jittered stratified samples are uniform over
+//! the part), and lies in `[0, area]`, so the estimate never leaves `[lo, hi]`.
+//!
+//! Every question is a beam or a segment, asked level by level, so the method runs in
+//! batched rounds ([`super::rounds`]) on any backend: one round per level and one for the
+//! segments.
+
+use super::beam::cleared;
+use super::hard::Visibility;
+use super::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
+use super::patch::Patch;
+use super::spec::{ShadowSpec, Tolerance};
+use super::stochastic::{mix, strata};
+use crate::beam::BoxClass;
+use interval_core::Interval;
+
+/// Deepest level of the subdivision: parts of `2^-MAX_LEVEL` of the light's side.
+pub const MAX_LEVEL: u32 = 10;
+
+/// Segments spread over the parts left undecided (at least one per part).
+pub const ESTIMATE_SEGMENTS: u32 = 16;
+
+/// The certified method.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct Certified {
+    /// Width of the bound at which the refinement stops.
+    pub tolerance: Tolerance,
+    /// Largest number of beams per point and light.
+    pub budget: u32,
+}
+
+/// A square part of the light's parameter square: `[i, i + 1] × [j, j + 1]` scaled by
+/// `2^-level`, and where the beam of its parent cleared every ray.
+#[derive(Copy, Clone, Debug)]
+struct Part {
+    level: u32,
+    i: u32,
+    j: u32,
+    start: f64,
+}
+
+impl Part {
+    /// The whole light.
+    const WHOLE: Part = Part {
+        level: 0,
+        i: 0,
+        j: 0,
+        start: 0.0,
+    };
+
+    /// Its share of the light's area (exact: a power of 4).
+    fn area(&self) -> f64 {
+        0.25f64.powi(self.level as i32)
+    }
+
+    /// The part of `light` it stands for.
+    fn patch(&self, light: &Patch) -> Patch {
+        let s = 0.5f64.powi(self.level as i32);
+        let (i, j) = (f64::from(self.i), f64::from(self.j));
+        light.part(i * s, (i + 1.0) * s, j * s, (j + 1.0) * s)
+    }
+
+    /// Its four quadrants, searched from `start`.
+    fn quadrants(&self, start: f64) -> [Part; 4] {
+        let (i, j) = (2 * self.i, 2 * self.j);
+        [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(di, dj)| Part {
+            level: self.level + 1,
+            i: i + di,
+            j: j + dj,
+            start,
+        })
+    }
+}
+
+/// The bound and the parts left undecided after the refinement.
+struct Refined {
+    /// Proven visible share of the light.
+    lo: f64,
+    /// One minus the proven hidden share.
+    hi: f64,
+    /// Undecided parts.
+    open: Vec<Part>,
+}
+
+impl Certified {
+    /// The quadtree refinement of `q` (see the module documentation).
+    fn refine(
+        &self,
+        occluders: &mut dyn Occluders,
+        q: &ShadowQuery,
+        work: &mut ShadowWork,
+    ) -> Refined {
+        let tolerance = self.tolerance.value();
+        let (mut lo, mut hi) = (0.0f64, 1.0f64);
+        // Undecided parts the budget did not let split.
+        let mut kept: Vec<Part> = Vec::new();
+        let mut asked = vec![Part::WHOLE];
+        let mut used = 0u32;
+        loop {
+            let mut open = Vec::new();
+            for part in &asked {
+                used += 1;
+                if part.level == 0 {
+                    work.initial_beams += 1;
+                } else {
+                    work.sub_beams += 1;
+                }
+                let class = occluders.beam(
+                    q.origin,
+                    &part.patch(&q.light),
+                    part.start,
+                    true,
+                    &mut work.root,
+                );
+                match class {
+                    BoxClass::Miss => lo += part.area(),
+                    BoxClass::Hit { .. } => {
+                        hi -= part.area();
+                        if part.level == 0 {
+                            work.umbra_proofs += 1;
+                        }
+                    }
+                    BoxClass::Undecided { .. } => open.push(Part {
+                        start: cleared(&class),
+                        ..*part
+                    }),
+                }
+                if part.level == 0 && class != BoxClass::Miss {
+                    work.initial_occluded += 1;
+                }
+            }
+            // Parts the budget lets the next level split.
+            let affordable = (self.budget.saturating_sub(used) / 4) as usize;
+            let deepest = open.first().is_some_and(|p| p.level >= MAX_LEVEL);
+            if open.is_empty()
+                || hi - lo <= tolerance
+                || deepest
+                || affordable == 0
+                || !kept.is_empty()
+            {
+                open.extend(kept);
+                return Refined { lo, hi, open };
+            }
+            if affordable < open.len() {
+                // The last round the budget allows: the first parts are split, the others
+                // stay as they are (the bound is then wider than the tolerance).
+                kept = open.split_off(affordable);
+            }
+            asked = open.iter().flat_map(|p| p.quadrants(p.start)).collect();
+        }
+    }
+}
+
+/// The estimate inside the bound: `lo` plus each open part's area times the share of its
+/// stratified segments found free (together [`ESTIMATE_SEGMENTS`], at least one per part).
+fn estimate(
+    occluders: &mut dyn Occluders,
+    q: &ShadowQuery,
+    r: &Refined,
+    work: &mut ShadowWork,
+) -> f64 {
+    if r.open.is_empty() {
+        return r.lo;
+    }
+    let per_part = ESTIMATE_SEGMENTS.div_ceil(r.open.len() as u32).max(1);
+    let mut visible = 0.0;
+    for (k, part) in r.open.iter().enumerate() {
+        let patch = part.patch(&q.light);
+        let mut free = 0u32;
+        for (u, v) in strata(per_part, mix(q.seed ^ (k as u64))) {
+            work.rays += 1;
+            let to = patch.point(u, v);
+            let o = occluders.segment(q.origin, to, part.start, &mut work.root);
+            free += u32::from(o.visibility == Visibility::Lit);
+        }
+        visible += part.area() * f64::from(free) / f64::from(per_part);
+    }
+    (r.lo + visible).clamp(r.lo, r.hi)
+}
+
+impl ShadowMethod for Certified {
+    fn name(&self) -> String {
+        ShadowSpec::Certified {
+            tolerance: self.tolerance,
+            budget: self.budget,
+        }
+        .to_string()
+    }
+
+    fn tolerance(&self) -> f32 {
+        self.tolerance.value() as f32
+    }
+
+    fn visibility(
+        &self,
+        occluders: &mut dyn Occluders,
+        q: &ShadowQuery,
+        work: &mut ShadowWork,
+    ) -> LightVisibility {
+        work.queries += 1;
+        let r = self.refine(occluders, q, work);
+        let fraction = estimate(occluders, q, &r, work);
+        // Outward to f32 (exact for the dyadic areas of at most `MAX_LEVEL` levels).
+        let bound = Interval::new_unchecked(r.lo, r.hi).cast::<f32>();
+        LightVisibility {
+            fraction: (fraction as f32).clamp(bound.inf(), bound.sup()),
+            lower: bound.inf(),
+            upper: bound.sup(),
+        }
+    }
+}
