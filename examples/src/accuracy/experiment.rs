@@ -21,7 +21,7 @@ pub(crate) fn render_with(scene: &Scene, setting: &Setting) -> Result<RenderOutp
 
 pub(crate) fn print_run(r: &RunResult) {
     println!(
-        "  {:<26} {:<16} {:>10.1} ms  rmse {:.5}  max {:.4}  bias {:+.5}  missed {:>5.1}%  lit {:>5.1}%  umbra {:>5.1}%  contradictions {}",
+        "  {:<26} {:<16} {:>10.1} ms  rmse {:.5}  max {:.4}  bias {:+.5}  missed {:>5.1}%  lit {:>5.1}%  umbra {:>5.1}%  widest bound {:.3}  contradictions {}  bound violations {}",
         r.setting.spec.to_string(),
         r.setting.variant_name(),
         r.shadow_ms(),
@@ -31,7 +31,9 @@ pub(crate) fn print_run(r: &RunResult) {
         percent(r.errors.missed, r.errors.shadowed),
         percent(r.proofs.lit, r.proofs.shaded),
         percent(r.proofs.umbra, r.proofs.shaded),
+        r.proofs.widest_bound,
         r.proofs.contradictions,
+        r.proofs.bound_violations,
     );
 }
 
@@ -81,7 +83,7 @@ pub(crate) fn run_scene(path: &Path, opts: &Options) -> Result<SceneReport, Stri
     save(&reference_out.image, "reference")?;
     for &setting in &opts.settings {
         let out = render_with(&scene, &setting)?;
-        let run = measure(setting, &out, &reference)?;
+        let run = measure(setting, &out, &reference, opts.reference_samples)?;
         print_run(&run);
         if setting.is(CLASS_IMAGE)
             && let Some(maps) = &out.shadows

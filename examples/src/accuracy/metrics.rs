@@ -4,8 +4,8 @@
 use std::path::PathBuf;
 use std::time::Duration;
 
-use beam_trace::RenderOutput;
 use beam_trace::shadow::ShadowClass;
+use beam_trace::{RenderOutput, ShadowMaps};
 
 use super::options::BASELINE;
 use super::setting::{Setting, Variant, image_name};
@@ -42,6 +42,11 @@ pub(crate) struct Proofs {
     pub(crate) back_facing: usize,
     /// Proven pixels whose reference fraction says otherwise.
     pub(crate) contradictions: usize,
+    /// Pixels whose proven bound misses the reference by more than 4 standard deviations
+    /// of the reference's mean (at least `4 / samples`).
+    pub(crate) bound_violations: usize,
+    /// Widest proven bound `upper − lower` of a pixel.
+    pub(crate) widest_bound: f32,
 }
 
 /// One render of a scene and how it compares with the reference.
@@ -115,7 +120,10 @@ impl SceneReport {
     }
 
     pub(crate) fn contradictions(&self) -> usize {
-        self.runs.iter().map(|r| r.proofs.contradictions).sum()
+        self.runs
+            .iter()
+            .map(|r| r.proofs.contradictions + r.proofs.bound_violations)
+            .sum()
     }
 
     /// Shadow time of the baseline, or of the reference if the baseline did not run.
@@ -187,18 +195,40 @@ pub(crate) fn check_proofs(classes: &[Option<ShadowClass>], reference: &[f32]) -
     p
 }
 
+/// Checks each pixel's proven bound against the reference mean of `samples` samples.
+fn check_bounds(maps: &ShadowMaps, reference: &[f32], samples: u32, p: &mut Proofs) {
+    let (Some(lower), Some(upper)) = (maps.lower.first(), maps.upper.first()) else {
+        return;
+    };
+    let n = f64::from(samples);
+    for ((&lo, &hi), &r) in lower.iter().zip(upper).zip(reference) {
+        if !(lo.is_finite() && hi.is_finite() && r.is_finite()) {
+            continue;
+        }
+        p.widest_bound = p.widest_bound.max(hi - lo);
+        let r = f64::from(r);
+        let slack = 4.0 * (r * (1.0 - r) / n).sqrt().max(1.0 / n);
+        if f64::from(lo) > r + slack || f64::from(hi) < r - slack {
+            p.bound_violations += 1;
+        }
+    }
+}
+
 pub(crate) fn measure(
     setting: Setting,
     out: &RenderOutput,
     reference: &[f32],
+    reference_samples: u32,
 ) -> Result<RunResult, String> {
     let maps = out.shadows.as_ref().ok_or("no soft-shadow maps")?;
+    let mut proofs = check_proofs(&maps.classes, reference);
+    check_bounds(maps, reference, reference_samples, &mut proofs);
     Ok(RunResult {
         setting,
         shadow_time: shadow_time(out),
         total_time: out.stats.total,
         errors: compare(fractions(out)?, reference),
-        proofs: check_proofs(&maps.classes, reference),
+        proofs,
     })
 }
 

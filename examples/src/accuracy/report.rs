@@ -21,17 +21,17 @@ pub(crate) const LEVELS: [f64; 5] = [0.1, 0.05, 0.02, 0.01, 0.005];
 pub(crate) fn table(md: &mut String, report: &SceneReport) -> fmt::Result {
     writeln!(
         md,
-        "| method | setting | soft shadows (ms) | × {BASELINE} | total (ms) | RMSE | max error | bias | missed shadow | proven lit | proven umbra | contradictions |"
+        "| method | setting | soft shadows (ms) | × {BASELINE} | total (ms) | RMSE | max error | bias | missed shadow | proven lit | proven umbra | largest certified bound width | contradictions | bound violations (> 4σ) |"
     )?;
     writeln!(
         md,
-        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     )?;
     let base = report.baseline_ms();
     for r in &report.runs {
         writeln!(
             md,
-            "| `{}` | {} | {:.1} | {:.2} | {:.1} | {:.5} | {:.4} | {:+.5} | {:.1} % | {:.1} % | {:.1} % | {} |",
+            "| `{}` | {} | {:.1} | {:.2} | {:.1} | {:.5} | {:.4} | {:+.5} | {:.1} % | {:.1} % | {:.1} % | {:.3} | {} | {} |",
             r.setting.spec,
             r.setting.variant_name(),
             r.shadow_ms(),
@@ -43,7 +43,9 @@ pub(crate) fn table(md: &mut String, report: &SceneReport) -> fmt::Result {
             percent(r.errors.missed, r.errors.shadowed),
             percent(r.proofs.lit, r.proofs.shaded),
             percent(r.proofs.umbra, r.proofs.shaded),
+            r.proofs.widest_bound,
             r.proofs.contradictions,
+            r.proofs.bound_violations,
         )?;
     }
     Ok(())
