@@ -62,9 +62,9 @@ struct Args {
     #[arg(long)]
     rays_per_pixel: Option<u32>,
     /// Soft-shadow method of area lights: stochastic:N (stochastic:N:cache), beam:n,
-    /// beam-all:n, beam-quadtree:n, minkowski:stochastic:N, minkowski:beam:n, or
-    /// certified:TOL[:BUDGET] (the visible fraction proven to lie in a bound at most TOL
-    /// wide, with at most BUDGET beams per point, default 1024).
+    /// beam-all:n, beam-quadtree:n, minkowski:stochastic:N, minkowski:beam:n,
+    /// certified:TOL or certified:TOL:BUDGET (the visible fraction proven to lie in a bound
+    /// at most TOL wide, with at most BUDGET beams per point, default 1024).
     #[arg(long)]
     shadows: Option<ShadowSpec>,
     /// Where the searches run: cpu (the reliable CPU renderer) or gpu (wgpu compute).
