@@ -155,13 +155,19 @@ pub(super) fn soft_shadows(
         ));
     }
     total_widths.count(&mut total);
+    let (mut fractions, mut lower, mut upper) = (Vec::new(), Vec::new(), Vec::new());
+    for m in maps {
+        fractions.push(m.fraction);
+        lower.push(m.lower);
+        upper.push(m.upper);
+    }
     Ok(SoftShadows {
         pass: PassStats::of(Pass::SoftShadows, t0.elapsed(), &total),
         lights: per_light,
         classes,
-        fractions: maps.iter().map(|m| m.fraction.clone()).collect(),
-        lower: maps.iter().map(|m| m.lower.clone()).collect(),
-        upper: maps.into_iter().map(|m| m.upper).collect(),
+        fractions,
+        lower,
+        upper,
     })
 }
 

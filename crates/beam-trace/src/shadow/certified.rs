@@ -83,14 +83,14 @@ impl Part {
         light.part(i * s, (i + 1.0) * s, j * s, (j + 1.0) * s)
     }
 
-    /// Its four quadrants, searched from `start`.
-    fn quadrants(&self, start: f64) -> [Part; 4] {
+    /// Its four quadrants, searched from where its own beam cleared every ray.
+    fn quadrants(&self) -> [Part; 4] {
         let (i, j) = (2 * self.i, 2 * self.j);
         [(0, 0), (1, 0), (0, 1), (1, 1)].map(|(di, dj)| Part {
             level: self.level + 1,
             i: i + di,
             j: j + dj,
-            start,
+            start: self.start,
         })
     }
 }
@@ -169,7 +169,7 @@ impl Certified {
                 // stay as they are (the bound is then wider than the tolerance).
                 kept = open.split_off(affordable);
             }
-            asked = open.iter().flat_map(|p| p.quadrants(p.start)).collect();
+            asked = open.iter().flat_map(Part::quadrants).collect();
         }
     }
 }
