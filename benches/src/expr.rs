@@ -225,7 +225,9 @@ pub fn to_fidget(ctx: &Context, root: NodeId) -> Result<(fidget::Context, FNode)
                     BinaryOp::Div => f.div(a, b),
                     BinaryOp::Min => f.min(a, b),
                     BinaryOp::Max => f.max(a, b),
-                    BinaryOp::Pow => return Err("operation 'pow'".into()),
+                    BinaryOp::Pow | BinaryOp::Domain => {
+                        return Err(format!("operation '{}'", op.name()));
+                    }
                 }
                 .map_err(err)?
             }

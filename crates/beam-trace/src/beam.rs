@@ -26,7 +26,7 @@ use crate::ibox::{IBox, ipoint};
 use crate::ray::{Beam, RayFn};
 use crate::root::RootCounters;
 pub use crate::root::search::sign_change;
-use crate::root::search::{Eval, may_vanish, sign_change_ahead};
+use crate::root::search::{Eval, may_vanish, no_root_on_either_side, sign_change_ahead};
 
 /// Where the rendered surface lives along a beam: the scene bounds, outside which rays do
 /// not search. An inclusion proof must place every ray's root inside them, so its two end
@@ -336,7 +336,9 @@ fn search(
         }
         let (gt, continuous) = g.g_checked(t);
         counters.g_evals += 1;
-        if !may_vanish(gt) {
+        if !may_vanish(gt)
+            || (!continuous && no_root_on_either_side(&mut Eval::new(g, counters), t))
+        {
             continue;
         }
         if inclusion

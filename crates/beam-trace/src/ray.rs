@@ -38,6 +38,14 @@ pub trait RayFn {
     /// nearest: for the unreliable baselines only.
     fn g_point(&mut self, t: f64) -> f64;
 
+    /// Enclosures of `g` over `t` on each side of the boundary of a formula's domain
+    /// ([`implicit_expr::BinaryOp::Domain`]), `(inside, outside)`, where exactly one such
+    /// boundary may cross the beam over `t`; `None` otherwise (the default: no domains).
+    /// Every ray's `g` at every parameter of `t` lies in one of the two.
+    fn g_sides(&mut self, _t: Interval<f64>) -> Option<(Interval<f64>, Interval<f64>)> {
+        None
+    }
+
     /// Announces that the following interval evaluations all lie inside `t`, which lies
     /// inside the region of the current scope (the whole ray or beam, or an earlier
     /// restriction), so that an implementation may specialise `g` to it (prune its tape).
@@ -323,6 +331,16 @@ impl RayFn for BeamEval {
     #[inline]
     fn g_point(&mut self, t: f64) -> f64 {
         self.point.g(t)
+    }
+
+    fn g_sides(&mut self, t: Interval<f64>) -> Option<(Interval<f64>, Interval<f64>)> {
+        match self.precision {
+            Precision::F64 => self.interval.g_sides(t),
+            Precision::F32 => {
+                let (inside, outside) = self.interval32.g_sides(t.cast())?;
+                Some((inside.cast(), outside.cast()))
+            }
+        }
     }
 
     /// Prunes the interval tape of `g` of the current precision to the beam over `t`

@@ -513,18 +513,26 @@ fn reduction_simplifies_cells() {
         .unwrap();
     assert!(shortest < full_len, "{shortest} vs {full_len}");
 
-    // The partly undefined union: cells entirely at x < -0.3 are empty (f is undefined
-    // there), although the sphere crosses some of them.
+    // The partly undefined union: where `sqrt(x + 0.3)` is undefined (cells entirely at
+    // x < -0.3) its object is absent, and a cell there keeps the sphere exactly where the
+    // sphere crosses it (its natural extension is the exact range over a box).
     let g = partly_undefined();
     let grid = Grid::build(&g, 10);
-    let mut checked = 0;
+    let (mut crossed, mut empty) = (0, 0);
     for c in all_cells(&grid) {
-        if grid.class_box(c)[0].sup() < -0.3 {
-            assert!(grid.cell_function(c).is_none(), "{c:?}");
-            checked += 1;
+        let b = grid.class_box(c);
+        if b[0].sup() < -0.3 {
+            let sphere = b[0].sqr() + b[1].sqr() + b[2].sqr() - Interval::new(1.0, 1.0).unwrap();
+            let crosses = sphere.contains(0.0);
+            assert_eq!(grid.cell_function(c).is_some(), crosses, "{c:?}");
+            if crosses {
+                crossed += 1;
+            } else {
+                empty += 1;
+            }
         }
     }
-    assert!(checked > 0);
+    assert!(crossed > 0 && empty > 0, "{crossed} {empty}");
 }
 
 // ---------------------------------------------------------------------------------------

@@ -1201,3 +1201,243 @@ bounds = [[-2.0, -2.0, -2.0], [2.0, 2.0, 2.0]]
         assert!(hits > 0, "{formula}: no proven hit to check");
     }
 }
+
+// ---------------------------------------------------------------------------------------
+// 8. Objects with partial domains.
+//
+// Where an object's formula is undefined, the object is absent (docs/renderer.md): the
+// other objects are seen there, a difference removes nothing there, and the boundary of
+// the domain is not a surface.
+
+/// A scene of the given `[[surfaces]]` and `[[csg]]` tables, seen from `(0, 0, 5)`.
+fn domain_scene(tables: &str) -> Scene {
+    scene_from(&format!(
+        r#"
+background = [0.0, 0.0, 0.0]
+[camera]
+eye = [0.0, 0.5, 5.0]
+look_at = [0.0, 0.0, 0.0]
+fov = 40.0
+width = 40
+height = 30
+[[lights]]
+type = "point"
+position = [2.0, 4.0, 5.0]
+{tables}
+"#
+    ))
+}
+
+/// Every reliable finder, with the scene function and through the grid, proves that `ray`
+/// meets no surface: where the ray crosses a domain boundary the jump is no root, not even
+/// a possible one.
+fn assert_no_root(scene: &Scene, what: &str, ray: &Ray) {
+    let s = RootSettings::default();
+    for (m, r) in check_all(scene, what, ray, Truth::Miss, &s) {
+        assert_eq!(r, RootResult::NoRoot, "{what}: {m}");
+    }
+}
+
+/// Every reliable finder proves the first root of `ray` at `t1` (up to the root-finder
+/// tolerance).
+fn assert_proven_root(scene: &Scene, what: &str, ray: &Ray, t1: f64) {
+    let s = RootSettings::default();
+    for (m, r) in check_all(scene, what, ray, Truth::Root(t1), &s) {
+        assert_eq!(outcome(&r), Outcome::ProvenHit, "{what}: {m}: {r:?}");
+    }
+}
+
+fn ray(origin: [f64; 3], dir: [f64; 3]) -> Ray {
+    Ray {
+        origin: DVec3::from(origin),
+        dir: DVec3::from(dir),
+    }
+}
+
+const FLOOR: &str = r#"
+[[surfaces]]
+name = "floor"
+formula = "y + 1"
+bounds = [[-3.0, -1.25, -3.0], [3.0, -1.0, 3.0]]
+clip = true
+material = { color = [0.7, 0.7, 0.68] }
+"#;
+
+#[test]
+fn floor_with_an_object_undefined_everywhere_renders_as_the_floor_alone() {
+    // `sqrt(-1 - x² - z²)` is nowhere defined: as a set-based interval it is empty, and
+    // `min(floor, empty)` used to hide the floor wherever the ghost's box reached.
+    let ghost = r#"
+[[surfaces]]
+name = "ghost"
+formula = "sqrt(-1 - x^2 - z^2) + y"
+bounds = [[-1.0, -1.25, -1.0], [1.0, -1.0, 1.0]]
+material = { color = [1.0, 0.0, 0.0] }
+"#;
+    let alone = run(&domain_scene(FLOOR));
+    let with_ghost = run(&domain_scene(&format!("{FLOOR}{ghost}")));
+    assert!(
+        alone.image.pixels.iter().any(|p| p[0] > 0.1),
+        "the floor is in view"
+    );
+    assert_eq!(alone.image.pixels, with_ghost.image.pixels);
+    assert_eq!(alone.box_classes, with_ghost.box_classes);
+}
+
+#[test]
+fn sqrt_surface_next_to_a_sphere() {
+    // `z - sqrt(x)` is defined for x ≥ 0 only; the ball lies where it is not.
+    let scene = domain_scene(
+        r#"
+[[surfaces]]
+name = "root"
+formula = "z - sqrt(x)"
+bounds = [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]
+[[surfaces]]
+name = "ball"
+formula = "(x + 0.6)^2 + y^2 + z^2 - 0.09"
+bounds = [[-0.9, -0.3, -0.3], [-0.3, 0.3, 0.3]]
+"#,
+    );
+    // The ball is seen, and its hits are proven.
+    assert_proven_root(
+        &scene,
+        "to the ball",
+        &ray([-0.6, 0.0, 5.0], [0.0, 0.0, -1.0]),
+        4.7,
+    );
+    // The surface itself: 0.5 − √x = 0 at x = 0.25.
+    assert_proven_root(
+        &scene,
+        "to the root",
+        &ray([2.0, 0.0, 0.5], [-1.0, 0.0, 0.0]),
+        1.75,
+    );
+    // Inside the solid (z < √x) across the boundary x = 0 into the undefined half, and back:
+    // a jump between −0.5 and the absent object, which is not a surface.
+    assert_no_root(
+        &scene,
+        "out of the domain",
+        &ray([2.0, 0.0, -0.5], [-1.0, 0.0, 0.0]),
+    );
+    assert_no_root(
+        &scene,
+        "into the domain",
+        &ray([-2.0, 0.0, -0.5], [1.0, 0.0, 0.0]),
+    );
+
+    // Every pixel whose rays all meet the ball shows it (before, the root's empty value
+    // over x < 0 hid it).
+    let out = run(&scene);
+    let cam = &scene.camera;
+    let centre = DVec3::new(-0.6, 0.0, 0.0);
+    let mut on_ball = 0;
+    for y in 0..cam.height() {
+        for x in 0..cam.width() {
+            let rays = pixel_rays(cam, x, y);
+            if rays
+                .iter()
+                .all(|r| matches!(sphere_truth(r, centre, 0.3), Truth::Root(_)))
+            {
+                on_ball += 1;
+                let c = out.image.get(x, y);
+                assert!(
+                    c.iter().any(|&v| v > 0.05),
+                    "pixel ({x}, {y}) shows the ball: {c:?}"
+                );
+            }
+        }
+    }
+    assert!(on_ball > 4, "the ball covers {on_ball} pixels");
+}
+
+#[test]
+fn ln_and_asin_domains() {
+    let ln = domain_scene(
+        r#"
+[[surfaces]]
+formula = "ln(x) + 2 - y"
+bounds = [[-3.0, -3.0, -3.0], [3.0, 3.0, 3.0]]
+"#,
+    );
+    // ln(x) + 2 − y = 0 at y = 0: x = e⁻².
+    let t = 4.0 - (-2.0_f64).exp();
+    assert_proven_root(
+        &ln,
+        "ln: to the surface",
+        &ray([4.0, 0.0, 0.0], [-1.0, 0.0, 0.0]),
+        t,
+    );
+    // From inside the solid (ln x < y − 2) out through x = 0, where ln x → −∞.
+    assert_no_root(
+        &ln,
+        "ln: out of the domain",
+        &ray([1.0, 2.9, 0.0], [-1.0, 0.0, 0.0]),
+    );
+
+    let asin = domain_scene(
+        r#"
+[[surfaces]]
+formula = "z - asin(x)"
+bounds = [[-2.0, -2.0, -2.0], [2.0, 2.0, 2.0]]
+"#,
+    );
+    let t = 0.5_f64.sin();
+    assert_proven_root(
+        &asin,
+        "asin: to the surface",
+        &ray([0.0, 0.0, 0.5], [1.0, 0.0, 0.0]),
+        t,
+    );
+    // z = −1.9 lies below asin(x) ≥ −π/2 for every |x| ≤ 1: inside the solid up to |x| = 1.
+    for dir in [[1.0, 0.0, 0.0], [-1.0, 0.0, 0.0]] {
+        let what = format!("asin: out of the domain along {dir:?}");
+        assert_no_root(&asin, &what, &ray([0.0, 0.0, -1.9], dir));
+    }
+}
+
+#[test]
+fn csg_difference_with_a_partial_domain_object() {
+    // The hole `√x + y² + z² < 0.5` exists for x ≥ 0 only: where it is undefined the cube
+    // keeps its front face (before, `max(cube, −empty)` erased the cube there).
+    let scene = domain_scene(
+        r#"
+[[surfaces]]
+name = "cube"
+formula = "max(abs(x), abs(y), abs(z)) - 0.8"
+bounds = [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]
+[[surfaces]]
+name = "hole"
+formula = "sqrt(x) + y^2 + z^2 - 0.5"
+bounds = [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]
+[[csg]]
+name = "holed"
+op = "difference"
+children = ["cube", "hole"]
+"#,
+    );
+    for x in [-0.4, 0.1, 0.5] {
+        let what = format!("to the cube's face at x = {x}");
+        assert_proven_root(&scene, &what, &ray([x, 0.0, 5.0], [0.0, 0.0, -1.0]), 4.2);
+    }
+    // The hole is a cavity inside the cube (on y = z = 0 it spans 0 <= x < 0.25): the side
+    // faces are there, and from inside the solid its curved wall at x = 0.25 is a root.
+    assert_proven_root(
+        &scene,
+        "left face",
+        &ray([-2.0, 0.0, 0.0], [1.0, 0.0, 0.0]),
+        1.2,
+    );
+    assert_proven_root(
+        &scene,
+        "right face",
+        &ray([2.0, 0.0, 0.0], [-1.0, 0.0, 0.0]),
+        1.2,
+    );
+    assert_proven_root(
+        &scene,
+        "cavity wall",
+        &ray([0.5, 0.0, 0.0], [-1.0, 0.0, 0.0]),
+        0.25,
+    );
+}

@@ -55,6 +55,15 @@ impl Backend for GpuBackend {
 
     fn support(&self, kind: QueryKind, scene: &Scene, plan: &Plan) -> Support {
         let no = |why: &str| Support::No(why.to_string());
+        let searches = matches!(
+            kind,
+            QueryKind::Beams | QueryKind::Roots | QueryKind::Segments | QueryKind::SoftShadows
+        );
+        if searches && scene.geometry.tape().has_domain() {
+            // A kernel would leave every piece across a domain boundary open (a possible
+            // root where the CPU proves none): those queries go back to the CPU backend.
+            return no("the kernels have no two-sided test of domain boundaries");
+        }
         match kind {
             QueryKind::Beams | QueryKind::Roots | QueryKind::Segments => Support::Yes,
             QueryKind::HitPoints => {

@@ -195,6 +195,14 @@ fn reference(op: Op, v: &OpInput) -> Interval<f64> {
         Op::Unary(UnaryOp::Acos) => a.acos(),
         Op::Unary(UnaryOp::Atan) => a.atan(),
         Op::Binary(BinaryOp::Pow) => a.pow(b),
+        Op::Binary(BinaryOp::Domain) => {
+            let absent = Interval::new(f64::MAX, f64::INFINITY).unwrap();
+            match a.bounds() {
+                Some((_, hi)) if hi <= 0.0 => b,
+                Some((lo, _)) if lo > 0.0 => absent,
+                _ => b.convex_hull(absent),
+            }
+        }
         // f64::round rounds halves away from zero, as the library's round does.
         Op::Unary(UnaryOp::Round) => exact(f64::round),
         Op::Unary(UnaryOp::Not) => match a.bounds() {

@@ -334,7 +334,7 @@ impl Context {
                     return a;
                 }
             }
-            BinaryOp::Pow => {}
+            BinaryOp::Pow | BinaryOp::Domain => {}
         }
         self.intern(node)
     }

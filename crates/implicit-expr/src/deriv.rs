@@ -190,6 +190,13 @@ impl Context {
                 self.div(n, b)
             }
             BinaryOp::Min | BinaryOp::Max => self.select_slope(op, a, b, da, db),
+            // `f'` inside the domain, the absent object's `+inf` outside, and unbounded
+            // (the slope of `not`) over any interval where `d` crosses 0, the jump.
+            BinaryOp::Domain => {
+                let inside = self.binary(BinaryOp::Domain, a, db);
+                let jump = self.unary(UnaryOp::SlopeNot, a);
+                self.add(inside, jump)
+            }
             BinaryOp::Pow => {
                 // b·a^(b-1)·da + a^b·ln(a)·db
                 let one = self.constant(1.0).expect("finite");

@@ -114,6 +114,7 @@ pub mod catalog;
 pub mod constant;
 pub mod context;
 mod deriv;
+mod domain;
 pub mod error;
 pub mod eval;
 pub mod number;

@@ -60,6 +60,16 @@ pub trait Number: Copy + Send + Sync + std::fmt::Debug + 'static {
         true
     }
 
+    /// `domain(d, f)` with an undecided test (one that takes both signs over the region)
+    /// resolved to one side: `f` when `inside`, the absent object when not. Returns the
+    /// value and whether the test was undecided. Types without regions (points) have no
+    /// undecided test: the default is [`binary`](Self::binary) and `false`.
+    #[inline(always)]
+    fn domain_side(d: Self, f: Self, inside: bool) -> (Self, bool) {
+        let _ = inside;
+        (Self::binary(BinaryOp::Domain, d, f), false)
+    }
+
     /// For set types, an undefined (empty) result widened to the whole line; the value
     /// itself otherwise and for point types.
     ///
@@ -133,5 +143,5 @@ pub fn binary_slice_by_element<N: Number>(op: BinaryOp, a: &[N], b: &[N], out: &
             }
         };
     }
-    each!(Add, Sub, Mul, Div, Min, Max, Pow);
+    each!(Add, Sub, Mul, Div, Min, Max, Pow, Domain);
 }

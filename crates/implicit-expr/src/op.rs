@@ -72,6 +72,13 @@ pub enum BinaryOp {
     Max,
     /// `a ^ b` for a real exponent (IEEE 1788 `pow`: defined for `a > 0`, and `a = 0, b > 0`)
     Pow,
+    /// `domain(d, f)`: `f` where `d <= 0`, and `+inf` (no object: outside every solid)
+    /// where `d > 0`. The scene function wraps a formula with a partial domain in it
+    /// ([`Context::domain_extension`](crate::Context::domain_extension)), so that where the
+    /// formula is undefined its object is absent instead of hiding the others. It jumps
+    /// where `d` crosses 0: over an interval on which `d` takes both signs its value is
+    /// `[inf F, +inf]` and it counts as undefined (no continuity proof holds there).
+    Domain,
 }
 
 impl UnaryOp {
@@ -182,7 +189,7 @@ impl UnaryOp {
 
 impl BinaryOp {
     /// Every binary operation, in declaration order.
-    pub const ALL: [BinaryOp; 7] = [
+    pub const ALL: [BinaryOp; 8] = [
         BinaryOp::Add,
         BinaryOp::Sub,
         BinaryOp::Mul,
@@ -190,6 +197,7 @@ impl BinaryOp {
         BinaryOp::Min,
         BinaryOp::Max,
         BinaryOp::Pow,
+        BinaryOp::Domain,
     ];
 
     /// The name used in printed graphs and in the `.vm` format.
@@ -202,13 +210,15 @@ impl BinaryOp {
             BinaryOp::Min => "min",
             BinaryOp::Max => "max",
             BinaryOp::Pow => "pow",
+            BinaryOp::Domain => "domain",
         }
     }
 
     /// Whether the operation is defined for every pair of reals (`a / b` and `a ^ b` are
-    /// not).
+    /// not), and continuous wherever it is (`domain` jumps, so it counts as partial: its
+    /// interval evaluation is checked on every box).
     pub fn is_total(self) -> bool {
-        !matches!(self, BinaryOp::Div | BinaryOp::Pow)
+        !matches!(self, BinaryOp::Div | BinaryOp::Pow | BinaryOp::Domain)
     }
 
     /// Whether `op(a, b) == op(b, a)` for all values (used to share `a + b` and `b + a`).

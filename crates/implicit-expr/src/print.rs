@@ -158,7 +158,7 @@ impl<'a> Printer<'a> {
             Node::Binary(op, ..) => match op {
                 BinaryOp::Add | BinaryOp::Sub => Prec::Sum,
                 BinaryOp::Mul | BinaryOp::Div => Prec::Product,
-                BinaryOp::Min | BinaryOp::Max => Prec::Atom,
+                BinaryOp::Min | BinaryOp::Max | BinaryOp::Domain => Prec::Atom,
                 BinaryOp::Pow => Prec::Power,
             },
         }
@@ -241,6 +241,11 @@ impl<'a> Printer<'a> {
                     }
                     BinaryOp::Div => (N(a, Slot::ProductLeft(lead)), "/", N(b, Slot::Tight)),
                     BinaryOp::Pow => (N(a, Slot::Base), "^", N(b, Slot::Tight)),
+                    BinaryOp::Domain => {
+                        parts.extend([Str(op.name()), Str("("), N(a, any), Str(", ")]);
+                        parts.extend([N(b, any), Str(")")]);
+                        return;
+                    }
                     BinaryOp::Min | BinaryOp::Max => {
                         parts.extend([Str(op.name()), Str("(")]);
                         for (i, arg) in self.chain(op, a, b).into_iter().enumerate() {

@@ -271,6 +271,15 @@ impl<N: Number> RayEvaluator<N> {
         (v, defined && self.continuous)
     }
 
+    /// `g(t)` on each side of the one domain boundary the region may cross
+    /// ([`Evaluator::eval_sides`]); `None` where it crosses none or several.
+    pub fn g_sides(&mut self, t: N) -> Option<(N, N)> {
+        self.vars[T.index()] = t;
+        self.g
+            .eval_sides(&self.vars)
+            .expect("slot count checked at construction")
+    }
+
     /// `(g(t), g'(t))`.
     ///
     /// Where the derivative is undefined somewhere on the beam (a singular point such as

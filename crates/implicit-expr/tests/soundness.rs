@@ -453,6 +453,18 @@ fn real_binary(op: BinaryOp, a: &Real, b: &Real, pown: Option<i32>) -> Option<Re
                 return None;
             }
         }
+        // `b` inside the domain; outside it the value is +inf (no object), which a real
+        // cannot hold: such points are left to the interval tests of `domain` itself. On
+        // the boundary `d = 0` the function jumps, so it has no gradient there.
+        BinaryOp::Domain => {
+            if *x > 0.0 {
+                return None;
+            }
+            flat = b.flat;
+            poisoned = x.is_zero();
+            let d = if x.is_zero() { None } else { b.d.clone() };
+            (y.clone(), d)
+        }
     };
     // A locally constant result has a zero gradient, whatever the arguments'.
     poisoned |= (a.d.is_none() || b.d.is_none()) && flat;

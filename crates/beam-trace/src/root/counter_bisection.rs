@@ -51,7 +51,7 @@
 
 use interval_core::Interval;
 
-use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
+use super::finder::{RootCounters, RootFinder, RootResult, RootSettings};
 use super::search::{begin, is_small, may_vanish, settle_piece};
 use crate::ibox::ival;
 use crate::ray::RayFn;
@@ -106,17 +106,20 @@ impl RootFinder for CounterBisection {
             let a = section_end(lo, hi, k, ns);
             let b = section_end(lo, hi, k + 1, ns);
             let x = ival(a, b);
-            if may_vanish(ev.g(x)) {
-                if ns == MAX_LEVEL || is_small(x, settings.epsilon) {
-                    // The final section: the same end-value test and look-ahead as every
-                    // other finder (a kernel runs it as a fixed epilogue), so that a
-                    // section a few widths before a simple root becomes a proven root.
-                    let (_, cont) = ev.checked(x);
-                    return settle_piece(&mut ev, x, cont, None, t).unwrap_or(RootResult::Root {
-                        t: x,
-                        proof: Proof::Possible,
-                    });
+            let vanish = may_vanish(ev.g(x));
+            let last = vanish && (ns == MAX_LEVEL || is_small(x, settings.epsilon));
+            if last {
+                // The final section: the same end-value test and look-ahead as every
+                // other finder (a kernel runs it as a fixed epilogue), so that a
+                // section a few widths before a simple root becomes a proven root. A
+                // section it rejects (a domain boundary, no root) is passed like one
+                // whose value excludes 0.
+                let (_, cont) = ev.checked(x);
+                if let Some(root) = settle_piece(&mut ev, x, cont, None, t) {
+                    return root;
                 }
+            }
+            if vanish && !last {
                 if let Some(undecided) = budget.step(a) {
                     return undecided;
                 }

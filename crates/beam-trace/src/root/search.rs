@@ -59,6 +59,13 @@ impl<'a> Eval<'a> {
         self.g.g(ipoint(t))
     }
 
+    /// `G(x)` on each side of the one domain boundary `x` may cross ([`RayFn::g_sides`]).
+    #[inline]
+    pub fn sides(&mut self, x: Interval<f64>) -> Option<(Interval<f64>, Interval<f64>)> {
+        self.counters.g_evals += 2;
+        self.g.g_sides(x)
+    }
+
     /// `(G(x), G'(x))`.
     #[inline]
     pub fn g_dg(&mut self, x: Interval<f64>) -> (Interval<f64>, Interval<f64>) {
@@ -231,7 +238,8 @@ pub(crate) fn sign(v: Interval<f64>) -> i8 {
 /// * a sign change with continuity: a root exists (unique if monotone);
 /// * monotone with both ends of one sign: `g(piece)` lies between the end values, so there
 ///   is no root (`None`: the piece is rejected);
-/// * otherwise a root is only possible.
+/// * otherwise a root is only possible ([`settle`] then rejects a piece that only crosses a
+///   domain boundary).
 #[inline]
 fn classify(ga: Interval<f64>, gb: Interval<f64>, cont: bool, monotone: bool) -> Option<Proof> {
     if cont && sign_change(ga, gb) {
@@ -259,12 +267,23 @@ pub(crate) fn settle(
     range: Interval<f64>,
 ) -> Option<RootResult> {
     let proof = classify(ga, gb, cont, monotone)?;
-    if proof == Proof::Possible
-        && let Some(r) = look_around(ev, x, (ga, gb), range)
-    {
-        return Some(r);
+    if proof == Proof::Possible {
+        if !cont && no_root_on_either_side(ev, x) {
+            return None;
+        }
+        if let Some(r) = look_around(ev, x, (ga, gb), range) {
+            return Some(r);
+        }
     }
     Some(RootResult::Root { t: x, proof })
+}
+
+/// Whether `x` crosses the boundary of one formula's domain and `g` excludes 0 on both
+/// sides of it ([`RayFn::g_sides`]): every parameter of `x` is on one side, so `x` holds no
+/// root. The jump of `g` there (to or from an absent object) is not a surface.
+pub(crate) fn no_root_on_either_side(ev: &mut Eval<'_>, x: Interval<f64>) -> bool {
+    ev.sides(x)
+        .is_some_and(|(inside, outside)| !may_vanish(inside) && !may_vanish(outside))
 }
 
 /// [`settle`] for a final piece whose end values are not known yet; `dg` is `G'(x)` where

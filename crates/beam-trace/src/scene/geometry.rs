@@ -1,7 +1,7 @@
 //! The compiled geometry of a scene: leaf surfaces, CSG objects, the scene function.
 
 use glam::DVec3;
-use implicit_expr::{Context, Evaluator, Grad, NodeId, RayFunction, Tape};
+use implicit_expr::{BinaryOp, Context, Evaluator, Grad, NodeId, RayFunction, Tape};
 use interval_core::Interval;
 
 use super::material::Material;
@@ -103,6 +103,30 @@ fn search_box(leaf: &Leaf) -> IBox {
     })
 }
 
+/// A leaf's function made absent (`+inf`, outside every solid) where its formula is
+/// undefined ([`Context::domain_extension`]), so that the union, intersection and difference
+/// of objects treat that region as outside it instead of hiding the other objects there.
+///
+/// A formula whose domain tests are proven to hold over the whole scene `bounds` (all the
+/// search ever sees) is kept as it is: nothing changes for it, not even its tape.
+fn absent_where_undefined(ctx: &mut Context, node: NodeId, bounds: &IBox) -> NodeId {
+    if ctx.is_total(node) {
+        return node;
+    }
+    let (total, tests) = ctx.domain_split(node);
+    let Some(d) = tests.into_iter().reduce(|acc, t| ctx.max(acc, t)) else {
+        return node;
+    };
+    let holds = ctx
+        .eval::<Interval<f64>>(d, bounds)
+        .is_ok_and(|v| !v.is_empty() && v.sup() <= 0.0);
+    if holds {
+        node
+    } else {
+        ctx.binary(BinaryOp::Domain, d, total)
+    }
+}
+
 /// The compiled geometry of a scene.
 #[derive(Clone, Debug)]
 pub struct Geometry {
@@ -148,17 +172,21 @@ impl Geometry {
                 leaves.len()
             )));
         }
-        let nodes: Vec<NodeId> = leaves.iter().map(|l| l.node).collect();
-        let object_roots: Vec<NodeId> = objects.iter().map(|o| o.build(&mut ctx, &nodes)).collect();
-        let mut root = object_roots[0];
-        for &n in &object_roots[1..] {
-            root = ctx.min(root, n);
-        }
         let mut bounds = search_box(&leaves[used[0]]);
         for &i in &used[1..] {
             for (b, l) in bounds.iter_mut().zip(search_box(&leaves[i])) {
                 *b = b.convex_hull(l);
             }
+        }
+        let mut leaves = leaves;
+        for leaf in &mut leaves {
+            leaf.node = absent_where_undefined(&mut ctx, leaf.node, &bounds);
+        }
+        let nodes: Vec<NodeId> = leaves.iter().map(|l| l.node).collect();
+        let object_roots: Vec<NodeId> = objects.iter().map(|o| o.build(&mut ctx, &nodes)).collect();
+        let mut root = object_roots[0];
+        for &n in &object_roots[1..] {
+            root = ctx.min(root, n);
         }
         let ray = RayFunction::new(&ctx, root)?;
         let f_tape = Tape::new(&ctx, &[root])?;

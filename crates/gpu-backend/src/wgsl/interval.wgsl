@@ -279,6 +279,18 @@ fn i_max(a: Interval, b: Interval) -> Interval {
     return Interval(max(a.lo, b.lo), max(a.hi, b.hi));
 }
 
+// domain(d, f): f where d <= 0, the absent object (+inf, as [BELOW_BIG, BIG]) where d > 0,
+// and f joined with +inf where d takes both signs or is empty.
+fn i_domain(d: Interval, f: Interval) -> Interval {
+    if !i_is_empty(d) && d.hi <= 0.0f {
+        return f;
+    }
+    if i_is_empty(f) || (!i_is_empty(d) && d.lo > 0.0f) {
+        return Interval(BELOW_BIG, BIG);
+    }
+    return Interval(f.lo, BIG);
+}
+
 // 1 / a over the nonzero part of a (IEEE 1788 set-based: the empty set for a = [0, 0]).
 fn i_recip(a: Interval) -> Interval {
     return i_div(Interval(1.0f, 1.0f), a);

@@ -221,6 +221,11 @@ impl<N: GradScalar> Number for Grad<N> {
                 let sb = N::defined_slope(a.v, mul(v, N::unary(UnaryOp::Ln, a.v)));
                 std::array::from_fn(|i| add(mul(sa, a.d[i]), mul(sb, b.d[i])))
             }
+            // As the symbolic derivative: `domain(d, f') + slope_not(d)`.
+            BinaryOp::Domain => {
+                let jump = N::unary(UnaryOp::SlopeNot, a.v);
+                std::array::from_fn(|i| add(N::binary(BinaryOp::Domain, a.v, b.d[i]), jump))
+            }
         };
         Self { v, d }
     }

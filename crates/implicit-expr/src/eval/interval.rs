@@ -49,6 +49,27 @@ fn floor_constant(lo: f64, hi: f64) -> bool {
     lo.floor() == hi.floor() && lo.ceil() == hi.ceil()
 }
 
+/// The value of an absent object, `+inf`, as an interval: `[MAX, +inf]` (above every finite
+/// value but the largest, and `-[MAX, +inf]` below them).
+#[inline(always)]
+fn absent<T: Float>() -> Interval<T> {
+    iv(T::MAX, T::INFINITY)
+}
+
+/// `domain(d, f)` over a box: `F` where `D <= 0`, absent where `D > 0`, and `F` joined with
+/// `+inf` where `D` takes both signs (or is empty: nothing is known of the test).
+#[inline]
+fn domain<T: Float>(d: Interval<T>, f: Interval<T>) -> Interval<T> {
+    match d.bounds() {
+        Some((_, hi)) if hi <= T::ZERO => f,
+        Some((lo, _)) if lo > T::ZERO => absent(),
+        _ => match f.bounds() {
+            Some((lo, _)) => iv(lo, T::INFINITY),
+            None => absent(),
+        },
+    }
+}
+
 impl<T: Float> Number for Interval<T> {
     #[inline(always)]
     fn constant(c: &Constant) -> Self {
@@ -98,6 +119,7 @@ impl<T: Float> Number for Interval<T> {
             BinaryOp::Min => a.min(b),
             BinaryOp::Max => a.max(b),
             BinaryOp::Pow => a.pow(b),
+            BinaryOp::Domain => domain(a, b),
         }
     }
 
@@ -133,6 +155,8 @@ impl<T: Float> Number for Interval<T> {
         match op {
             BinaryOp::Div => blo > T::ZERO || bhi < T::ZERO,
             BinaryOp::Pow => alo > T::ZERO || (alo >= T::ZERO && blo > T::ZERO),
+            // Continuous (and defined) only where the domain test has one answer.
+            BinaryOp::Domain => a.sup() <= T::ZERO || alo > T::ZERO,
             _ => true,
         }
     }
@@ -142,6 +166,20 @@ impl<T: Float> Number for Interval<T> {
         match a.bounds() {
             None => false,
             Some((lo, hi)) => n >= 0 || lo > T::ZERO || hi < T::ZERO,
+        }
+    }
+
+    #[inline]
+    fn domain_side(d: Self, f: Self, inside: bool) -> (Self, bool) {
+        let decided = d
+            .bounds()
+            .is_some_and(|(lo, hi)| hi <= T::ZERO || lo > T::ZERO);
+        if decided {
+            (domain(d, f), false)
+        } else if inside && !f.is_empty() {
+            (f, true)
+        } else {
+            (absent(), true)
         }
     }
 

@@ -131,6 +131,9 @@ impl<T: Float, R: Rounding> Number for Modal<T, R> {
                 let l = Self::unary(UnaryOp::Ln, a);
                 Self::unary(UnaryOp::Exp, b * l)
             }
+            // A jump where `a` crosses 0: no semantic extension of a discontinuous function
+            // is built here; the least informative value of the rounding is always sound.
+            BinaryOp::Domain => undefined(),
         }
     }
 

@@ -62,6 +62,10 @@ macro_rules! point_number {
                     BinaryOp::Pow => {
                         if a > 0.0 || (a == 0.0 && b > 0.0) { $pow(a, b) } else { <$t>::NAN }
                     }
+                    // Outside the domain: no object (+inf); an undefined test propagates.
+                    BinaryOp::Domain => {
+                        if a <= 0.0 { b } else if a > 0.0 { <$t>::INFINITY } else { a }
+                    }
                 }
             }
 

@@ -77,7 +77,13 @@ impl<N: Number> Evaluator<N> {
     /// Returns an error when fewer values than the tape's variable slots are given.
     pub fn eval(&mut self, vars: &[N]) -> Result<N, Error> {
         self.check(vars)?;
-        run::<N, false, false>(self.tape.instrs(), &mut self.regs, vars, &mut Vec::new());
+        run::<N, false, false, NO_SIDE>(
+            self.tape.instrs(),
+            &mut self.regs,
+            vars,
+            &mut Vec::new(),
+            &mut 0,
+        );
         Ok(self.regs[self.tape.outputs()[0] as usize])
     }
 
@@ -89,9 +95,42 @@ impl<N: Number> Evaluator<N> {
     /// Returns an error when fewer values than the tape's variable slots are given.
     pub fn eval_defined(&mut self, vars: &[N]) -> Result<(N, bool), Error> {
         self.check(vars)?;
-        let defined =
-            run::<N, false, true>(self.tape.instrs(), &mut self.regs, vars, &mut Vec::new());
+        let defined = run::<N, false, true, NO_SIDE>(
+            self.tape.instrs(),
+            &mut self.regs,
+            vars,
+            &mut Vec::new(),
+            &mut 0,
+        );
         Ok((self.regs[self.tape.outputs()[0] as usize], defined))
+    }
+
+    /// The first output at `vars` on each side of a domain boundary: where exactly one
+    /// [`domain`](crate::BinaryOp::Domain) operation has a test that takes both signs over
+    /// the region, `Some((inside, outside))`, the value with that operation taking its
+    /// formula's value and with it absent. Every point of the region is on one side, so the
+    /// first output there lies in one of the two. `None` where no `domain` or more than one
+    /// is undecided (then the sides of two boundaries could mix).
+    ///
+    /// Returns an error when fewer values than the tape's variable slots are given.
+    pub fn eval_sides(&mut self, vars: &[N]) -> Result<Option<(N, N)>, Error> {
+        self.check(vars)?;
+        let out = self.tape.outputs()[0] as usize;
+        let mut undecided = 0;
+        let instrs = self.tape.instrs();
+        run::<N, false, false, INSIDE>(
+            instrs,
+            &mut self.regs,
+            vars,
+            &mut Vec::new(),
+            &mut undecided,
+        );
+        if undecided != 1 {
+            return Ok(None);
+        }
+        let inside = self.regs[out];
+        run::<N, false, false, OUTSIDE>(instrs, &mut self.regs, vars, &mut Vec::new(), &mut 0);
+        Ok(Some((inside, self.regs[out])))
     }
 
     /// Every output at `vars`, written to `out` (which must hold one value per output).
@@ -106,7 +145,13 @@ impl<N: Number> Evaluator<N> {
                 self.tape.outputs().len()
             )));
         }
-        run::<N, false, false>(self.tape.instrs(), &mut self.regs, vars, &mut Vec::new());
+        run::<N, false, false, NO_SIDE>(
+            self.tape.instrs(),
+            &mut self.regs,
+            vars,
+            &mut Vec::new(),
+            &mut 0,
+        );
         for (o, &r) in out.iter_mut().zip(self.tape.outputs()) {
             *o = self.regs[r as usize];
         }
@@ -123,7 +168,7 @@ impl<N: Number> Evaluator<N> {
     pub fn eval_traced(&mut self, vars: &[N], trace: &mut Vec<Choice>) -> Result<N, Error> {
         self.check(vars)?;
         trace.clear();
-        run::<N, true, false>(self.tape.instrs(), &mut self.regs, vars, trace);
+        run::<N, true, false, NO_SIDE>(self.tape.instrs(), &mut self.regs, vars, trace, &mut 0);
         Ok(self.regs[self.tape.outputs()[0] as usize])
     }
 
@@ -139,15 +184,24 @@ impl<N: Number> Evaluator<N> {
     }
 }
 
-/// The interpreter loop. `TRACE` selects choice recording and `CHECK` the definedness check
-/// at compile time; returns whether every operation was defined on all of its arguments
-/// (always `true` when neither is selected).
+/// [`run`]'s `SIDE`: `domain` as [`Number::binary`] evaluates it.
+const NO_SIDE: u8 = 0;
+/// [`run`]'s `SIDE`: a `domain` whose test takes both signs takes its formula's value.
+const INSIDE: u8 = 1;
+/// [`run`]'s `SIDE`: a `domain` whose test takes both signs is absent.
+const OUTSIDE: u8 = 2;
+
+/// The interpreter loop. `TRACE` selects choice recording, `CHECK` the definedness check
+/// and `SIDE` the side taken by an undecided `domain` (counted in `undecided`) at compile
+/// time; returns whether every operation was defined on all of its arguments (always `true`
+/// when neither `TRACE` nor `CHECK` is selected).
 #[inline(always)]
-fn run<N: Number, const TRACE: bool, const CHECK: bool>(
+fn run<N: Number, const TRACE: bool, const CHECK: bool, const SIDE: u8>(
     instrs: &[Instr],
     regs: &mut [N],
     vars: &[N],
     trace: &mut Vec<Choice>,
+    undecided: &mut u32,
 ) -> bool {
     // `regs.len()` is a power of two above every register index of the tape, so masking
     // changes no index and proves to the compiler that none is out of bounds.
@@ -174,6 +228,11 @@ fn run<N: Number, const TRACE: bool, const CHECK: bool>(
             Opcode::Binary(BinaryOp::Max) if TRACE => {
                 let (v, c) = N::max_choice(regs[a], regs[b]);
                 trace.push(c);
+                v
+            }
+            Opcode::Binary(BinaryOp::Domain) if SIDE != NO_SIDE => {
+                let (v, open) = N::domain_side(regs[a], regs[b], SIDE == INSIDE);
+                *undecided += u32::from(open);
                 v
             }
             Opcode::Binary(op) => {

@@ -29,8 +29,8 @@ pub(crate) enum Func {
     Unary(UnaryOp),
     /// `min` or `max`: two or more arguments, folded from the left.
     Fold(BinaryOp),
-    /// `pow(a, b)`, the same as `a ^ b`.
-    Pow,
+    /// A two-argument function: `pow(a, b)` (the same as `a ^ b`) or `domain(d, f)`.
+    Binary(BinaryOp),
     /// `pown(a, n)` for an integer constant `n`.
     Pown,
 }
@@ -43,7 +43,8 @@ pub(crate) fn function(name: &str) -> Option<Func> {
     match name {
         "min" => Some(Func::Fold(BinaryOp::Min)),
         "max" => Some(Func::Fold(BinaryOp::Max)),
-        "pow" => Some(Func::Pow),
+        "pow" => Some(Func::Binary(BinaryOp::Pow)),
+        "domain" => Some(Func::Binary(BinaryOp::Domain)),
         "pown" => Some(Func::Pown),
         _ => None,
     }
@@ -54,7 +55,7 @@ pub(crate) fn function_names() -> impl Iterator<Item = &'static str> {
     UnaryOp::ALL
         .iter()
         .map(|op| op.name())
-        .chain(["min", "max", "pow", "pown"])
+        .chain(["min", "max", "pow", "pown", "domain"])
 }
 
 /// The value of a named constant.
@@ -433,7 +434,7 @@ impl<'a> Parser<'a> {
         Ok(match (func, args.as_slice()) {
             (Func::Unary(op), &[a]) => self.ctx.unary(op, a),
             (Func::Unary(_), _) => return Err(arity(1)),
-            (Func::Pow, &[a, b]) => self.ctx.binary(BinaryOp::Pow, a, b),
+            (Func::Binary(op), &[a, b]) => self.ctx.binary(op, a, b),
             (Func::Pown, &[a, b]) => {
                 let n = self.ctx.as_const(b).and_then(|c| {
                     let v = c.value();
@@ -452,7 +453,7 @@ impl<'a> Parser<'a> {
                     }
                 }
             }
-            (Func::Pow | Func::Pown, _) => return Err(arity(2)),
+            (Func::Binary(_) | Func::Pown, _) => return Err(arity(2)),
             (Func::Fold(op), &[first, ref rest @ ..]) if !rest.is_empty() => rest
                 .iter()
                 .fold(first, |acc, &b| self.ctx.binary(op, acc, b)),

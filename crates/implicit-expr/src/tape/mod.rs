@@ -200,6 +200,15 @@ impl Tape {
         self.0.var_count as usize
     }
 
+    /// Whether the tape holds a [`domain`](BinaryOp::Domain) operation (an object absent
+    /// where its formula is undefined), whose boundaries a search tests from both sides
+    /// ([`Evaluator::eval_sides`](crate::Evaluator::eval_sides)).
+    pub fn has_domain(&self) -> bool {
+        self.instrs()
+            .iter()
+            .any(|ins| ins.op == Opcode::Binary(BinaryOp::Domain))
+    }
+
     /// Whether every operation of the tape is continuous on its domain: no step function
     /// (`floor`, `ceil`, `round`, `not`) and no slope of one. On a region where
     /// [`Evaluator::eval_defined`](crate::Evaluator::eval_defined) reports every operation

@@ -238,6 +238,7 @@ const fn binary_entry(op: BinaryOp) -> (&'static str, &'static str) {
         BinaryOp::Min => ("i_min", "min(a, b)"),
         BinaryOp::Max => ("i_max", "max(a, b)"),
         BinaryOp::Pow => ("i_pow", "a^b for a > 0, and for a = 0 when b > 0"),
+        BinaryOp::Domain => ("i_domain", "b where a <= 0, +inf where a > 0"),
     }
 }
 
@@ -568,6 +569,8 @@ impl Generator {
                         BinaryOp::Min => format!("min({a}, {b_})"),
                         BinaryOp::Max => format!("max({a}, {b_})"),
                         BinaryOp::Pow => format!("pow({a}, {b_})"),
+                        // The largest f32 (no infinities in WGSL) where the domain test fails.
+                        BinaryOp::Domain => format!("select({b_}, 0x1.fffffep+127f, {a} > 0.0)"),
                     }
                 }
                 Opcode::Pown => point_pown(&mut out, i, &a, op.b as i32),
