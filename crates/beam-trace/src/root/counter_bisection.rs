@@ -41,7 +41,7 @@
 //! the end-value test every finder applies (a sign change proves a root; with both ends of
 //! one sign, a look-ahead of a few section widths for a sign change just after it), as a
 //! fixed epilogue that a kernel runs as well; otherwise the answer is
-//! [`Proof::Possible`]. Descents count
+//! [`Proof::Possible`](super::Proof::Possible). Descents count
 //! against [`RootSettings::max_steps`], and running out gives
 //! `Undecided { [end(k, ns), hi] }`.
 //!
