@@ -189,6 +189,46 @@ fn the_gpu_routing_names_what_runs_on_the_cpu() {
 }
 
 #[test]
+fn a_scene_with_partial_domains_searches_on_the_cpu() {
+    // The kernels have no two-sided test of domain boundaries: beams, roots, segments and
+    // soft shadows go back to the CPU, so the proven classes are the CPU's own.
+    let Some(gpu) = Gpu::for_tests() else { return };
+    let backend = GpuBackend::new(gpu);
+    let text = r#"
+[camera]
+eye = [0.0, 3.0, 6.0]
+look_at = [0.0, -0.6, 0.0]
+width = 32
+height = 32
+[[surfaces]]
+name = "root"
+formula = "z + sqrt(x + 0.5) - 0.6"
+bounds = [[-1.5, -1.0, -1.0], [1.5, 1.0, 1.0]]
+[[surfaces]]
+name = "floor"
+formula = "y + 1.2"
+bounds = [[-3.0, -1.5, -3.0], [3.0, -1.2, 3.0]]
+clip = true
+[[lights]]
+type = "point"
+position = [3.0, 5.0, 2.0]
+"#;
+    let s = Scene::from_toml(text, "domains.toml", None).unwrap_or_else(|e| panic!("{e}"));
+    let plan = beam_trace::Plan::for_scene(&s);
+    let routing = Routing::new(&backend, &s, &plan).to_string();
+    let why = "on the cpu (the kernels have no two-sided test of domain boundaries)";
+    for kind in ["beams", "segments"] {
+        assert!(
+            routing.contains(&format!("{kind} {why}")),
+            "{kind}:\n{routing}"
+        );
+    }
+    let out = render_on(&s, &backend, &NoProgress).expect("the GPU backend renders");
+    let reference = render(&s, &NoProgress).expect("the CPU renders");
+    assert_eq!(out.box_classes, reference.box_classes);
+}
+
+#[test]
 fn gpu_shadow_proofs_agree_with_many_cpu_samples() {
     let Some(gpu) = Gpu::for_tests() else { return };
     let g =
