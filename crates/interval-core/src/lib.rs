@@ -31,6 +31,7 @@
 //! The rounding model and the accuracy of every function are documented in
 //! `docs/numerics.md` of the repository.
 
+pub mod dd;
 pub mod decorated;
 pub mod float;
 pub mod interval;
@@ -39,6 +40,7 @@ pub mod testing;
 
 mod error;
 
+pub use dd::{Dd, DdInterval};
 pub use decorated::{DecInterval, Decoration};
 pub use error::IntervalError;
 pub use float::Float;

@@ -1,0 +1,18 @@
+//! Double-double arithmetic: [`Dd`] numbers (about 106 bits) and [`DdInterval`], intervals
+//! with double-double bounds rounded outward, for the queries that `f64` intervals cannot
+//! decide because rounding, not the width of the box, dominates their enclosures (large
+//! terms that cancel).
+//!
+//! Each bound comes from an exact sum of `f64` terms (an *expansion*: Shewchuk's
+//! nonoverlapping components, built with the error-free transformations
+//! [`two_sum`](crate::float::two_sum) and [`two_prod`](crate::float::two_prod)), rounded to a
+//! double-double in the needed direction by checking the sign of the exact remainder.
+//! Quotients and square roots are approximated, then corrected until the exact residual
+//! (`a − q·b`, `a − s²`) has the sign that puts them on the right side.
+
+mod expansion;
+mod interval;
+mod number;
+
+pub use interval::DdInterval;
+pub use number::Dd;
