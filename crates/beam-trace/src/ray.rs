@@ -13,7 +13,7 @@ use std::str::FromStr;
 
 use glam::DVec3;
 use implicit_expr::{RayEvaluator, RayFunction, Tape};
-use interval_core::Interval;
+use interval_core::{DdInterval, Interval};
 
 pub use crate::ibox::{IBox, ipoint, ival, point_box};
 
@@ -54,6 +54,18 @@ pub trait RayFn {
 
     /// Returns to the whole `g` of the ray or beam set (no restriction).
     fn unrestrict(&mut self) {}
+
+    /// Raises the precision of the following interval evaluations one step (`f32 → f64 →
+    /// dd`, [`Precision::escalated`]) for the ray or beam set; returns the precision to give
+    /// back to [`restore`](RayFn::restore), or `None` when there is no higher one (the
+    /// default: no escalation).
+    fn escalate(&mut self) -> Option<Precision> {
+        None
+    }
+
+    /// Returns to `previous` after [`escalate`](RayFn::escalate), with the evaluations of
+    /// that precision as they were.
+    fn restore(&mut self, _previous: Precision) {}
 
     /// A handle of the current restriction, to return to it with
     /// [`set_scope`](RayFn::set_scope) after evaluations elsewhere (`None`: nothing to
@@ -169,17 +181,32 @@ pub enum Precision {
     F64,
     /// Single precision (`Interval<f32>`).
     F32,
+    /// Double-double (`DdInterval`, about 106 bits): for large terms that cancel, where
+    /// `f64` rounding alone keeps the enclosures wide. Several times slower than `f64`; the
+    /// renderer escalates to it per query ([`Precision::escalated`]).
+    Dd,
 }
 
 impl Precision {
     /// Every precision, in the order of [`Precision::name`]'s accepted names.
-    pub const ALL: [Precision; 2] = [Precision::F64, Precision::F32];
+    pub const ALL: [Precision; 3] = [Precision::F64, Precision::F32, Precision::Dd];
 
-    /// The name `FromStr` accepts: `"f64"` or `"f32"`.
+    /// The name `FromStr` accepts: `"f64"`, `"f32"` or `"dd"`.
     pub fn name(self) -> &'static str {
         match self {
             Precision::F64 => "f64",
             Precision::F32 => "f32",
+            Precision::Dd => "dd",
+        }
+    }
+
+    /// The next higher precision a query escalates to (`f32 → f64 → dd`), `None` after the
+    /// highest.
+    pub fn escalated(self) -> Option<Precision> {
+        match self {
+            Precision::F32 => Some(Precision::F64),
+            Precision::F64 => Some(Precision::Dd),
+            Precision::Dd => None,
         }
     }
 }
@@ -197,7 +224,7 @@ impl FromStr for Precision {
         Precision::ALL
             .into_iter()
             .find(|p| p.name() == s)
-            .ok_or_else(|| format!("unknown precision '{s}' (one of: f64, f32)"))
+            .ok_or_else(|| format!("unknown precision '{s}' (one of: f64, f32, dd)"))
     }
 }
 
@@ -216,7 +243,20 @@ pub struct BeamEval {
     dir: IBox,
     interval: RayEvaluator<Interval<f64>>,
     interval32: RayEvaluator<Interval<f32>>,
+    interval_dd: RayEvaluator<DdInterval>,
     point: RayEvaluator<f64>,
+}
+
+/// A parameter interval as a double-double interval (exact).
+#[inline]
+fn dd(t: Interval<f64>) -> DdInterval {
+    DdInterval::from_interval(t)
+}
+
+/// A box as double-double intervals (exact).
+#[inline]
+fn box_dd(b: &IBox) -> [DdInterval; 3] {
+    b.map(DdInterval::from_interval)
 }
 
 /// A box rounded outward to `f32` (each `f32` interval contains the `f64` one).
@@ -234,6 +274,7 @@ impl BeamEval {
             dir: point_box(DVec3::ZERO),
             interval: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
             interval32: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
+            interval_dd: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
             point: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
         }
     }
@@ -252,6 +293,9 @@ impl BeamEval {
             .set_function(f)
             .expect("scene functions have no parameters");
         self.interval32
+            .set_function(f)
+            .expect("scene functions have no parameters");
+        self.interval_dd
             .set_function(f)
             .expect("scene functions have no parameters");
         self.point
@@ -279,6 +323,7 @@ impl BeamEval {
         match self.precision {
             Precision::F64 => self.interval.set_ray(origin, dir),
             Precision::F32 => self.interval32.set_ray(box32(&origin), box32(&dir)),
+            Precision::Dd => self.interval_dd.set_ray(box_dd(&origin), box_dd(&dir)),
         }
     }
 
@@ -303,6 +348,7 @@ impl RayFn for BeamEval {
         match self.precision {
             Precision::F64 => self.interval.g(t),
             Precision::F32 => self.interval32.g(t.cast()).cast(),
+            Precision::Dd => self.interval_dd.g(dd(t)).to_interval(),
         }
     }
 
@@ -314,6 +360,10 @@ impl RayFn for BeamEval {
                 let (g, dg) = self.interval32.g_dg(t.cast());
                 (g.cast(), dg.cast())
             }
+            Precision::Dd => {
+                let (g, dg) = self.interval_dd.g_dg(dd(t));
+                (g.to_interval(), dg.to_interval())
+            }
         }
     }
 
@@ -324,6 +374,10 @@ impl RayFn for BeamEval {
             Precision::F32 => {
                 let (g, ok) = self.interval32.g_checked(t.cast());
                 (g.cast(), ok)
+            }
+            Precision::Dd => {
+                let (g, ok) = self.interval_dd.g_checked(dd(t));
+                (g.to_interval(), ok)
             }
         }
     }
@@ -340,6 +394,10 @@ impl RayFn for BeamEval {
                 let (inside, outside) = self.interval32.g_sides(t.cast())?;
                 Some((inside.cast(), outside.cast()))
             }
+            Precision::Dd => {
+                let (inside, outside) = self.interval_dd.g_sides(dd(t))?;
+                Some((inside.to_interval(), outside.to_interval()))
+            }
         }
     }
 
@@ -349,18 +407,36 @@ impl RayFn for BeamEval {
         match self.precision {
             Precision::F64 => self.interval.restrict(t),
             Precision::F32 => self.interval32.restrict(t.cast()),
+            Precision::Dd => self.interval_dd.restrict(dd(t)),
         }
+    }
+
+    /// Switches to the next precision with the beam set before, leaving the evaluator of
+    /// the current one (its ray and its restriction) untouched for [`RayFn::restore`].
+    fn escalate(&mut self) -> Option<Precision> {
+        let previous = self.precision;
+        let next = previous.escalated()?;
+        self.precision = next;
+        let (origin, dir) = (self.origin, self.dir);
+        self.set_interval_ray(origin, dir);
+        Some(previous)
+    }
+
+    fn restore(&mut self, previous: Precision) {
+        self.precision = previous;
     }
 
     fn unrestrict(&mut self) {
         self.interval.unrestrict();
         self.interval32.unrestrict();
+        self.interval_dd.unrestrict();
     }
 
     fn scope(&self) -> Option<Tape> {
         Some(match self.precision {
             Precision::F64 => self.interval.scope().clone(),
             Precision::F32 => self.interval32.scope().clone(),
+            Precision::Dd => self.interval_dd.scope().clone(),
         })
     }
 
@@ -368,6 +444,7 @@ impl RayFn for BeamEval {
         match self.precision {
             Precision::F64 => self.interval.set_scope(scope),
             Precision::F32 => self.interval32.set_scope(scope),
+            Precision::Dd => self.interval_dd.set_scope(scope),
         }
     }
 }

@@ -20,7 +20,9 @@ use std::collections::BTreeSet;
 use beam_trace::beam::forward;
 use beam_trace::grid::Grid;
 use beam_trace::ray::{Ray, ipoint};
-use beam_trace::root::{Proof, RootCounters, RootMethod, RootResult, RootSettings};
+use beam_trace::root::{
+    Escalating, Proof, RootCounters, RootFinder, RootMethod, RootResult, RootSettings,
+};
 use beam_trace::scene::geometry::GeometryEval;
 use beam_trace::{Camera, NoProgress, RenderOutput, Scene, render};
 use glam::DVec3;
@@ -1440,4 +1442,179 @@ children = ["cube", "hole"]
         &ray([0.5, 0.0, 0.0], [-1.0, 0.0, 0.0]),
         0.25,
     );
+}
+
+// ---------------------------------------------------------------------------------------
+// 9. Large terms that cancel, and clusters of close roots: precision escalation.
+//
+// `f64` rounding of large terms leaves enclosures no bisection can narrow; a search that
+// ends open for that reason runs again in double-double (`root::Escalating`).
+
+/// The first root of `ray` with `method` escalating as the renderer does, and the counters.
+fn solve_escalating(
+    scene: &Scene,
+    method: RootMethod,
+    ray: &Ray,
+    settings: &RootSettings,
+) -> (RootResult, RootCounters) {
+    let mut counters = RootCounters::default();
+    let Some(t) = ray
+        .beam()
+        .t_range_within(&scene.geometry.bounds(), forward())
+    else {
+        return (RootResult::NoRoot, counters);
+    };
+    let mut ev = scene.geometry.evaluator();
+    ev.beam.set_ray(ray);
+    let r = Escalating::new(method.finder()).first_root(&mut ev.beam, t, settings, &mut counters);
+    (r, counters)
+}
+
+/// The finders with interval Newton steps. The others bisect: over a piece of width `w` the
+/// natural extension of these formulas is about `2K·w` wide (the dependency between the
+/// large terms, which no precision removes), so their final pieces stay open far from the
+/// root whatever the precision; they are checked for soundness only.
+const NEWTON_FINDERS: [RootMethod; 3] = [
+    RootMethod::Newton,
+    RootMethod::NewtonAlefeldHansen,
+    RootMethod::MrfroNewton,
+];
+
+/// Unit spheres written with terms of size `K` that cancel exactly, for `K` from 1e4 to
+/// 1e12 (every constant is a double, so the formulas are exactly the unit sphere).
+const CANCELLING: [&str; 8] = [
+    "(x + 1e4)^2 - 2e4*x - 1e8 + y^2 + z^2 - 1",
+    "(x + 1e6)^2 - 2e6*x - 1e12 + y^2 + z^2 - 1",
+    "(x + 1e11)^2 - 2e11*x - 1e22 + y^2 + z^2 - 1",
+    "((x + 1e4) - 1e4)^2 + y^2 + z^2 - 1",
+    "((x + 1e8) - 1e8)^2 + y^2 + z^2 - 1",
+    "((x + 1e12) - 1e12)^2 + y^2 + z^2 - 1",
+    "(x + 1e6)*(x - 1e6) + 1e12 + y^2 + z^2 - 1",
+    "(x + 1e11)*(x - 1e11) + 1e22 + y^2 + z^2 - 1",
+];
+
+#[test]
+fn cancellation_at_several_scales_is_decided_by_escalation() {
+    let s = RootSettings::default();
+    let fan = ray_fan(1.0);
+    for formula in std::iter::once("x^2 + y^2 + z^2 - 1").chain(CANCELLING) {
+        let scene = formula_scene(formula, 1.25, 5.0, 16, "");
+        let mut escalated = 0;
+        for (i, ray) in fan.iter().enumerate() {
+            let truth = sphere_truth(ray, DVec3::ZERO, 1.0);
+            let want = match truth {
+                Truth::Miss => Outcome::ProvenMiss,
+                Truth::Root(_) => Outcome::ProvenHit,
+            };
+            for m in NEWTON_FINDERS {
+                let what = format!("{formula}: ray {i}");
+                let (r, c) = solve_escalating(&scene, m, ray, &s);
+                check(&what, m, &r, truth);
+                assert_eq!(outcome(&r), want, "{what}: {m}: {r:?}");
+                assert_eq!(c.escalated, c.escalated_resolved, "{what}: {m}");
+                escalated += c.escalated;
+            }
+        }
+        eprintln!("{formula}: {escalated} searches escalated");
+        if formula == "x^2 + y^2 + z^2 - 1" {
+            assert_eq!(escalated, 0, "the plain sphere needs no escalation");
+        }
+        if formula.contains("1e11") {
+            // The f64 enclosure of `g` at one point is about 1e6 wide (the ulp of 1e22):
+            // nothing is decided in f64. Smaller terms are decided by the mean-value form
+            // and the look-around in f64 already, and do not escalate.
+            assert!(
+                escalated > 0,
+                "{formula}: rounding should have forced escalation"
+            );
+        }
+    }
+}
+
+#[test]
+fn cancellation_renders_as_the_plain_sphere() {
+    // Screen rays at every pixel: hits proven, and the image equal to the plain formula's
+    // up to the shading of points placed within the root-finder tolerance.
+    let render_of = |formula: &str| {
+        run(&formula_scene(
+            formula,
+            1.25,
+            5.0,
+            24,
+            "primary = \"screen-rays\"\nrays_per_undecided = 1",
+        ))
+    };
+    let plain = render_of("x^2 + y^2 + z^2 - 1");
+    let hits = plain.stats.pass("primary-rays").unwrap().counter("hits");
+    assert!(hits > 0);
+    for formula in [CANCELLING[1], CANCELLING[5], CANCELLING[7]] {
+        let out = render_of(formula);
+        let rays = out.stats.pass("primary-rays").unwrap();
+        assert_eq!(rays.counter("hits"), hits, "{formula}");
+        assert_eq!(
+            rays.counter("proven_unique"),
+            hits,
+            "{formula}: every hit proven"
+        );
+        assert_eq!(
+            rays.counter("escalated"),
+            rays.counter("escalated_resolved")
+        );
+        let differ = out
+            .image
+            .pixels
+            .iter()
+            .zip(&plain.image.pixels)
+            .filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| (x - y).abs() > 1e-3))
+            .count();
+        assert_eq!(
+            differ, 0,
+            "{formula}: {differ} pixels differ from the plain sphere"
+        );
+    }
+}
+
+#[test]
+fn a_cluster_of_close_roots_is_separated_by_escalation() {
+    // Two planes 2^-30 apart, written expanded: z² − (0.5 + 2^-30)·z + 0.0625 + 2^-32
+    // = (z − 0.25)·(z − 0.25 − 2^-30). Between them g is about −2^-62, far below the f64
+    // rounding of its terms (about 1e-17): only double-double proves the sign change.
+    let scene = formula_scene(
+        "z^2 - (0.5 + 2^-30)*z + 0.0625 + 2^-32 + 0*x",
+        1.25,
+        5.0,
+        16,
+        "",
+    );
+    let s = RootSettings {
+        epsilon: 1e-11,
+        ..RootSettings::default()
+    };
+    let b = 0.25 + 2f64.powi(-30);
+    for (x, y) in [(0.0, 0.0), (0.3, -0.2), (-0.7, 0.5)] {
+        let ray = Ray {
+            origin: DVec3::new(x, y, 5.0),
+            dir: DVec3::new(0.0, 0.0, -1.0),
+        };
+        for m in reliable() {
+            let what = format!("cluster at ({x}, {y})");
+            let (r, c) = solve_escalating(&scene, m, &ray, &s);
+            check(&what, m, &r, Truth::Root(5.0 - b));
+            if !NEWTON_FINDERS.contains(&m) {
+                continue;
+            }
+            assert_eq!(outcome(&r), Outcome::ProvenHit, "{what}: {m}: {r:?}");
+            assert!(c.escalated > 0, "{what}: {m} needed no escalation");
+            let plain = RootSettings {
+                escalate: false,
+                ..s
+            };
+            let (open, _) = solve_escalating(&scene, m, &ray, &plain);
+            assert_ne!(
+                outcome(&open),
+                Outcome::ProvenHit,
+                "{what}: {m} proved it in f64"
+            );
+        }
+    }
 }

@@ -8,7 +8,7 @@
 //!        [--classification FILE.png] [--cost-map FILE.png]
 //!        [--shadows stochastic:N|beam:n|beam-all:n|beam-quadtree:n|
 //!                   minkowski:stochastic:N|minkowski:beam:n|certified:TOL[:BUDGET]]
-//!        [--shadow-classes FILE.png] [--shadow-fraction PREFIX] [--precision f64|f32]
+//!        [--shadow-classes FILE.png] [--shadow-fraction PREFIX] [--precision f64|f32|dd]
 //! ```
 //!
 //! `SCENE` is a TOML scene file or the name of a catalog surface.
@@ -80,9 +80,14 @@ struct Args {
     #[arg(long)]
     shadow_fraction: Option<String>,
     /// Floating-point format of the interval evaluations of g and g' on rays and beams:
-    /// f64 (default) or f32 (as a GPU evaluates; sound, wider enclosures).
+    /// f64 (default), f32 (as a GPU evaluates; sound, wider enclosures) or dd
+    /// (double-double; root searches escalate to it by themselves where rounding blocks a
+    /// proof).
     #[arg(long)]
     precision: Option<Precision>,
+    /// Do not run root searches that rounding keeps open again in a higher precision.
+    #[arg(long)]
+    no_escalate: bool,
     /// Regular grid resolution (0: no grid).
     #[arg(long)]
     grid: Option<u32>,
@@ -179,6 +184,9 @@ fn load(args: &Args) -> Result<Scene, String> {
     }
     if let Some(m) = args.shadows {
         s.shadow_method = m;
+    }
+    if args.no_escalate {
+        s.root.escalate = false;
     }
     if let Some(p) = args.precision {
         s.precision = p;

@@ -6,8 +6,10 @@
 //! (a slab test) and its first root searched in the parameter range inside it. The tables
 //! give, per method (rows) and surface (columns), the time of casting all rays in
 //! milliseconds (rayon over rows: the time depends on the threads, the results do not),
-//! the interval evaluations of `g` and `g'`, the point evaluations, the bisections, the hits
-//! and the undecided rays. Then every pixel is checked: all reliable methods must agree on
+//! the interval evaluations of `g` and `g'`, the point evaluations, the bisections, the
+//! searches escalated to double-double because rounding kept them open (and how many of
+//! those ended proven; `--no-escalate` turns escalation off), the hits and the undecided
+//! rays. Then every pixel is checked: all reliable methods must agree on
 //! hit or miss (undecided answers are counted apart) and their first-root enclosures must
 //! overlap once widened by `ε`. Each disagreement is listed, marked as a *contradiction*
 //! when the answers cannot both be true (a proven root against "no root", or a proven root
@@ -25,7 +27,9 @@ use std::process::ExitCode;
 use std::time::Instant;
 
 use beam_trace::ray::BeamEval;
-use beam_trace::root::{Proof, RootCounters, RootMethod, RootResult, RootSettings};
+use beam_trace::root::{
+    Escalating, Proof, RootCounters, RootFinder, RootMethod, RootResult, RootSettings,
+};
 use clap::Parser;
 use examples::catalog_view::{CatalogView, TABLE_4_1};
 use implicit_expr::catalog;
@@ -56,6 +60,9 @@ struct Args {
     /// Sampling step of the point-sampling baseline, as a fraction of the ray's range.
     #[arg(long, default_value_t = RootSettings::default().sampling_step)]
     sampling_step: f64,
+    /// Do not run searches that end open because of rounding again in double-double.
+    #[arg(long)]
+    no_escalate: bool,
     /// Most disagreements listed (default: every one).
     #[arg(long, default_value_t = u64::MAX)]
     max_listed: u64,
@@ -108,6 +115,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         max_steps: args.max_steps,
         sampling_step: args.sampling_step,
         lipschitz: args.lipschitz,
+        escalate: !args.no_escalate,
     };
     let setups: Vec<CatalogView> = names
         .iter()
@@ -148,6 +156,12 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         r.counters.point_evals.to_string()
     });
     table("Bisections", &|r| r.counters.bisections.to_string());
+    table("Escalated to double-double (resolved there)", &|r| {
+        format!(
+            "{} ({})",
+            r.counters.escalated, r.counters.escalated_resolved
+        )
+    });
     table(&format!("Hits (of {rays} rays)"), &|r| {
         r.results
             .iter()
@@ -177,7 +191,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
 /// Casts one ray per pixel of `s` with method `m`: the answers in row-major order, the
 /// summed counters and the wall time.
 fn cast(s: &CatalogView, m: RootMethod, settings: &RootSettings) -> Run {
-    let finder = m.finder();
+    let finder = Escalating::new(m.finder());
     let (w, h) = (s.camera.width(), s.camera.height());
     let start = Instant::now();
     let rows: Vec<(Vec<RootResult>, RootCounters)> = (0..h)

@@ -104,7 +104,7 @@ use implicit_expr::{NodeId, RayFunction, Tape};
 use interval_core::Interval;
 
 use crate::ibox::IBox;
-use crate::ray::{Beam, BeamEval, Precision, Ray};
+use crate::ray::{Beam, BeamEval, Precision, Ray, RayFn};
 use crate::root::{RootCounters, RootFinder, RootResult, RootSettings};
 use crate::scene::Geometry;
 use classify::{Classes, LeafTapes, classify_cells};
@@ -938,10 +938,20 @@ impl Grid {
         settings: &RootSettings,
         counters: &mut RootCounters,
     ) -> RootResult {
+        // Once a cell's search escalated to a higher precision (rounding kept it open), the
+        // ray's later cells start in that precision: they meet the same large terms.
+        let mut escalated = false;
         let r = self.for_each_ray_cell(ray, t, |hit| {
             let e = evals.get(self, hit.function);
             e.set_ray(ray);
-            match finder.first_root(e, hit.t, settings, counters) {
+            let previous = if escalated { e.escalate() } else { None };
+            let before = counters.escalated;
+            let r = finder.first_root(e, hit.t, settings, counters);
+            if let Some(p) = previous {
+                e.restore(p);
+            }
+            escalated |= counters.escalated > before;
+            match r {
                 RootResult::NoRoot => ControlFlow::Continue(()),
                 r => ControlFlow::Break(r),
             }

@@ -20,6 +20,9 @@ pub struct RootSettings {
     pub sampling_step: f64,
     /// Lipschitz bound of `g` per unit of `t` for the sphere-tracing baseline.
     pub lipschitz: f64,
+    /// Whether a search that ends open because rounding dominates its enclosures is run
+    /// again in the next higher precision ([`Escalating`](super::Escalating)).
+    pub escalate: bool,
 }
 
 impl Default for RootSettings {
@@ -29,6 +32,7 @@ impl Default for RootSettings {
             max_steps: 100_000,
             sampling_step: 1e-3,
             lipschitz: 10.0,
+            escalate: true,
         }
     }
 }
@@ -87,6 +91,10 @@ pub struct RootCounters {
     pub point_evals: u64,
     /// Interval bisections.
     pub bisections: u64,
+    /// Searches run again in a higher precision ([`Escalating`](super::Escalating)).
+    pub escalated: u64,
+    /// Escalated searches that ended proven (a root proven or no root).
+    pub escalated_resolved: u64,
 }
 
 impl RootCounters {
@@ -96,6 +104,8 @@ impl RootCounters {
         self.dg_evals += other.dg_evals;
         self.point_evals += other.point_evals;
         self.bisections += other.bisections;
+        self.escalated += other.escalated;
+        self.escalated_resolved += other.escalated_resolved;
     }
 }
 

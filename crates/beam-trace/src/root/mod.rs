@@ -23,6 +23,7 @@ use std::fmt;
 use std::str::FromStr;
 
 pub use crate::ray::RayFn;
+pub use escalation::Escalating;
 pub use finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
 
 /// The root finders by name.
@@ -128,6 +129,7 @@ impl FromStr for RootMethod {
 pub mod alefeld_hansen;
 pub mod bisection;
 pub mod counter_bisection;
+mod escalation;
 mod finder;
 pub mod mitchell;
 pub mod mrf;

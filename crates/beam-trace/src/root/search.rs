@@ -271,11 +271,28 @@ pub(crate) fn settle(
         if !cont && no_root_on_either_side(ev, x) {
             return None;
         }
+        if cont && mean_value_excludes_zero(ev, x) {
+            return None;
+        }
         if let Some(r) = look_around(ev, x, (ga, gb), range) {
             return Some(r);
         }
     }
     Some(RootResult::Root { t: x, proof })
+}
+
+/// Whether the mean-value form `G([m]) + G'(x)·(x − m)` (`m` the midpoint of `x`) excludes
+/// 0, which proves `x` free of roots where `g` is continuous on `x` (the derivative
+/// enclosures hold the generalised gradient at kinks and are unbounded across jumps). Where
+/// large terms cancel, the natural extension of `g` over `x` is wide (the dependency between
+/// the terms) while `G'` is narrow: this form then rejects the pieces before a miss that
+/// the natural extension cannot.
+fn mean_value_excludes_zero(ev: &mut Eval<'_>, x: Interval<f64>) -> bool {
+    let m = x.mid();
+    let gm = ev.at(m);
+    let (_, dg) = ev.g_dg(x);
+    let mv = gm + dg * (x - ipoint(m));
+    !mv.is_empty() && !may_vanish(mv)
 }
 
 /// Whether `x` crosses the boundary of one formula's domain and `g` excludes 0 on both

@@ -149,4 +149,5 @@ pub(super) struct RawRender {
     pub(super) shadows: Option<bool>,
     pub(super) shadow_method: Option<String>,
     pub(super) precision: Option<String>,
+    pub(super) escalate: Option<bool>,
 }

@@ -105,6 +105,9 @@ pub(super) fn render_settings(doc: &Doc<'_>, r: &RawRender) -> Result<RenderSett
     if let Some(p) = &r.precision {
         s.precision = p.parse().map_err(|m| doc.err("render.precision", m))?;
     }
+    if let Some(v) = r.escalate {
+        s.root.escalate = v;
+    }
     Ok(s)
 }
 

@@ -5,12 +5,15 @@
 use crate::root::RootCounters;
 
 /// The root-search counters by name, in the order they are reported.
-pub fn search_counters(c: &RootCounters) -> [(&'static str, u64); 4] {
+pub fn search_counters(c: &RootCounters) -> [(&'static str, u64); 7] {
     [
         ("g_evals", c.g_evals),
         ("dg_evals", c.dg_evals),
         ("point_evals", c.point_evals),
         ("bisections", c.bisections),
+        ("escalated", c.escalated),
+        ("escalated_resolved", c.escalated_resolved),
+        ("escalated_open", c.escalated - c.escalated_resolved),
     ]
 }
 

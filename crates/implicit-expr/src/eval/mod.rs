@@ -6,6 +6,7 @@
 //! | [`Interval<f64>`](interval_core::Interval), [`Interval<f32>`](interval_core::Interval) | a sound enclosure of the range over a box (inclusion function) |
 //! | [`Modal<T, Outer>`](interval_core::Modal) | `Out(fR(X))`, the outer-rounded modal rational extension |
 //! | [`Modal<T, Inner>`](interval_core::Modal) | `Inn(fR(X))`, the inner-rounded modal rational extension |
+//! | [`DdInterval`](interval_core::DdInterval) | an enclosure in double-double arithmetic, for queries that `f64` rounding keeps open |
 //! | [`Grad<N>`] | the value and the gradient with respect to `x`, `y`, `z` (forward mode) |
 //!
 //! Point results lie inside interval results for any box holding the point, wherever the
@@ -15,6 +16,7 @@
 //! while the interval evaluation, following IEEE 1788's set-based model, encloses only the
 //! values at the points of the box where the formula is defined.
 
+mod dd;
 mod grad;
 mod interval;
 mod modal;

@@ -25,7 +25,7 @@ use crate::error::Error;
 use crate::grid::Grid;
 use crate::plan::{Pass, Plan};
 use crate::ray::Ray;
-use crate::root::RootResult;
+use crate::root::{Escalating, RootFinder, RootResult};
 use crate::sample::Hit;
 use crate::scene::{Material, Scene};
 use crate::shading::{Incoming, phong};
@@ -85,7 +85,7 @@ impl Backend for Cpu {
                 scene,
                 plan,
                 grid,
-                finder: plan.root_finder.finder(),
+                finder: Escalating::new(plan.root_finder.finder()),
                 scoped,
                 pool: Mutex::new(Vec::new()),
             }),

@@ -7,7 +7,7 @@ use interval_core::Interval;
 use super::queries::{CpuQueries, Evals};
 use crate::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
 use crate::ray::{Beam, Ray, point_box};
-use crate::root::{Proof, RootCounters, RootResult};
+use crate::root::{Proof, RootCounters, RootFinder, RootResult};
 use crate::sample::SHADOW_OFFSET;
 use crate::shadow::hard::segment_visibility;
 use crate::shadow::{Occluders, Occlusion, Patch};

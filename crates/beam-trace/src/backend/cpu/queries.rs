@@ -16,7 +16,7 @@ use crate::beam::{
 use crate::grid::{Grid, GridEval};
 use crate::plan::Plan;
 use crate::ray::{Beam, BeamEval, Ray};
-use crate::root::{RayFn, RootCounters, RootFinder, RootResult};
+use crate::root::{Escalating, RayFn, RootCounters, RootFinder, RootResult};
 use crate::sample::Hit;
 use crate::scene::Scene;
 use crate::scene::geometry::GeometryEval;
@@ -28,7 +28,7 @@ pub struct CpuQueries<'a> {
     pub(super) scene: &'a Scene,
     pub(super) plan: &'a Plan,
     pub(super) grid: Option<Grid>,
-    pub(super) finder: &'static dyn RootFinder,
+    pub(super) finder: Escalating,
     /// The functions of the scopes rays are searched with.
     pub(super) scoped: ScopedFunctions,
     /// Evaluators given back by finished pieces of work, for the next ones: a scene's
@@ -227,7 +227,7 @@ impl CpuQueries<'_> {
             return self.first_root_in_bounds(eval, ray, t, c);
         }
         match (&self.grid, ev.grid.as_mut()) {
-            (Some(g), Some(gev)) => g.first_root_within(gev, ray, t, self.finder, root, c),
+            (Some(g), Some(gev)) => g.first_root_within(gev, ray, t, &self.finder, root, c),
             _ => self.first_root_in_bounds(&mut ev.geo.beam, ray, t, c),
         }
     }
