@@ -1,7 +1,7 @@
 //! Exact sums of a few `f64` (Shewchuk's nonoverlapping expansions) and their rounding to a
 //! [`Dd`] in a chosen direction: how the double-double interval operations get their bounds.
 
-use super::Dd;
+use super::number::Dd;
 use crate::float::{two_prod, two_sum};
 
 /// Most steps of the trailing part when rounding (see [`Expansion::round`]).

@@ -3,8 +3,8 @@
 use core::fmt;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 
-use super::Dd;
 use super::expansion::Expansion;
+use super::number::Dd;
 use crate::{Interval, IntervalError};
 
 /// An interval `[lo, hi]` with [`Dd`] bounds (about 106 bits), for queries whose `f64`
