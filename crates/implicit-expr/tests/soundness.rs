@@ -15,7 +15,8 @@
 //!
 //! * interval values (`f64` and `f32`) contain the oracle's value and the point value at
 //!   every point of the box where the function is defined there (the real soundness check:
-//!   point arithmetic may round differently from the real value);
+//!   point arithmetic may round differently from the real value); double-double intervals
+//!   contain the oracle's value;
 //! * the slice evaluator gives bit-identical results to the one-input evaluator;
 //! * a tape pruned from an interval evaluation over a box gives the full tape's point
 //!   values in the box, and its interval values over sub-boxes contain the point values;
@@ -38,7 +39,7 @@ use implicit_expr::{
     BinaryOp, Choice, Constant, Context, Evaluator, Grad, Node, NodeId, Number, RayEvaluator,
     RayFunction, SliceEvaluator, Tape, UnaryOp,
 };
-use interval_core::{Inner, Interval, Modal, Outer};
+use interval_core::{Dd, DdInterval, Inner, Interval, Modal, Outer};
 use proptest::prelude::*;
 use rug::Float;
 use rug::float::Constant as MpfrConstant;
@@ -857,6 +858,43 @@ fn check_interval_f32_contains_real_and_point_values(
     Ok(())
 }
 
+/// Whether the real `v` lies in the double-double interval `x` (with [`holds`]' slack).
+fn holds_dd(x: DdInterval, v: &Float) -> bool {
+    let Some((lo, hi)) = x.bounds() else {
+        return false;
+    };
+    let exact = |d: Dd| Float::with_val(PREC, d.hi()) + d.lo();
+    let slack = Float::with_val(PREC, v.abs_ref()) >> 150u32;
+    Float::with_val(PREC, v + &slack) >= exact(lo) && Float::with_val(PREC, v - &slack) <= exact(hi)
+}
+
+/// `DdInterval` contains the real value at points of the box.
+fn check_interval_dd_contains_real_values(
+    r: &Recipe,
+    b: &[(f64, f64); SLOTS],
+    us: &[[f64; SLOTS]],
+) -> Result<(), TestCaseError> {
+    let (ctx, root) = r.build();
+    let tape = Tape::new(&ctx, &[root]).unwrap();
+    let x: Vec<DdInterval> = b
+        .iter()
+        .map(|&b| DdInterval::from_interval(iv(b)))
+        .collect();
+    let fx = Evaluator::<DdInterval>::new(&tape).eval(&x).unwrap();
+    for u in us {
+        let p = point(b, u);
+        let Some(real) = r.oracle(&inputs_of(&p)) else {
+            continue;
+        };
+        prop_assert!(
+            holds_dd(fx, &real.v),
+            "real {} not in {fx} at {p:?}",
+            real.v
+        );
+    }
+    Ok(())
+}
+
 /// The slice evaluator agrees bit for bit with the one-input evaluator (`f64`, `f32`,
 /// `Interval<f64>`), across more inputs than one chunk.
 fn check_slice_evaluator_is_bit_identical(
@@ -1194,6 +1232,16 @@ proptest! {
         us in fractions(4),
     ) {
         let res = check_interval_f64_contains_real_and_point_values(&r, &b, &us);
+        res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
+    }
+
+    #[test]
+    fn interval_dd_contains_real_values(
+        r in recipe(),
+        b in boxes(),
+        us in fractions(4),
+    ) {
+        let res = check_interval_dd_contains_real_values(&r, &b, &us);
         res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
     }
 

@@ -210,4 +210,12 @@ fn special_cases_take_the_f64_path_soundly() {
     let p = (huge * huge).to_interval();
     assert!(p.sup() == f64::INFINITY && p.inf() == f64::MAX);
     assert!((DdInterval::EMPTY + one).is_empty());
+    // Infinite bounds: powers take the f64 path, and keep their values.
+    let half_line = DdInterval::from_interval(Interval::new(f64::NEG_INFINITY, 2.0).unwrap());
+    let cube = half_line.pown(3).to_interval();
+    assert!(
+        cube.inf() == f64::NEG_INFINITY && cube.sup() == 8.0,
+        "{cube:?}"
+    );
+    assert_eq!(half_line.pown(2).to_interval().sup(), f64::INFINITY);
 }

@@ -19,9 +19,10 @@ use crate::{Interval, IntervalError};
 /// (the tests check both against MPFR). `pown` multiplies these, so its bounds lose a few
 /// such units per multiplication. Where a bound is infinite, a divisor holds 0, or a
 /// magnitude leaves `[2^-400, 2^400]`, an operation computes in `f64` intervals instead
-/// (outward, 1 ulp of `f64`): sound, no tighter than `f64`. The other functions (`exp`,
-/// `ln`, the trigonometric functions, …) are evaluated that way too:
-/// [`map_f64`](Self::map_f64).
+/// (outward, 1 ulp of `f64`): sound, no tighter than `f64`. `exp`, `sin` and `cos` reduce
+/// their argument and sum a Taylor polynomial in these operations (within about `2^-90`
+/// relative and `2^-95` absolute); the other functions (`ln`, `tan`, `atan`, `pow`, …) take
+/// the `f64` hull: [`map_f64`](Self::map_f64).
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct DdInterval {
     lo: Dd,
@@ -294,7 +295,7 @@ impl DdInterval {
         match n {
             0 => Self::point(1.0),
             1 => self,
-            i32::MIN => self.map_f64(|x| x.pown(n)),
+            _ if n == i32::MIN || !self.finite_in_range() => self.map_f64(|x| x.pown(n)),
             _ if n < 0 => self.pown(-n).recip(),
             _ => {
                 let n = n.unsigned_abs();

@@ -8,8 +8,11 @@
 //! [`two_sum`](crate::float::two_sum) and [`two_prod`](crate::float::two_prod)), rounded to a
 //! double-double in the needed direction by checking the sign of the exact remainder.
 //! Quotients and square roots are approximated, then corrected until the exact residual
-//! (`a − q·b`, `a − s²`) has the sign that puts them on the right side.
+//! (`a − q·b`, `a − s²`) has the sign that puts them on the right side. `exp`, `sin` and
+//! `cos` reduce their argument and sum a Taylor polynomial in these interval operations,
+//! with an interval bound of the remainder.
 
+mod elementary;
 mod expansion;
 mod interval;
 mod number;

@@ -1,0 +1,232 @@
+//! `exp`, `sin` and `cos` of double-double intervals, self-validating: argument reduction
+//! and a Taylor polynomial evaluated in [`DdInterval`] arithmetic (outward), plus an
+//! interval bound of the Taylor remainder, so every enclosure is as sound as `+ − × /`.
+//!
+//! * `exp(x) = 2^k · exp(r)²⁸` with `r = (x − k·ln 2) / 2⁸`, `|r| ≤ 0.0014` (`k·ln 2` from an
+//!   exact expansion of `k` times three doubles of `ln 2`): eleven Taylor
+//!   terms and a remainder below `10⁻³⁸`; the eight squarings multiply the relative error
+//!   by 2⁸, so the bounds are within about `2^-94` (relative).
+//! * `sin` and `cos`: `r = x − k·π/2`, `|r| ≤ 0.8` (for `|x| ≤ 2^20`), Taylor to degree 31
+//!   and 32 with a remainder below `10⁻⁴⁰` (bounded by `10⁻³⁸`), the quadrant from `k`;
+//!   within about `2^-100` of the exact values (the reduction `x − k·π/2` is an exact
+//!   expansion with three doubles of `π/2`).
+//! * Over an interval, `exp` is monotone; `sin` and `cos` take the hull of the end values
+//!   and of the extremes `±1` at the multiples of `π/2` the interval may hold.
+//! * Out of these ranges (`|x| > 700` for `exp`, or a result whose trailing part would be
+//!   subnormal, below about `2^-960`; `|x| > 2^20`
+//!   for `sin`/`cos`), on infinite
+//!   bounds, and where a reduction is too wide to decide the quadrant, the `f64` hull path.
+
+use super::expansion::Expansion;
+use super::interval::DdInterval;
+use super::number::Dd;
+use crate::Interval;
+
+/// ln 2 as a sum of three doubles (within `10⁻⁴⁹`).
+const LN2: [f64; 3] = [
+    core::f64::consts::LN_2,
+    2.3190468138462996e-17,
+    5.707708438416212e-34,
+];
+/// π / 2 as a sum of three doubles (within `10⁻⁴⁹`).
+const HALF_PI: [f64; 3] = [
+    core::f64::consts::FRAC_PI_2,
+    6.123233995736766e-17,
+    -1.4973849048591698e-33,
+];
+
+/// `x − k·c` for an integer `k` (`|k| < 2^21`) and a constant `c` given by three doubles,
+/// enclosed: the products are exact expansions, and the constant's own error (below
+/// `2^-150`) is added as a radius.
+fn reduce(x: Dd, k: f64, c: [f64; 3]) -> Option<DdInterval> {
+    let mut e = Expansion::new();
+    e.add_dd(x);
+    for part in c {
+        e.add_product(-k, part);
+    }
+    let radius = (k.abs() * f64::from_bits((1023 - 150) << 52)).next_up();
+    let mut down = e.clone();
+    down.add(-radius);
+    let mut up = e;
+    up.add(radius);
+    DdInterval::new(down.round(false)?, up.round(true)?).ok()
+}
+
+/// `[-m, m]`.
+fn symmetric(m: f64) -> DdInterval {
+    DdInterval::from_interval(Interval::new_unchecked(-m, m))
+}
+
+/// `Σ c_i·r^i` (Horner, `c` from the highest degree down) plus `[-rem, rem]`.
+fn taylor(r: DdInterval, coefficients: &[DdInterval], rem: f64) -> DdInterval {
+    let mut acc = DdInterval::point(0.0);
+    for &c in coefficients {
+        acc = acc * r + c;
+    }
+    acc + symmetric(rem)
+}
+
+/// `1 / n!` enclosed.
+fn inv_factorial(n: u32) -> DdInterval {
+    let f: f64 = (1..=n).map(f64::from).product();
+    DdInterval::point(1.0) / DdInterval::point(f)
+}
+
+/// `exp(x)` for a point, enclosed; `None` outside the double-double range.
+fn exp_point(x: Dd) -> Option<DdInterval> {
+    if !x.is_finite() || x.hi().abs() > 700.0 {
+        return None;
+    }
+    if x.signum() == 0 {
+        return Some(DdInterval::point(1.0));
+    }
+    let k = (x.hi() / core::f64::consts::LN_2).round();
+    let scale = f64::from_bits((1023 - 8) << 52);
+    let r = reduce(x, k, LN2)? * DdInterval::point(scale);
+    // Degree 10: |r| ≤ 0.0014 gives |r|^11 / 11! · e^|r| < 1e-39.
+    if r.to_interval().mag().is_nan() || r.to_interval().mag() > 0.0014 {
+        return None;
+    }
+    let coefficients: Vec<DdInterval> = (0..=10).rev().map(inv_factorial).collect();
+    let mut e = taylor(r, &coefficients, 1e-38);
+    for _ in 0..8 {
+        e = e.sqr();
+    }
+    e.scaled(k as i32)
+}
+
+/// `sin(x)` and `cos(x)` for a point, enclosed; `None` outside the reduction's range.
+fn sin_cos_point(x: Dd) -> Option<(DdInterval, DdInterval)> {
+    if !x.is_finite() || x.hi().abs() > 1_048_576.0 {
+        return None;
+    }
+    let k = (x.hi() / core::f64::consts::FRAC_PI_2).round();
+    let r = reduce(x, k, HALF_PI)?;
+    // |r| ≤ 0.8 (π/4 and the reduction's error): degree 31 (sin; its degree-32 term is 0)
+    // and 32 (cos) leave at most |r|^33 / 33! < 1e-40.
+    if r.to_interval().mag().is_nan() || r.to_interval().mag() > 0.8 {
+        return None;
+    }
+    let sin_c: Vec<DdInterval> = (0..=31u32)
+        .rev()
+        .map(|i| match i % 4 {
+            1 => inv_factorial(i),
+            3 => -inv_factorial(i),
+            _ => DdInterval::point(0.0),
+        })
+        .collect();
+    let cos_c: Vec<DdInterval> = (0..=32u32)
+        .rev()
+        .map(|i| match i % 4 {
+            0 => inv_factorial(i),
+            2 => -inv_factorial(i),
+            _ => DdInterval::point(0.0),
+        })
+        .collect();
+    let s = taylor(r, &sin_c, 1e-38);
+    let c = taylor(r, &cos_c, 1e-38);
+    Some(match (k as i64).rem_euclid(4) {
+        0 => (s, c),
+        1 => (c, -s),
+        2 => (-s, -c),
+        _ => (-c, s),
+    })
+}
+
+/// The integers `q` that `x / (π/2)` may equal, as `[q0, q1]`; `None` when too many.
+fn quarter_turns(x: DdInterval) -> Option<(i64, i64)> {
+    let half_pi = Interval::new(HALF_PI[0].next_down(), HALF_PI[0].next_up()).ok()?;
+    let q = x.to_interval() / half_pi;
+    let (lo, hi) = q.bounds()?;
+    if !(lo.is_finite() && hi.is_finite()) || hi - lo > 8.0 {
+        return None;
+    }
+    Some((lo.ceil() as i64, hi.floor() as i64))
+}
+
+impl DdInterval {
+    /// `eˣ` (monotone: the enclosures at the two ends).
+    pub fn exp(self) -> Self {
+        let Some((lo, hi)) = self.bounds() else {
+            return self;
+        };
+        match (exp_point(lo), exp_point(hi)) {
+            (Some(a), Some(b)) => {
+                let (Some((a, _)), Some((_, b))) = (a.bounds(), b.bounds()) else {
+                    return self.map_f64(Interval::exp);
+                };
+                // eˣ > 0: a negative lower bound from the remainder is raised to 0.
+                let a = if a.signum() < 0 { Dd::ZERO } else { a };
+                Self::new(a, b).unwrap_or_else(|_| self.map_f64(Interval::exp))
+            }
+            _ => self.map_f64(Interval::exp),
+        }
+    }
+
+    /// `sin x`.
+    pub fn sin(self) -> Self {
+        self.trig(false)
+    }
+
+    /// `cos x`.
+    pub fn cos(self) -> Self {
+        self.trig(true)
+    }
+
+    /// `sin` or `cos` over the interval: the end values and the extremes it may hold.
+    fn trig(self, cosine: bool) -> Self {
+        let fallback = || {
+            if cosine {
+                self.map_f64(Interval::cos)
+            } else {
+                self.map_f64(Interval::sin)
+            }
+        };
+        let Some((lo, hi)) = self.bounds() else {
+            return self;
+        };
+        let (Some(a), Some(b), Some((q0, q1))) =
+            (sin_cos_point(lo), sin_cos_point(hi), quarter_turns(self))
+        else {
+            return fallback();
+        };
+        let pick = |v: (Self, Self)| if cosine { v.1 } else { v.0 };
+        let mut out = pick(a).convex_hull(pick(b));
+        // sin has its maximum at q ≡ 1 (mod 4) and its minimum at q ≡ 3; cos at 0 and 2.
+        let (max_at, min_at) = if cosine { (0, 2) } else { (1, 3) };
+        for q in q0..=q1 {
+            match q.rem_euclid(4) {
+                m if m == max_at => out = out.convex_hull(Self::point(1.0)),
+                m if m == min_at => out = out.convex_hull(Self::point(-1.0)),
+                _ => {}
+            }
+        }
+        // The values lie in [−1, 1].
+        out.intersection_unit()
+    }
+
+    /// `self · 2^k`, exactly (`None` where a part would leave the normal range).
+    fn scaled(self, k: i32) -> Option<Self> {
+        let (lo, hi) = self.bounds()?;
+        let f = 2f64.powi(k);
+        let scale = |x: Dd| {
+            let (h, l) = (x.hi() * f, x.lo() * f);
+            let normal = |v: f64| v == 0.0 || (v.is_finite() && v.abs() >= f64::MIN_POSITIVE);
+            (normal(h) && normal(l) && f.is_finite() && f != 0.0)
+                .then(|| Dd::from_sum(h, l))
+                .flatten()
+        };
+        Self::new(scale(lo)?, scale(hi)?).ok()
+    }
+
+    /// `self ∩ [−1, 1]`.
+    fn intersection_unit(self) -> Self {
+        let one = Dd::from_f64(1.0);
+        let Some((lo, hi)) = self.bounds() else {
+            return self;
+        };
+        let lo = if lo < -one { -one } else { lo };
+        let hi = if hi > one { one } else { hi };
+        Self::new(lo, hi).unwrap_or(Self::EMPTY)
+    }
+}
