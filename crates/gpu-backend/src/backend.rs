@@ -29,6 +29,7 @@ use interval_core::Interval;
 use crate::beams::{self, BeamKernel, GpuBeam, GpuClass, KernelSettings};
 use crate::device::Gpu;
 use crate::error::GpuError;
+use crate::escalation::escalate_open;
 use crate::shading::{MAX_LIGHTS, ShadingInput, ShadingKernel};
 
 /// The GPU backend: a device whose kernels answer the pipeline's queries.
@@ -113,6 +114,8 @@ impl Backend for GpuBackend {
         Ok(Prepared {
             queries: Box::new(GpuQueries {
                 gpu: &self.gpu,
+                scene,
+                plan,
                 kernel,
                 shader,
                 bounds: geometry.bounds(),
@@ -148,6 +151,8 @@ impl Backend for GpuBackend {
 /// The GPU's queries for one scene.
 struct GpuQueries<'g> {
     gpu: &'g Gpu,
+    scene: &'g Scene,
+    plan: &'g Plan,
     kernel: BeamKernel,
     shader: Option<ShadingKernel>,
     bounds: IBox,
@@ -333,14 +338,17 @@ impl Queries for GpuQueries<'_> {
             .map(|r| self.query(r.ray.beam(), r.window))
             .collect();
         // A proven section of a single ray holds a root (a sign change of a continuous g).
-        Ok(map(self.classify(&q, &self.ray)?, |c| match c {
+        let mut answers = map(self.classify(&q, &self.ray)?, |c| match c {
             GpuClass::Miss => RootResult::NoRoot,
             GpuClass::Hit { t } => RootResult::Root {
                 t,
                 proof: Proof::Exists,
             },
             GpuClass::Undecided { t } => RootResult::Undecided { t },
-        }))
+        });
+        let escalated = escalate_open(self.scene, self.plan, queries, &mut answers.values);
+        answers.search.add(&escalated);
+        Ok(answers)
     }
 
     fn hit_points(&self, _: &[HitQuery]) -> Result<Answers<Hit>, Error> {

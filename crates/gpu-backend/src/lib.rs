@@ -42,6 +42,7 @@ pub mod beams;
 mod device;
 mod dispatch;
 mod error;
+mod escalation;
 pub mod library;
 pub mod shading;
 pub mod surface;

@@ -229,6 +229,39 @@ position = [3.0, 5.0, 2.0]
 }
 
 #[test]
+fn open_roots_that_rounding_dominates_escalate_on_the_cpu() {
+    // The unit sphere with terms of 1e11 that cancel: in f32 (and f64) every ray stays
+    // open; the backend sends those rays to the CPU, which escalates to double-double.
+    let Some(gpu) = Gpu::for_tests() else { return };
+    let backend = GpuBackend::new(gpu);
+    let text = r#"
+[camera]
+eye = [0.0, 0.0, 5.0]
+look_at = [0.0, 0.0, 0.0]
+fov = 40.0
+width = 16
+height = 16
+[[surfaces]]
+formula = "(x + 1e11)^2 - 2e11*x - 1e22 + y^2 + z^2 - 1"
+bounds = [[-1.25, -1.25, -1.25], [1.25, 1.25, 1.25]]
+[render]
+primary = "screen-rays"
+rays_per_undecided = 1
+"#;
+    let s = Scene::from_toml(text, "cancel.toml", None).unwrap_or_else(|e| panic!("{e}"));
+    let out = render_on(&s, &backend, &NoProgress).expect("the GPU backend renders");
+    let reference = render(&s, &NoProgress).expect("the CPU renders");
+    let (gpu_rays, cpu_rays) = (
+        out.stats.pass("primary-rays").unwrap(),
+        reference.stats.pass("primary-rays").unwrap(),
+    );
+    assert!(gpu_rays.counter("escalated") > 0);
+    assert_eq!(gpu_rays.counter("hits"), cpu_rays.counter("hits"));
+    assert_eq!(gpu_rays.counter("possible"), 0);
+    assert_eq!(gpu_rays.counter("undecided"), 0);
+}
+
+#[test]
 fn gpu_shadow_proofs_agree_with_many_cpu_samples() {
     let Some(gpu) = Gpu::for_tests() else { return };
     let g =

@@ -34,8 +34,10 @@ impl Escalating {
     }
 }
 
-/// Whether rounding alone keeps the open piece starting at `a` from being decided to `ε`.
-fn rounding_dominates(
+/// Whether rounding alone keeps the open piece starting at `a` (and ending at most at `end`)
+/// from being decided to `epsilon` in `g`'s current precision: the enclosure of `g` at `a`
+/// is at least `epsilon·|G'([a, a + epsilon])| / 4` wide. Two evaluations, counted.
+pub fn rounding_dominates(
     g: &mut dyn RayFn,
     a: f64,
     end: f64,

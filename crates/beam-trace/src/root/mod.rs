@@ -23,7 +23,7 @@ use std::fmt;
 use std::str::FromStr;
 
 pub use crate::ray::RayFn;
-pub use escalation::Escalating;
+pub use escalation::{Escalating, rounding_dominates};
 pub use finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
 
 /// The root finders by name.

@@ -1,0 +1,87 @@
+//! Roots the kernels leave open where `f32` rounding dominates, searched again on the CPU:
+//! in `f64`, and in double-double beyond where `f64` rounding dominates too
+//! ([`Escalating`]). This is how the GPU backend escalates precision: only the rays whose
+//! open answer the rounding test picks pay for it, and the answers count as `escalated`
+//! (`escalated_resolved` where the CPU proves a root or no root).
+
+use beam_trace::backend::RayQuery;
+use beam_trace::ray::{BeamEval, Precision};
+use beam_trace::root::{
+    Escalating, Proof, RootCounters, RootFinder, RootResult, rounding_dominates,
+};
+use beam_trace::{Plan, Scene};
+use interval_core::Interval;
+use rayon::prelude::*;
+
+/// The open part of an answer: the piece of an undecided or possibly-rooted answer.
+fn open_piece(r: &RootResult) -> Option<Interval<f64>> {
+    match *r {
+        RootResult::Undecided { t }
+        | RootResult::Root {
+            t,
+            proof: Proof::Possible,
+        } => Some(t),
+        _ => None,
+    }
+}
+
+/// Re-searches on the CPU the open `answers` of `queries` where `f32` rounding dominates
+/// (the test of [`rounding_dominates`], in `f32` as the kernels evaluate), replacing them;
+/// returns the counters of that work. Nothing when the plan does not escalate.
+pub(crate) fn escalate_open(
+    scene: &Scene,
+    plan: &Plan,
+    queries: &[RayQuery],
+    answers: &mut [RootResult],
+) -> RootCounters {
+    let mut total = RootCounters::default();
+    if !plan.root.escalate {
+        return total;
+    }
+    let open: Vec<(usize, Interval<f64>)> = answers
+        .iter()
+        .enumerate()
+        .filter_map(|(i, r)| open_piece(r).map(|t| (i, t)))
+        .collect();
+    if open.is_empty() {
+        return total;
+    }
+    let f = scene.geometry.ray_function();
+    let bounds = scene.geometry.bounds();
+    let finder = Escalating::new(plan.root_finder.finder());
+    let redone: Vec<(usize, Option<RootResult>, RootCounters)> = open
+        .par_iter()
+        .map_init(
+            || BeamEval::new(f),
+            |ev, &(i, piece)| {
+                let mut c = RootCounters::default();
+                let q = &queries[i];
+                // Everything before the open piece is proven free of roots.
+                let rest = Interval::new_unchecked(piece.inf(), q.window.sup().max(piece.inf()));
+                let Some(t) = q.ray.beam().t_range_within(&bounds, rest) else {
+                    return (i, None, c);
+                };
+                ev.set_ray(&q.ray);
+                ev.set_precision(Precision::F32);
+                let dominated = rounding_dominates(ev, t.inf(), t.sup(), plan.root.epsilon, &mut c);
+                ev.set_precision(Precision::F64);
+                if !dominated {
+                    return (i, None, c);
+                }
+                c.escalated += 1;
+                let r = finder.first_root(ev, t, &plan.root, &mut c);
+                if open_piece(&r).is_none() {
+                    c.escalated_resolved += 1;
+                }
+                (i, Some(r), c)
+            },
+        )
+        .collect();
+    for (i, r, c) in redone {
+        if let Some(r) = r {
+            answers[i] = r;
+        }
+        total.add(&c);
+    }
+    total
+}
