@@ -2,8 +2,8 @@
 //! when rounding, not the width of its box, keeps `f64` intervals from deciding it.
 //!
 //! `+ − × /`, `sqr`, `√`, `pown`, `abs`, `min`, `max` and `domain` run in double-double
-//! (within a few units of `2^-104` per operation), `exp`, `sin` and `cos` too (within about
-//! `2^-90` and `2^-95`: the functions of the catalog); the other operations, and the definedness
+//! (within a few units of `2^-104` per operation), `exp`, `sin`, `cos`, `ln`, `log` and `pow`
+//! too (within about `2^-80` to `2^-95`); the other operations, and the definedness
 //! checks, take the `f64` hull of their arguments (outward, so every check that holds on the
 //! hull holds on the double-double interval) and the `f64` interval operation: sound, no
 //! tighter than `f64` there. Constants are the `f64` enclosures of the formula's literals
@@ -54,6 +54,8 @@ impl Number for DdInterval {
             UnaryOp::Sqrt => a.sqrt(),
             UnaryOp::Recip => a.recip(),
             UnaryOp::Exp => a.exp(),
+            UnaryOp::Ln => a.ln(),
+            UnaryOp::Log10 => a.log10(),
             UnaryOp::Sin => a.sin(),
             UnaryOp::Cos => a.cos(),
             _ => a.map_f64(|x| <F64 as Number>::unary(op, x)),
@@ -69,7 +71,7 @@ impl Number for DdInterval {
             BinaryOp::Min => a.min(b),
             BinaryOp::Max => a.max(b),
             BinaryOp::Domain => domain(a, b),
-            BinaryOp::Pow => a.map2_f64(b, |x, y| <F64 as Number>::binary(op, x, y)),
+            BinaryOp::Pow => a.pow(b),
         }
     }
 

@@ -10,7 +10,10 @@
 //!   and 32 with a remainder below `10⁻⁴⁰` (bounded by `10⁻³⁸`), the quadrant from `k`;
 //!   within about `2^-100` of the exact values (the reduction `x − k·π/2` is an exact
 //!   expansion with three doubles of `π/2`).
-//! * Over an interval, `exp` is monotone; `sin` and `cos` take the hull of the end values
+//! * `ln x = y₀ + ln(x·e^{−y₀})` with `y₀` the `f64` logarithm, the second term by a short
+//!   Taylor sum (within about `2^-90`, absolute); `log₁₀ = ln / ln 10`; `pow(a, b) =
+//!   exp(b·ln a)` for `a > 0`.
+//! * Over an interval, `exp` and `ln` are monotone; `sin` and `cos` take the hull of the end values
 //!   and of the extremes `±1` at the multiples of `π/2` the interval may hold.
 //! * Out of these ranges (`|x| > 700` for `exp`, or a result whose trailing part would be
 //!   subnormal, below about `2^-960`; `|x| > 2^20`
@@ -34,6 +37,17 @@ const HALF_PI: [f64; 3] = [
     6.123233995736766e-17,
     -1.4973849048591698e-33,
 ];
+
+/// ln 10 as a sum of two doubles, and a bound of the error of their sum.
+const LN10: [f64; 2] = [core::f64::consts::LN_10, -2.1707562233822494e-16];
+const LN10_ERROR: f64 = 1e-32;
+
+/// An enclosure of `c[0] + c[1] ± error`.
+fn constant(c: [f64; 2], error: f64) -> Option<DdInterval> {
+    let lo = Dd::from_sum(c[0], c[1] - error)?;
+    let hi = Dd::from_sum(c[0], c[1] + error)?;
+    DdInterval::new(lo, hi).ok()
+}
 
 /// `x − k·c` for an integer `k` (`|k| < 2^21`) and a constant `c` given by three doubles,
 /// enclosed: the products are exact expansions, and the constant's own error (below
@@ -93,6 +107,47 @@ fn exp_point(x: Dd) -> Option<DdInterval> {
         e = e.sqr();
     }
     e.scaled(k as i32)
+}
+
+/// `ln x` for a positive point, enclosed: `y₀ = ln(hi)` in `f64`, then `ln x = y₀ + ln(1 + δ)`
+/// with `1 + δ = x·e^{−y₀}` (from [`exp_point`]) and `ln(1 + δ) = δ − δ²/2 + δ³/3 − δ⁴/4`
+/// plus a remainder below `|δ|⁵/(5(1 − |δ|))`, after taking out the binary exponent
+/// (`ln x = e·ln 2 + ln m`, `m ∈ [1, 2)`); `None` for subnormal arguments.
+fn ln_point(x: Dd) -> Option<DdInterval> {
+    if x.is_finite() && x == Dd::from_f64(1.0) {
+        return Some(DdInterval::point(0.0));
+    }
+    if !(x.is_finite() && x.hi() >= f64::MIN_POSITIVE) {
+        return None;
+    }
+    // x = m·2^e with m in [1, 2) (exact scaling): ln x = e·ln 2 + ln m.
+    let e = x.hi().log2().floor();
+    if e != 0.0 {
+        let f = 2f64.powi(-(e as i32));
+        let (h, l) = (x.hi() * f, x.lo() * f);
+        if l != 0.0 && l.abs() < f64::MIN_POSITIVE {
+            return None;
+        }
+        let m = Dd::from_sum(h, l)?;
+        return Some(reduce(Dd::ZERO, -e, LN2)? + ln_point(m)?);
+    }
+    let y0 = x.hi().ln();
+    let z = DdInterval::new(x, x).ok()? * exp_point(Dd::from_f64(-y0))?;
+    let d = z - DdInterval::point(1.0);
+    // y0 is within a few ulps of ln x, so |δ| is about 1e-16: the remainder is below 1e-49.
+    let m = d.to_interval().mag();
+    if m.is_nan() || m > 1e-10 {
+        return None;
+    }
+    let third = DdInterval::point(1.0) / DdInterval::point(3.0);
+    let coefficients = [
+        DdInterval::point(-0.25),
+        third,
+        DdInterval::point(-0.5),
+        DdInterval::point(1.0),
+        DdInterval::point(0.0),
+    ];
+    Some(DdInterval::point(y0) + taylor(d, &coefficients, 1e-49))
 }
 
 /// `sin(x)` and `cos(x)` for a point, enclosed; `None` outside the reduction's range.
@@ -160,6 +215,58 @@ impl DdInterval {
                 Self::new(a, b).unwrap_or_else(|_| self.map_f64(Interval::exp))
             }
             _ => self.map_f64(Interval::exp),
+        }
+    }
+
+    /// `ln x` over the positive part (empty where there is none; `−∞` below where the
+    /// interval reaches 0).
+    pub fn ln(self) -> Self {
+        let Some((lo, hi)) = self.bounds() else {
+            return self;
+        };
+        if hi.signum() <= 0 {
+            return Self::EMPTY;
+        }
+        let low = if lo.signum() <= 0 {
+            Some(Dd::NEG_INFINITY)
+        } else {
+            ln_point(lo).and_then(|v| v.bounds()).map(|(l, _)| l)
+        };
+        let high = ln_point(hi).and_then(|v| v.bounds()).map(|(_, h)| h);
+        match (low, high) {
+            (Some(l), Some(h)) => Self::new(l, h).unwrap_or_else(|_| self.map_f64(Interval::ln)),
+            _ => self.map_f64(Interval::ln),
+        }
+    }
+
+    /// `log₁₀ x` (`ln x / ln 10`).
+    pub fn log10(self) -> Self {
+        match constant(LN10, LN10_ERROR) {
+            Some(ln10) if !self.is_empty() => {
+                let l = self.ln();
+                if l.to_interval().is_common_interval() {
+                    l / ln10
+                } else {
+                    self.map_f64(Interval::log10)
+                }
+            }
+            _ => self.map_f64(Interval::log10),
+        }
+    }
+
+    /// `self^b` for a real exponent (IEEE 1788 `pow`): `exp(b · ln self)` where `self > 0`,
+    /// the `f64` path elsewhere (a base reaching 0).
+    pub fn pow(self, b: Self) -> Self {
+        match self.bounds() {
+            Some((lo, _)) if lo.signum() > 0 && !b.is_empty() => {
+                let l = self.ln();
+                if l.to_interval().is_common_interval() && b.to_interval().is_common_interval() {
+                    (b * l).exp()
+                } else {
+                    self.map2_f64(b, Interval::pow)
+                }
+            }
+            _ => self.map2_f64(b, Interval::pow),
         }
     }
 

@@ -19,10 +19,10 @@ use crate::{Interval, IntervalError};
 /// (the tests check both against MPFR). `pown` multiplies these, so its bounds lose a few
 /// such units per multiplication. Where a bound is infinite, a divisor holds 0, or a
 /// magnitude leaves `[2^-400, 2^400]`, an operation computes in `f64` intervals instead
-/// (outward, 1 ulp of `f64`): sound, no tighter than `f64`. `exp`, `sin` and `cos` reduce
-/// their argument and sum a Taylor polynomial in these operations (within about `2^-90`
-/// relative and `2^-95` absolute); the other functions (`ln`, `tan`, `atan`, `pow`, …) take
-/// the `f64` hull: [`map_f64`](Self::map_f64).
+/// (outward, 1 ulp of `f64`): sound, no tighter than `f64`. `exp`, `sin`, `cos`, `ln`,
+/// `log10` and `pow` reduce their argument and sum a Taylor polynomial in these operations
+/// (within about `2^-80` to `2^-95`); the other functions (`tan`, the inverse trigonometric
+/// functions, …) take the `f64` hull: [`map_f64`](Self::map_f64).
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct DdInterval {
     lo: Dd,
