@@ -3,12 +3,13 @@
 //! decide because rounding, not the width of the box, dominates their enclosures (large
 //! terms that cancel).
 //!
-//! Each bound comes from an exact sum of `f64` terms (an *expansion*: Shewchuk's
-//! nonoverlapping components, built with the error-free transformations
-//! [`two_sum`](crate::float::two_sum) and [`two_prod`](crate::float::two_prod)), rounded to a
-//! double-double in the needed direction by checking the sign of the exact remainder.
-//! Quotients and square roots are approximated, then corrected until the exact residual
-//! (`a − q·b`, `a − s²`) has the sign that puts them on the right side. `exp`, `sin` and
+//! Sums and products are double-word algorithms with proven relative error bounds (Joldes,
+//! Muller and Popescu, 2017), widened outward by eight times those bounds. Quotients and
+//! square roots are approximated, then corrected until the exact residual (`a − q·b`,
+//! `a − s²`) has the sign that puts them on the right side: the residual is an exact sum of
+//! `f64` terms (an *expansion*: Shewchuk's nonoverlapping components, built with the
+//! error-free transformations [`two_sum`](crate::float::two_sum) and
+//! [`two_prod`](crate::float::two_prod)). `exp`, `sin` and
 //! `cos` reduce their argument and sum a Taylor polynomial in these interval operations,
 //! with an interval bound of the remainder.
 
