@@ -65,6 +65,13 @@ impl RunResult {
     pub(crate) fn shadow_ms(&self) -> f64 {
         ms(self.shadow_time)
     }
+
+    /// Whether the run carries a certificate: its method proves each pixel's visible
+    /// fraction within a bound it refines to a tolerance (`certified:TOL`); the report's
+    /// "largest certified bound width" says how wide the widest one came out.
+    pub(crate) fn certified(&self) -> bool {
+        self.setting.spec.method().tolerance() > 0.0
+    }
 }
 
 /// An error measure the plots and Pareto fronts use.

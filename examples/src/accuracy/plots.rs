@@ -1,5 +1,6 @@
 //! Plots of shadow time against error, one colour per method family, with the Pareto
-//! front.
+//! front; the points that carry a certificate (a method that proves each pixel's fraction
+//! within a bound refined to a tolerance) are framed by a square.
 
 use std::path::Path;
 
@@ -73,6 +74,10 @@ pub(crate) fn draw_plot(
             .iter()
             .map(|&p| Circle::new(p, 9, BLACK.stroke_width(2))),
     )?;
+    // A square around each point that carries a certificate.
+    chart.draw_series(runs.iter().filter(|r| r.certified()).map(|r| {
+        EmptyElement::at(point(r)) + Rectangle::new([(-13, -13), (13, 13)], BLACK.stroke_width(1))
+    }))?;
     chart.draw_series(runs.iter().enumerate().map(|(i, r)| {
         // Alternate the label above and below the point so that neighbours overlap less.
         let dy = if i % 2 == 0 { -16 } else { 4 };
@@ -114,6 +119,16 @@ pub(crate) fn draw_legend<DB: DrawingBackend>(
     area.draw(&Text::new("Pareto front", (40, y - 8), font))?;
     area.draw(&Text::new("(default settings)", (40, y + 10), font))?;
     y += 18;
+    if runs.iter().any(RunResult::certified) {
+        y += 34;
+        area.draw(&Rectangle::new(
+            [(12, y - 8), (28, y + 8)],
+            BLACK.stroke_width(1),
+        ))?;
+        area.draw(&Text::new("certificate: each pixel", (40, y - 8), font))?;
+        area.draw(&Text::new("proven within a bound", (40, y + 10), font))?;
+        y += 18;
+    }
     for family in Family::ALL {
         if !runs.iter().any(|r| r.setting.family() == family) {
             continue;
