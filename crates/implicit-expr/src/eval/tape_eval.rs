@@ -164,7 +164,10 @@ impl<N: Number> Evaluator<N> {
     /// Where some operation is undefined on part of its argument (`sqrt` of an interval
     /// reaching below 0, a division by an interval holding 0, ...), every choice is recorded
     /// as [`Choice::Both`]: the formula is then partly undefined in the region, and a pruned
-    /// tape, defined where the full one is not, would change it.
+    /// tape, defined where the full one is not, would change it. An undecided
+    /// [`domain`](crate::BinaryOp::Domain) does not count: it is defined everywhere (the
+    /// formula or the absent object), only not continuous, and a choice made over its
+    /// enclosure holds at every point.
     pub fn eval_traced(&mut self, vars: &[N], trace: &mut Vec<Choice>) -> Result<N, Error> {
         self.check(vars)?;
         trace.clear();
@@ -236,7 +239,9 @@ fn run<N: Number, const TRACE: bool, const CHECK: bool, const SIDE: u8>(
                 v
             }
             Opcode::Binary(op) => {
-                if TRACE || CHECK {
+                // An undecided `domain` is a jump, not a hole: the pruned tape still equals
+                // the formula at every point, so only a continuity check counts it.
+                if CHECK || (TRACE && op != BinaryOp::Domain) {
                     defined &= N::defined_binary(op, regs[a], regs[b]);
                 }
                 N::binary(op, regs[a], regs[b])
@@ -447,6 +452,8 @@ fn step_traced<N: Number>(
                 *d &= N::defined_unary(op, regs[a * c + i]);
             }
         }
+        // As in `run`: an undecided `domain` does not stop pruning.
+        Opcode::Binary(BinaryOp::Domain) => {}
         Opcode::Binary(op) => {
             for (i, d) in defined.iter_mut().enumerate().take(n) {
                 *d &= N::defined_binary(op, regs[a * c + i], regs[b * c + i]);
