@@ -41,6 +41,24 @@ fn reliable() -> Vec<RootMethod> {
 /// The first-root search of `method` along `ray`, over the part of the ray (`t ≥ 0`) inside
 /// the scene bounds, with the scene function, as the renderer runs it without a grid.
 fn solve(scene: &Scene, method: RootMethod, ray: &Ray, settings: &RootSettings) -> RootResult {
+    search(
+        scene,
+        method.finder(),
+        ray,
+        settings,
+        &mut RootCounters::default(),
+    )
+}
+
+/// The first-root search of `finder` along `ray` over the part of the ray inside the scene
+/// bounds, with the scene function, counting into `counters`.
+fn search(
+    scene: &Scene,
+    finder: &dyn RootFinder,
+    ray: &Ray,
+    settings: &RootSettings,
+    counters: &mut RootCounters,
+) -> RootResult {
     let Some(t) = ray
         .beam()
         .t_range_within(&scene.geometry.bounds(), forward())
@@ -49,10 +67,7 @@ fn solve(scene: &Scene, method: RootMethod, ray: &Ray, settings: &RootSettings) 
     };
     let mut ev = scene.geometry.evaluator();
     ev.beam.set_ray(ray);
-    let mut counters = RootCounters::default();
-    method
-        .finder()
-        .first_root(&mut ev.beam, t, settings, &mut counters)
+    finder.first_root(&mut ev.beam, t, settings, counters)
 }
 
 /// The truth about a ray: it misses, or its first root (`t ≥ 0`) is at the given parameter.
@@ -1458,15 +1473,8 @@ fn solve_escalating(
     settings: &RootSettings,
 ) -> (RootResult, RootCounters) {
     let mut counters = RootCounters::default();
-    let Some(t) = ray
-        .beam()
-        .t_range_within(&scene.geometry.bounds(), forward())
-    else {
-        return (RootResult::NoRoot, counters);
-    };
-    let mut ev = scene.geometry.evaluator();
-    ev.beam.set_ray(ray);
-    let r = Escalating::new(method.finder()).first_root(&mut ev.beam, t, settings, &mut counters);
+    let finder = Escalating::new(method.finder());
+    let r = search(scene, &finder, ray, settings, &mut counters);
     (r, counters)
 }
 

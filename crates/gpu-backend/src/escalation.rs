@@ -6,24 +6,10 @@
 
 use beam_trace::backend::RayQuery;
 use beam_trace::ray::{BeamEval, Precision};
-use beam_trace::root::{
-    Escalating, Proof, RootCounters, RootFinder, RootResult, rounding_dominates,
-};
+use beam_trace::root::{Escalating, RootCounters, RootFinder, RootResult, rounding_dominates};
 use beam_trace::{Plan, Scene};
 use interval_core::Interval;
 use rayon::prelude::*;
-
-/// The open part of an answer: the piece of an undecided or possibly-rooted answer.
-fn open_piece(r: &RootResult) -> Option<Interval<f64>> {
-    match *r {
-        RootResult::Undecided { t }
-        | RootResult::Root {
-            t,
-            proof: Proof::Possible,
-        } => Some(t),
-        _ => None,
-    }
-}
 
 /// Re-searches on the CPU the open `answers` of `queries` where `f32` rounding dominates
 /// (the test of [`rounding_dominates`], in `f32` as the kernels evaluate), replacing them;
@@ -41,7 +27,7 @@ pub(crate) fn escalate_open(
     let open: Vec<(usize, Interval<f64>)> = answers
         .iter()
         .enumerate()
-        .filter_map(|(i, r)| open_piece(r).map(|t| (i, t)))
+        .filter_map(|(i, r)| r.open().map(|t| (i, t)))
         .collect();
     if open.is_empty() {
         return total;
@@ -70,7 +56,7 @@ pub(crate) fn escalate_open(
                 }
                 c.escalated += 1;
                 let r = finder.first_root(ev, t, &plan.root, &mut c);
-                if open_piece(&r).is_none() {
+                if r.open().is_none() {
                     c.escalated_resolved += 1;
                 }
                 (i, Some(r), c)

@@ -670,11 +670,14 @@ fn inputs_of(p: &[f64; SLOTS]) -> [Float; SLOTS] {
 /// inexact), so `v` may stand a relative 2^-150 outside an interval that holds the exact
 /// value (`3 · (1 - 1/3)` against the exact `[2, 2]`).
 fn holds(x: Interval<f64>, v: &Float) -> bool {
-    let Some((lo, hi)) = x.bounds() else {
-        return false;
-    };
+    x.bounds()
+        .is_some_and(|(lo, hi)| between(&Float::with_val(PREC, lo), &Float::with_val(PREC, hi), v))
+}
+
+/// `lo ≤ v ≤ hi` up to [`holds`]' slack of the oracle's rounding.
+fn between(lo: &Float, hi: &Float, v: &Float) -> bool {
     let slack = Float::with_val(PREC, v.abs_ref()) >> 150u32;
-    Float::with_val(PREC, v + &slack) >= lo && Float::with_val(PREC, v - &slack) <= hi
+    Float::with_val(PREC, v + &slack) >= *lo && Float::with_val(PREC, v - &slack) <= *hi
 }
 
 /// [`holds`] for `f32` intervals.
@@ -860,12 +863,9 @@ fn check_interval_f32_contains_real_and_point_values(
 
 /// Whether the real `v` lies in the double-double interval `x` (with [`holds`]' slack).
 fn holds_dd(x: DdInterval, v: &Float) -> bool {
-    let Some((lo, hi)) = x.bounds() else {
-        return false;
-    };
     let exact = |d: Dd| Float::with_val(PREC, d.hi()) + d.lo();
-    let slack = Float::with_val(PREC, v.abs_ref()) >> 150u32;
-    Float::with_val(PREC, v + &slack) >= exact(lo) && Float::with_val(PREC, v - &slack) <= exact(hi)
+    x.bounds()
+        .is_some_and(|(lo, hi)| between(&exact(lo), &exact(hi), v))
 }
 
 /// `DdInterval` contains the real value at points of the box.

@@ -13,7 +13,7 @@
 
 use interval_core::Interval;
 
-use super::finder::{Proof, RootCounters, RootFinder, RootResult, RootSettings};
+use super::finder::{RootCounters, RootFinder, RootResult, RootSettings};
 use crate::ibox::{ipoint, ival};
 use crate::ray::RayFn;
 
@@ -69,13 +69,8 @@ impl RootFinder for Escalating {
         counters: &mut RootCounters,
     ) -> RootResult {
         let r = self.inner.first_root(g, t, settings, counters);
-        let open = match r {
-            RootResult::Root {
-                t: piece,
-                proof: Proof::Possible,
-            }
-            | RootResult::Undecided { t: piece } => piece,
-            _ => return r,
+        let Some(open) = r.open() else {
+            return r;
         };
         if !settings.escalate
             || !self.inner.is_reliable()
@@ -91,14 +86,7 @@ impl RootFinder for Escalating {
         let rest = ival(open.inf(), t.sup());
         let again = self.inner.first_root(g, rest, settings, counters);
         g.restore(previous);
-        if matches!(
-            again,
-            RootResult::NoRoot
-                | RootResult::Root {
-                    proof: Proof::Unique | Proof::Exists,
-                    ..
-                }
-        ) {
+        if again.open().is_none() {
             counters.escalated_resolved += 1;
         }
         again

@@ -78,6 +78,19 @@ impl RootResult {
             _ => None,
         }
     }
+
+    /// The piece left open, if the answer proves neither a root nor its absence: a
+    /// possible root's enclosure, or the undecided part. Nothing before it is a root.
+    pub fn open(&self) -> Option<Interval<f64>> {
+        match *self {
+            RootResult::Root {
+                t,
+                proof: Proof::Possible,
+            }
+            | RootResult::Undecided { t } => Some(t),
+            _ => None,
+        }
+    }
 }
 
 /// Work done by root searches; sums over many searches with [`RootCounters::add`].

@@ -11,30 +11,33 @@
 
 use interval_core::{Dd, DdInterval, Interval};
 
+use super::domain_op::{self, Region, Side};
 use crate::constant::Constant;
 use crate::number::Number;
 use crate::op::{BinaryOp, UnaryOp};
 
-/// The absent object (`+inf`), as `[MAX, +inf]`.
-fn absent() -> DdInterval {
-    DdInterval::from_interval(Interval::new_unchecked(f64::MAX, f64::INFINITY))
-}
+impl Region for DdInterval {
+    fn side(d: Self) -> Side {
+        match d.bounds() {
+            Some((_, hi)) if hi.signum() <= 0 => Side::Inside,
+            Some((lo, _)) if lo.signum() > 0 => Side::Outside,
+            _ => Side::Both,
+        }
+    }
 
-/// Whether the domain test `d` has one answer over the region.
-fn decided(d: DdInterval) -> bool {
-    d.bounds()
-        .is_some_and(|(lo, hi)| hi.signum() <= 0 || lo.signum() > 0)
-}
+    fn absent() -> Self {
+        DdInterval::from_interval(<Interval<f64> as Region>::absent())
+    }
 
-/// `domain(d, f)`, as [`Interval`]'s.
-fn domain(d: DdInterval, f: DdInterval) -> DdInterval {
-    match d.bounds() {
-        Some((_, hi)) if hi.signum() <= 0 => f,
-        Some((lo, _)) if lo.signum() > 0 => absent(),
-        _ => match f.bounds() {
+    fn with_absent(f: Self) -> Self {
+        match f.bounds() {
             Some((lo, _)) => DdInterval::new(lo, Dd::INFINITY).unwrap_or(DdInterval::ENTIRE),
-            None => absent(),
-        },
+            None => Self::absent(),
+        }
+    }
+
+    fn is_empty_set(self) -> bool {
+        self.is_empty()
     }
 }
 
@@ -70,7 +73,7 @@ impl Number for DdInterval {
             BinaryOp::Div => a / b,
             BinaryOp::Min => a.min(b),
             BinaryOp::Max => a.max(b),
-            BinaryOp::Domain => domain(a, b),
+            BinaryOp::Domain => domain_op::value(a, b),
             BinaryOp::Pow => a.pow(b),
         }
     }
@@ -85,7 +88,7 @@ impl Number for DdInterval {
 
     fn defined_binary(op: BinaryOp, a: Self, b: Self) -> bool {
         match op {
-            BinaryOp::Domain => !a.is_empty() && !b.is_empty() && decided(a),
+            BinaryOp::Domain => domain_op::decided(a, b),
             _ => <F64 as Number>::defined_binary(op, a.to_interval(), b.to_interval()),
         }
     }
@@ -95,13 +98,7 @@ impl Number for DdInterval {
     }
 
     fn domain_side(d: Self, f: Self, inside: bool) -> (Self, bool) {
-        if decided(d) {
-            (domain(d, f), false)
-        } else if inside && !f.is_empty() {
-            (f, true)
-        } else {
-            (absent(), true)
-        }
+        domain_op::resolved(d, f, inside)
     }
 
     fn widen_undefined(self) -> Self {

@@ -5,6 +5,7 @@
 use interval_core::interval::batch;
 use interval_core::{Float, Interval};
 
+use super::domain_op::{self, Region, Side};
 use crate::constant::Constant;
 use crate::number::{Choice, Number};
 use crate::op::{BinaryOp, UnaryOp};
@@ -49,24 +50,33 @@ fn floor_constant(lo: f64, hi: f64) -> bool {
     lo.floor() == hi.floor() && lo.ceil() == hi.ceil()
 }
 
-/// The value of an absent object, `+inf`, as an interval: `[MAX, +inf]` (above every finite
-/// value but the largest, and `-[MAX, +inf]` below them).
-#[inline(always)]
-fn absent<T: Float>() -> Interval<T> {
-    iv(T::MAX, T::INFINITY)
-}
+impl<T: Float> Region for Interval<T> {
+    #[inline]
+    fn side(d: Self) -> Side {
+        match d.bounds() {
+            Some((_, hi)) if hi <= T::ZERO => Side::Inside,
+            Some((lo, _)) if lo > T::ZERO => Side::Outside,
+            _ => Side::Both,
+        }
+    }
 
-/// `domain(d, f)` over a box: `F` where `D <= 0`, absent where `D > 0`, and `F` joined with
-/// `+inf` where `D` takes both signs (or is empty: nothing is known of the test).
-#[inline]
-fn domain<T: Float>(d: Interval<T>, f: Interval<T>) -> Interval<T> {
-    match d.bounds() {
-        Some((_, hi)) if hi <= T::ZERO => f,
-        Some((lo, _)) if lo > T::ZERO => absent(),
-        _ => match f.bounds() {
+    /// `[MAX, +inf]`: above every finite value but the largest, and `-[MAX, +inf]` below.
+    #[inline(always)]
+    fn absent() -> Self {
+        iv(T::MAX, T::INFINITY)
+    }
+
+    #[inline]
+    fn with_absent(f: Self) -> Self {
+        match f.bounds() {
             Some((lo, _)) => iv(lo, T::INFINITY),
-            None => absent(),
-        },
+            None => Self::absent(),
+        }
+    }
+
+    #[inline(always)]
+    fn is_empty_set(self) -> bool {
+        self.is_empty()
     }
 }
 
@@ -119,7 +129,7 @@ impl<T: Float> Number for Interval<T> {
             BinaryOp::Min => a.min(b),
             BinaryOp::Max => a.max(b),
             BinaryOp::Pow => a.pow(b),
-            BinaryOp::Domain => domain(a, b),
+            BinaryOp::Domain => domain_op::value(a, b),
         }
     }
 
@@ -156,7 +166,7 @@ impl<T: Float> Number for Interval<T> {
             BinaryOp::Div => blo > T::ZERO || bhi < T::ZERO,
             BinaryOp::Pow => alo > T::ZERO || (alo >= T::ZERO && blo > T::ZERO),
             // Continuous (and defined) only where the domain test has one answer.
-            BinaryOp::Domain => a.sup() <= T::ZERO || alo > T::ZERO,
+            BinaryOp::Domain => domain_op::decided(a, b),
             _ => true,
         }
     }
@@ -171,16 +181,7 @@ impl<T: Float> Number for Interval<T> {
 
     #[inline]
     fn domain_side(d: Self, f: Self, inside: bool) -> (Self, bool) {
-        let decided = d
-            .bounds()
-            .is_some_and(|(lo, hi)| hi <= T::ZERO || lo > T::ZERO);
-        if decided {
-            (domain(d, f), false)
-        } else if inside && !f.is_empty() {
-            (f, true)
-        } else {
-            (absent(), true)
-        }
+        domain_op::resolved(d, f, inside)
     }
 
     #[inline(always)]

@@ -17,6 +17,7 @@
 //! values at the points of the box where the formula is defined.
 
 mod dd;
+mod domain_op;
 mod grad;
 mod interval;
 mod modal;

@@ -20,6 +20,8 @@
 //!   for `sin`/`cos`), on infinite
 //!   bounds, and where a reduction is too wide to decide the quadrant, the `f64` hull path.
 
+use std::sync::OnceLock;
+
 use super::expansion::Expansion;
 use super::interval::DdInterval;
 use super::number::Dd;
@@ -72,18 +74,37 @@ fn symmetric(m: f64) -> DdInterval {
 }
 
 /// `Σ c_i·r^i` (Horner, `c` from the highest degree down) plus `[-rem, rem]`.
-fn taylor(r: DdInterval, coefficients: &[DdInterval], rem: f64) -> DdInterval {
+fn taylor(r: DdInterval, coefficients: impl Iterator<Item = DdInterval>, rem: f64) -> DdInterval {
     let mut acc = DdInterval::point(0.0);
-    for &c in coefficients {
+    for c in coefficients {
         acc = acc * r + c;
     }
     acc + symmetric(rem)
 }
 
-/// `1 / n!` enclosed.
-fn inv_factorial(n: u32) -> DdInterval {
-    let f: f64 = (1..=n).map(f64::from).product();
-    DdInterval::point(1.0) / DdInterval::point(f)
+/// Highest degree of the Taylor sums here (`cos`).
+const MAX_DEGREE: usize = 32;
+
+/// `1 / n!` enclosed, for `n ≤ MAX_DEGREE`: computed once.
+fn inv_factorial(n: usize) -> DdInterval {
+    static TABLE: OnceLock<[DdInterval; MAX_DEGREE + 1]> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        core::array::from_fn(|n| {
+            let f: f64 = (1..=n as u32).map(f64::from).product();
+            DdInterval::point(1.0) / DdInterval::point(f)
+        })
+    })[n]
+}
+
+/// The coefficients of the Taylor sum of `sin` (`cos` when `cosine`) to `degree`, from the
+/// highest degree down: `±1/n!` on the odd (even) degrees, 0 elsewhere.
+fn trig_coefficients(degree: usize, cosine: bool) -> impl Iterator<Item = DdInterval> {
+    let first = usize::from(!cosine);
+    (0..=degree).rev().map(move |n| match (n + 4 - first) % 4 {
+        0 => inv_factorial(n),
+        2 => -inv_factorial(n),
+        _ => DdInterval::point(0.0),
+    })
 }
 
 /// `exp(x)` for a point, enclosed; `None` outside the double-double range.
@@ -101,8 +122,7 @@ fn exp_point(x: Dd) -> Option<DdInterval> {
     if r.to_interval().mag().is_nan() || r.to_interval().mag() > 0.0014 {
         return None;
     }
-    let coefficients: Vec<DdInterval> = (0..=10).rev().map(inv_factorial).collect();
-    let mut e = taylor(r, &coefficients, 1e-38);
+    let mut e = taylor(r, (0..=10).rev().map(inv_factorial), 1e-38);
     for _ in 0..8 {
         e = e.sqr();
     }
@@ -147,7 +167,7 @@ fn ln_point(x: Dd) -> Option<DdInterval> {
         DdInterval::point(1.0),
         DdInterval::point(0.0),
     ];
-    Some(DdInterval::point(y0) + taylor(d, &coefficients, 1e-49))
+    Some(DdInterval::point(y0) + taylor(d, coefficients.into_iter(), 1e-49))
 }
 
 /// `sin(x)` and `cos(x)` for a point, enclosed; `None` outside the reduction's range.
@@ -162,24 +182,8 @@ fn sin_cos_point(x: Dd) -> Option<(DdInterval, DdInterval)> {
     if r.to_interval().mag().is_nan() || r.to_interval().mag() > 0.8 {
         return None;
     }
-    let sin_c: Vec<DdInterval> = (0..=31u32)
-        .rev()
-        .map(|i| match i % 4 {
-            1 => inv_factorial(i),
-            3 => -inv_factorial(i),
-            _ => DdInterval::point(0.0),
-        })
-        .collect();
-    let cos_c: Vec<DdInterval> = (0..=32u32)
-        .rev()
-        .map(|i| match i % 4 {
-            0 => inv_factorial(i),
-            2 => -inv_factorial(i),
-            _ => DdInterval::point(0.0),
-        })
-        .collect();
-    let s = taylor(r, &sin_c, 1e-38);
-    let c = taylor(r, &cos_c, 1e-38);
+    let s = taylor(r, trig_coefficients(MAX_DEGREE - 1, false), 1e-38);
+    let c = taylor(r, trig_coefficients(MAX_DEGREE, true), 1e-38);
     Some(match (k as i64).rem_euclid(4) {
         0 => (s, c),
         1 => (c, -s),

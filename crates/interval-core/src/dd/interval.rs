@@ -265,6 +265,27 @@ impl DdInterval {
             && in_range(self.hi)
     }
 
+    /// The smallest lower and the largest upper bound of `op` at the four corners
+    /// `(x, y)`, `x` a bound of `self` and `y` one of `b` (the range of a product or
+    /// quotient, each monotone in both arguments on the region); `None` when a bound is
+    /// missing.
+    fn corners(self, b: Self, op: fn(Dd, Dd, bool) -> Option<Dd>) -> Option<(Dd, Dd)> {
+        let mut out: Option<(Dd, Dd)> = None;
+        for (x, y) in [
+            (self.lo, b.lo),
+            (self.lo, b.hi),
+            (self.hi, b.lo),
+            (self.hi, b.hi),
+        ] {
+            let (d, u) = (op(x, y, false)?, op(x, y, true)?);
+            out = Some(match out {
+                None => (d, u),
+                Some((l, h)) => (if d < l { d } else { l }, if u > h { u } else { h }),
+            });
+        }
+        out
+    }
+
     /// `[lo, hi]` from computed bounds, or the `f64` path when one of them is missing.
     fn or_f64(lo: Option<Dd>, hi: Option<Dd>, fallback: impl FnOnce() -> Self) -> Self {
         match (lo, hi) {
@@ -484,21 +505,7 @@ impl Mul for DdInterval {
         if !(self.finite_in_range() && b.finite_in_range()) {
             return f64_path();
         }
-        let corners = [
-            (self.lo, b.lo),
-            (self.lo, b.hi),
-            (self.hi, b.lo),
-            (self.hi, b.hi),
-        ];
-        let mut lo: Option<Dd> = None;
-        let mut hi: Option<Dd> = None;
-        for (x, y) in corners {
-            let (Some(d), Some(u)) = (mul_bound(x, y, false), mul_bound(x, y, true)) else {
-                return f64_path();
-            };
-            lo = Some(lo.map_or(d, |l| if d < l { d } else { l }));
-            hi = Some(hi.map_or(u, |h| if u > h { u } else { h }));
-        }
+        let (lo, hi) = self.corners(b, mul_bound).unzip();
         Self::or_f64(lo, hi, f64_path)
     }
 }
@@ -516,20 +523,7 @@ impl Div for DdInterval {
         if !(self.finite_in_range() && b.finite_in_range() && divisor_signed) {
             return f64_path();
         }
-        let mut lo: Option<Dd> = None;
-        let mut hi: Option<Dd> = None;
-        for (x, y) in [
-            (self.lo, b.lo),
-            (self.lo, b.hi),
-            (self.hi, b.lo),
-            (self.hi, b.hi),
-        ] {
-            let (Some(d), Some(u)) = (div_bound(x, y, false), div_bound(x, y, true)) else {
-                return f64_path();
-            };
-            lo = Some(lo.map_or(d, |l| if d < l { d } else { l }));
-            hi = Some(hi.map_or(u, |h| if u > h { u } else { h }));
-        }
+        let (lo, hi) = self.corners(b, div_bound).unzip();
         Self::or_f64(lo, hi, f64_path)
     }
 }
