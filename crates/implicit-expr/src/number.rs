@@ -2,6 +2,8 @@
 //! [`Context::eval`](crate::Context::eval), is generic over, and the [`Choice`] record of a
 //! `min`/`max` that tape pruning reads. The implementations live in [`eval`](crate::eval).
 
+use interval_core::Decoration;
+
 use crate::constant::Constant;
 use crate::op::{BinaryOp, UnaryOp};
 
@@ -20,8 +22,10 @@ pub enum Choice {
 /// A value type the tape can be evaluated on.
 ///
 /// Implementations exist for `f64`, `f32`, `Interval<f64>`, `Interval<f32>`,
-/// `Modal<f64, Outer>`, `Modal<f64, Inner>`, `Modal<f32, Outer>`, `Modal<f32, Inner>` and
-/// [`Grad<N>`](crate::eval::Grad) over the four first. Each operation must be an inclusion (for set types:
+/// [`DecInterval<f64>`](interval_core::DecInterval), `DecInterval<f32>`,
+/// [`DdInterval`](interval_core::DdInterval), `Modal<f64, Outer>`, `Modal<f64, Inner>`,
+/// `Modal<f32, Outer>`, `Modal<f32, Inner>` and [`Grad<N>`](crate::eval::Grad) over the four
+/// first. Each operation must be an inclusion (for set types:
 /// the result encloses every real result of the operation on members of the arguments).
 pub trait Number: Copy + Send + Sync + std::fmt::Debug + 'static {
     /// The value standing for constant `c` (for set types: an enclosure of the real constant).
@@ -36,28 +40,45 @@ pub trait Number: Copy + Send + Sync + std::fmt::Debug + 'static {
     /// `a^n`.
     fn pown(a: Self, n: i32) -> Self;
 
-    /// For set types: whether `op` is defined at every point of `a` (`false` when part of `a`,
-    /// or all of it, lies outside the domain); point types answer `true`. Traced evaluations
-    /// use it: a region where the formula is partly undefined is not pruned, since pruning
-    /// would define the formula there.
+    /// For set types, the decoration of `op` on the box `a` (IEEE 1788 §11.7, by the rules of
+    /// [`interval_core::decorated::rules`]): [`Decoration::Com`] where `op` is defined and
+    /// continuous at every point of `a`, [`Decoration::Def`] where it is defined but may jump
+    /// (a step function across a jump), [`Decoration::Trv`] where part of `a`, or all of it,
+    /// lies outside the domain, or `a` is empty. Point types answer `Com`.
+    ///
+    /// Decorated evaluations take the minimum over the operations
+    /// ([`Evaluator::eval_decorated`](crate::Evaluator::eval_decorated)); traced evaluations
+    /// prune nothing on a region where the formula is partly undefined (`Trv`), since
+    /// pruning would define the formula there.
     #[inline(always)]
-    fn defined_unary(op: UnaryOp, a: Self) -> bool {
+    fn decoration_unary(op: UnaryOp, a: Self) -> Decoration {
         let _ = (op, a);
-        true
+        Decoration::Com
     }
 
-    /// Like [`defined_unary`](Self::defined_unary) for `op(a, b)`.
+    /// Like [`decoration_unary`](Self::decoration_unary) for `op(a, b)`. An undecided
+    /// `domain(d, f)` (a test taking both signs over the box) is `Def`: the object is defined
+    /// everywhere, but jumps to absent at the boundary.
     #[inline(always)]
-    fn defined_binary(op: BinaryOp, a: Self, b: Self) -> bool {
+    fn decoration_binary(op: BinaryOp, a: Self, b: Self) -> Decoration {
         let _ = (op, a, b);
-        true
+        Decoration::Com
     }
 
-    /// Like [`defined_unary`](Self::defined_unary) for `a^n`.
+    /// Like [`decoration_unary`](Self::decoration_unary) for `a^n`.
     #[inline(always)]
-    fn defined_pown(a: Self, n: i32) -> bool {
+    fn decoration_pown(a: Self, n: i32) -> Decoration {
         let _ = (a, n);
-        true
+        Decoration::Com
+    }
+
+    /// For set types, the best decoration the value itself can carry (IEEE 1788 `newDec`):
+    /// `Com` when nonempty and bounded, `Dac` when unbounded, `Trv` when empty. Point types
+    /// answer `Com`. A decorated evaluation is never better than any of its intermediate
+    /// values.
+    #[inline(always)]
+    fn value_decoration(self) -> Decoration {
+        Decoration::Com
     }
 
     /// `domain(d, f)` with an undecided test (one that takes both signs over the region)

@@ -141,7 +141,6 @@ pub struct RayEvaluator<N> {
     g_dg: Evaluator<N>,
     vars: Vec<N>,
     out: [N; 2],
-    continuous: bool,
 }
 
 impl<N: Number> RayEvaluator<N> {
@@ -168,7 +167,6 @@ impl<N: Number> RayEvaluator<N> {
             g_dg: Evaluator::new(&f.g_dg),
             vars,
             out: [zero; 2],
-            continuous: f.g.is_continuous(),
         })
     }
 
@@ -188,7 +186,6 @@ impl<N: Number> RayEvaluator<N> {
         if !self.g_full.ptr_eq(&f.g) {
             self.g_full = f.g.clone();
             self.g_dg.set_tape(&f.g_dg);
-            self.continuous = f.g.is_continuous();
         }
         self.g.set_tape(&f.g);
         Ok(())
@@ -259,16 +256,16 @@ impl<N: Number> RayEvaluator<N> {
             .expect("slot count checked at construction")
     }
 
-    /// `g(t)`, and whether `g` is proven continuous over the region: every operation defined
-    /// on all of its arguments and none of them a step function. A sign change of `g` between
-    /// two parameters proves a root between them only where this holds.
+    /// `g(t)`, and whether `g` is proven continuous over the region: the decoration of the
+    /// evaluation ([`Evaluator::eval_decorated`]) is at least `dac`, so every operation is
+    /// defined and continuous on its arguments (a step function is, on a region where it
+    /// takes one value); found by [`Evaluator::eval_continuous`]. A sign change of `g`
+    /// between two parameters proves a root between them only where this holds.
     pub fn g_checked(&mut self, t: N) -> (N, bool) {
         self.vars[T.index()] = t;
-        let (v, defined) = self
-            .g
-            .eval_defined(&self.vars)
-            .expect("slot count checked at construction");
-        (v, defined && self.continuous)
+        self.g
+            .eval_continuous(&self.vars)
+            .expect("slot count checked at construction")
     }
 
     /// `g(t)` on each side of the one domain boundary the region may cross

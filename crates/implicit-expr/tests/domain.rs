@@ -3,7 +3,7 @@
 //! the boundary, and enclosure of the point values on random boxes.
 
 use implicit_expr::{Context, Evaluator, NodeId, Tape, Var, parse::parse};
-use interval_core::Interval;
+use interval_core::{Decoration, Interval};
 use proptest::prelude::*;
 
 fn iv(a: f64, b: f64) -> Interval<f64> {
@@ -28,24 +28,25 @@ fn extended(text: &str) -> (Context, NodeId, Tape) {
 fn domain_over_boxes_inside_outside_and_across() {
     let (_, _, t) = extended("z - sqrt(x)");
     let mut e = Evaluator::<Interval<f64>>::new(&t);
-    // Inside: the formula's own enclosure, defined.
-    let (v, defined) = e
-        .eval_defined(&[iv(1.0, 4.0), iv(0.0, 0.0), iv(0.0, 1.0)])
+    // Inside: the formula's own enclosure, defined, continuous and bounded.
+    let (v, dec) = e
+        .eval_decorated(&[iv(1.0, 4.0), iv(0.0, 0.0), iv(0.0, 1.0)])
         .unwrap();
     assert_eq!(v, iv(-2.0, 0.0));
-    assert!(defined);
-    // Outside: absent, and that is defined (a constant).
-    let (v, defined) = e
-        .eval_defined(&[iv(-2.0, -1.0), iv(0.0, 0.0), iv(0.0, 1.0)])
+    assert_eq!(dec, Decoration::Com);
+    // Outside: absent, and that is defined and continuous (a constant), but unbounded.
+    let (v, dec) = e
+        .eval_decorated(&[iv(-2.0, -1.0), iv(0.0, 0.0), iv(0.0, 1.0)])
         .unwrap();
     assert_eq!(v, iv(f64::MAX, f64::INFINITY));
-    assert!(defined);
-    // Across the boundary: the values inside joined with +inf, and no continuity.
-    let (v, defined) = e
-        .eval_defined(&[iv(-1.0, 4.0), iv(0.0, 0.0), iv(0.0, 1.0)])
+    assert_eq!(dec, Decoration::Dac);
+    // Across the boundary: the values inside joined with +inf, defined (on each side) but
+    // not continuous.
+    let (v, dec) = e
+        .eval_decorated(&[iv(-1.0, 4.0), iv(0.0, 0.0), iv(0.0, 1.0)])
         .unwrap();
     assert_eq!(v, iv(-2.0, f64::INFINITY));
-    assert!(!defined);
+    assert_eq!(dec, Decoration::Def);
 }
 
 #[test]
@@ -83,11 +84,11 @@ fn union_with_an_object_undefined_everywhere_is_the_other_object() {
     let eval = |root| {
         let t = Tape::new(&c, &[root]).unwrap();
         Evaluator::<Interval<f64>>::new(&t)
-            .eval_defined(&b)
+            .eval_decorated(&b)
             .unwrap()
     };
     assert!(eval(plain).0.is_empty());
-    assert_eq!(eval(union), (iv(-1.0, 1.5), true));
+    assert_eq!(eval(union), (iv(-1.0, 1.5), Decoration::Dac));
 }
 
 #[test]

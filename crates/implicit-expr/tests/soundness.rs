@@ -17,6 +17,8 @@
 //!   every point of the box where the function is defined there (the real soundness check:
 //!   point arithmetic may round differently from the real value); double-double intervals
 //!   contain the oracle's value;
+//! * decorations: the plain evaluator's (`eval_decorated`, `eval_continuous`) agree with
+//!   the evaluation on `DecInterval`s;
 //! * the slice evaluator gives bit-identical results to the one-input evaluator;
 //! * a tape pruned from an interval evaluation over a box gives the full tape's point
 //!   values in the box, and its interval values over sub-boxes contain the point values;
@@ -39,7 +41,7 @@ use implicit_expr::{
     BinaryOp, Choice, Constant, Context, Evaluator, Grad, Node, NodeId, Number, RayEvaluator,
     RayFunction, SliceEvaluator, Tape, UnaryOp,
 };
-use interval_core::{Dd, DdInterval, Inner, Interval, Modal, Outer};
+use interval_core::{Dd, DdInterval, DecInterval, Decoration, Inner, Interval, Modal, Outer};
 use proptest::prelude::*;
 use rug::Float;
 use rug::float::Constant as MpfrConstant;
@@ -825,6 +827,49 @@ fn check_interval_f64_contains_real_and_point_values(
     Ok(())
 }
 
+/// Decorations: the plain evaluator's decoration (`eval_decorated`) is the decorated
+/// evaluator's, with bit-identical interval parts, in `f64` and `f32`; `eval_continuous`
+/// says "at least `dac`" exactly when the decoration does; a decoration of `def` or better
+/// comes with a nonempty value. (The rules of each operation are tested in interval-core,
+/// `tests/decorated_rules.rs`.)
+fn check_decorations(b: &[(f64, f64); SLOTS], r: &Recipe) -> Result<(), TestCaseError> {
+    let (ctx, root) = r.build();
+    let tape = Tape::new(&ctx, &[root]).unwrap();
+    let x: Vec<Interval<f64>> = b.iter().map(|&b| iv(b)).collect();
+    let (fx, dec) = Evaluator::<Interval<f64>>::new(&tape)
+        .eval_decorated(&x)
+        .unwrap();
+    let xd: Vec<DecInterval<f64>> = x.iter().map(|&x| DecInterval::new(x)).collect();
+    let fd = Evaluator::<DecInterval<f64>>::new(&tape).eval(&xd).unwrap();
+    prop_assert!(same_interval(fx, fd.interval()), "{fx:?} against {fd}");
+    prop_assert_eq!(dec, fd.decoration(), "plain against decorated, {}", fd);
+    prop_assert!(
+        dec < Decoration::Def || !fx.is_empty(),
+        "{dec} on the empty set"
+    );
+    let (fc, continuous) = Evaluator::<Interval<f64>>::new(&tape)
+        .eval_continuous(&x)
+        .unwrap();
+    prop_assert!(same_interval(fx, fc));
+    prop_assert_eq!(continuous, dec >= Decoration::Dac, "decoration {}", dec);
+    let x32: Vec<Interval<f32>> = x.iter().map(|&x| x.cast()).collect();
+    let (f32x, dec32) = Evaluator::<Interval<f32>>::new(&tape)
+        .eval_decorated(&x32)
+        .unwrap();
+    let xd32: Vec<DecInterval<f32>> = x32.iter().map(|&x| DecInterval::new(x)).collect();
+    let fd32 = Evaluator::<DecInterval<f32>>::new(&tape)
+        .eval(&xd32)
+        .unwrap();
+    prop_assert_eq!(f32x, fd32.interval());
+    prop_assert_eq!(
+        dec32,
+        fd32.decoration(),
+        "f32: plain against decorated, {}",
+        fd32
+    );
+    Ok(())
+}
+
 /// `Interval<f32>` contains the real value and the `f32` value at points of the box.
 fn check_interval_f32_contains_real_and_point_values(
     r: &Recipe,
@@ -1252,6 +1297,12 @@ proptest! {
         us in fractions(4),
     ) {
         let res = check_interval_f32_contains_real_and_point_values(&r, &b, &us);
+        res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
+    }
+
+    #[test]
+    fn decorations_agree(r in recipe(), b in boxes()) {
+        let res = check_decorations(&b, &r);
         res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
     }
 

@@ -183,22 +183,25 @@ fn slice_traces_match_scalar_traces() {
 }
 
 #[test]
-fn total_operations_are_those_defined_on_the_whole_line() {
+fn total_continuous_operations_are_those_decorated_com_on_the_whole_line() {
     use implicit_expr::{BinaryOp, Number, UnaryOp};
+    use interval_core::Decoration;
     let all = Interval::<f64>::ENTIRE;
     for op in UnaryOp::ALL {
+        let dec = Interval::<f64>::decoration_unary(op, all);
+        assert_eq!(op.is_total(), dec >= Decoration::Def, "{op:?}");
         assert_eq!(
-            op.is_total(),
-            Interval::<f64>::defined_unary(op, all),
+            op.is_total() && !op.is_discontinuous(),
+            dec == Decoration::Com,
             "{op:?}"
         );
     }
     for op in BinaryOp::ALL {
-        assert_eq!(
-            op.is_total(),
-            Interval::<f64>::defined_binary(op, all, all),
-            "{op:?}"
-        );
+        let dec = Interval::<f64>::decoration_binary(op, all, all);
+        // `domain` is defined everywhere (the absent object outside), but jumps.
+        let defined = op.is_total() || op == BinaryOp::Domain;
+        assert_eq!(defined, dec >= Decoration::Def, "{op:?}");
+        assert_eq!(op.is_total(), dec == Decoration::Com, "{op:?}");
     }
 }
 

@@ -18,7 +18,8 @@
 //!   the leaf may be undefined somewhere in the box: `sqrt` of a negative number, a
 //!   division by zero, ...).
 //!
-//! Definedness is proven by [`Evaluator::eval_defined`](implicit_expr::Evaluator::eval_defined); a leaf built only from
+//! Definedness is proven by the decoration of the leaf's evaluation over the cell
+//! ([`Evaluator::eval_decorated`](implicit_expr::Evaluator::eval_decorated), at least `def`); a leaf built only from
 //! operations defined on the whole line (`+ − ×`, non-negative integer powers, `min`,
 //! `max`, `sin`, `exp`, ...) needs no check.
 //!

@@ -9,7 +9,7 @@
 //! tighter than `f64` there. Constants are the `f64` enclosures of the formula's literals
 //! (exact for integers and dyadic fractions, the usual large terms of a cancellation).
 
-use interval_core::{Dd, DdInterval, Interval};
+use interval_core::{Dd, DdInterval, DecInterval, Decoration, Interval};
 
 use super::domain_op::{self, Region, Side};
 use crate::constant::Constant;
@@ -82,19 +82,24 @@ impl Number for DdInterval {
         a.pown(n)
     }
 
-    fn defined_unary(op: UnaryOp, a: Self) -> bool {
-        <F64 as Number>::defined_unary(op, a.to_interval())
+    fn decoration_unary(op: UnaryOp, a: Self) -> Decoration {
+        <F64 as Number>::decoration_unary(op, a.to_interval())
     }
 
-    fn defined_binary(op: BinaryOp, a: Self, b: Self) -> bool {
+    fn decoration_binary(op: BinaryOp, a: Self, b: Self) -> Decoration {
         match op {
-            BinaryOp::Domain => domain_op::decided(a, b),
-            _ => <F64 as Number>::defined_binary(op, a.to_interval(), b.to_interval()),
+            BinaryOp::Domain => domain_op::decoration(a, b),
+            _ => <F64 as Number>::decoration_binary(op, a.to_interval(), b.to_interval()),
         }
     }
 
-    fn defined_pown(a: Self, n: i32) -> bool {
-        <F64 as Number>::defined_pown(a.to_interval(), n)
+    fn decoration_pown(a: Self, n: i32) -> Decoration {
+        <F64 as Number>::decoration_pown(a.to_interval(), n)
+    }
+
+    #[inline]
+    fn value_decoration(self) -> Decoration {
+        DecInterval::new(self.to_interval()).decoration()
     }
 
     fn domain_side(d: Self, f: Self, inside: bool) -> (Self, bool) {

@@ -2,6 +2,8 @@
 //! `d ≤ 0` holds on the whole region, the absent object (`+inf`) where it fails on the whole
 //! region, and `f` joined with `+inf` where it takes both answers (or nothing is known of it).
 
+use interval_core::Decoration;
+
 /// How the domain test `d ≤ 0` answers over a region.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub(super) enum Side {
@@ -46,9 +48,16 @@ pub(super) fn resolved<R: Region>(d: R, f: R, inside: bool) -> (R, bool) {
     }
 }
 
-/// Whether `domain(d, f)` is continuous (and defined) over the region: the test has one
-/// answer, and neither argument is empty.
+/// The decoration of `domain(d, f)` over the region: `Com` where the test has one answer,
+/// `Def` where it takes both (the object jumps to absent inside the region), `Trv` where an
+/// argument is empty (undefined upstream).
 #[inline]
-pub(super) fn decided<R: Region>(d: R, f: R) -> bool {
-    !d.is_empty_set() && !f.is_empty_set() && R::side(d) != Side::Both
+pub(super) fn decoration<R: Region>(d: R, f: R) -> Decoration {
+    if d.is_empty_set() || f.is_empty_set() {
+        Decoration::Trv
+    } else if R::side(d) == Side::Both {
+        Decoration::Def
+    } else {
+        Decoration::Com
+    }
 }

@@ -2,8 +2,9 @@
 //! arithmetic, elementary functions within one ulp), plus the step functions of the `.vm`
 //! format and their slopes.
 
+use interval_core::decorated::rules;
 use interval_core::interval::batch;
-use interval_core::{Float, Interval};
+use interval_core::{DecInterval, Decoration, Float, Interval};
 
 use super::domain_op::{self, Region, Side};
 use crate::constant::Constant;
@@ -14,19 +15,6 @@ use crate::op::{BinaryOp, UnaryOp};
 #[inline(always)]
 fn iv<T: Float>(lo: T, hi: T) -> Interval<T> {
     Interval::new_unchecked(lo, hi)
-}
-
-/// A monotone non-decreasing step function applied bound by bound (exact: the image of a
-/// float is a float of the same format).
-#[inline]
-fn step<T: Float>(x: Interval<T>, f: fn(f64) -> f64) -> Interval<T> {
-    match x.bounds() {
-        Some((lo, hi)) => iv(
-            T::from_f64_rn(f(lo.to_f64())),
-            T::from_f64_rn(f(hi.to_f64())),
-        ),
-        None => x,
-    }
 }
 
 /// Zero when `constant` says the step function has no jump on the interval, else entire.
@@ -48,6 +36,17 @@ fn round_constant(lo: f64, hi: f64) -> bool {
 /// end, unless the interval is that one integer).
 fn floor_constant(lo: f64, hi: f64) -> bool {
     lo.floor() == hi.floor() && lo.ceil() == hi.ceil()
+}
+
+/// `Com` where an operation defined on the whole box is continuous there, `Def` where it
+/// may jump.
+#[inline]
+fn continuous_if(continuous: bool) -> Decoration {
+    if continuous {
+        Decoration::Com
+    } else {
+        Decoration::Def
+    }
 }
 
 impl<T: Float> Region for Interval<T> {
@@ -103,9 +102,9 @@ impl<T: Float> Number for Interval<T> {
             UnaryOp::Asin => a.asin(),
             UnaryOp::Acos => a.acos(),
             UnaryOp::Atan => a.atan(),
-            UnaryOp::Floor => step(a, f64::floor),
-            UnaryOp::Ceil => step(a, f64::ceil),
-            UnaryOp::Round => step(a, f64::round),
+            UnaryOp::Floor => a.floor(),
+            UnaryOp::Ceil => a.ceil(),
+            UnaryOp::Round => a.round_ties_to_away(),
             UnaryOp::Not => match a.bounds() {
                 None => a,
                 Some((lo, hi)) if lo == T::ZERO && hi == T::ZERO => Interval::ONE,
@@ -139,44 +138,55 @@ impl<T: Float> Number for Interval<T> {
     }
 
     #[inline]
-    fn defined_unary(op: UnaryOp, a: Self) -> bool {
-        let Some((lo, hi)) = a.bounds() else {
-            return false;
-        };
-        let (zero, one) = (T::ZERO, T::ONE);
+    fn decoration_unary(op: UnaryOp, a: Self) -> Decoration {
+        if a.is_empty() {
+            return Decoration::Trv;
+        }
         match op {
-            UnaryOp::Sqrt => lo >= zero,
-            UnaryOp::Ln | UnaryOp::Log10 => lo > zero,
-            UnaryOp::Asin | UnaryOp::Acos => -one <= lo && hi <= one,
-            UnaryOp::Recip => lo > zero || hi < zero,
-            UnaryOp::Tan => a
-                .tan()
-                .bounds()
-                .is_some_and(|(l, h)| l.is_finite() && h.is_finite()),
-            _ => true,
+            UnaryOp::Sqrt => rules::non_negative(a),
+            UnaryOp::Ln | UnaryOp::Log10 => rules::positive(a),
+            UnaryOp::Asin | UnaryOp::Acos => rules::unit(a),
+            UnaryOp::Recip => rules::nonzero(a),
+            UnaryOp::Tan => rules::tan(a),
+            UnaryOp::Floor => rules::step(a, Interval::floor),
+            UnaryOp::Ceil => rules::step(a, Interval::ceil),
+            UnaryOp::Round => rules::step(a, Interval::round_ties_to_away),
+            // Not a monotone step: 1 at 0 only.
+            UnaryOp::Not => continuous_if(!a.contains(T::ZERO) || a.is_singleton()),
+            // A slope is continuous (zero) where its step function has no jump, and
+            // defined everywhere (the whole line across a jump).
+            UnaryOp::SlopeFloor | UnaryOp::SlopeRound | UnaryOp::SlopeNot => {
+                continuous_if(Self::unary(op, a) == Interval::ZERO)
+            }
+            _ => Decoration::Com,
         }
     }
 
     #[inline]
-    fn defined_binary(op: BinaryOp, a: Self, b: Self) -> bool {
-        let (Some((alo, _)), Some((blo, bhi))) = (a.bounds(), b.bounds()) else {
-            return false;
-        };
+    fn decoration_binary(op: BinaryOp, a: Self, b: Self) -> Decoration {
+        if a.is_empty() || b.is_empty() {
+            return Decoration::Trv;
+        }
         match op {
-            BinaryOp::Div => blo > T::ZERO || bhi < T::ZERO,
-            BinaryOp::Pow => alo > T::ZERO || (alo >= T::ZERO && blo > T::ZERO),
-            // Continuous (and defined) only where the domain test has one answer.
-            BinaryOp::Domain => domain_op::decided(a, b),
-            _ => true,
+            BinaryOp::Div => rules::div(a, b),
+            BinaryOp::Pow => rules::pow(a, b),
+            BinaryOp::Domain => domain_op::decoration(a, b),
+            _ => Decoration::Com,
         }
     }
 
     #[inline]
-    fn defined_pown(a: Self, n: i32) -> bool {
-        match a.bounds() {
-            None => false,
-            Some((lo, hi)) => n >= 0 || lo > T::ZERO || hi < T::ZERO,
+    fn decoration_pown(a: Self, n: i32) -> Decoration {
+        if a.is_empty() {
+            Decoration::Trv
+        } else {
+            rules::pown(a, n)
         }
+    }
+
+    #[inline]
+    fn value_decoration(self) -> Decoration {
+        DecInterval::new(self).decoration()
     }
 
     #[inline]

@@ -6,6 +6,7 @@
 //! | [`Interval<f64>`](interval_core::Interval), [`Interval<f32>`](interval_core::Interval) | a sound enclosure of the range over a box (inclusion function) |
 //! | [`Modal<T, Outer>`](interval_core::Modal) | `Out(fR(X))`, the outer-rounded modal rational extension |
 //! | [`Modal<T, Inner>`](interval_core::Modal) | `Inn(fR(X))`, the inner-rounded modal rational extension |
+//! | [`DecInterval<f64>`](interval_core::DecInterval), [`DecInterval<f32>`](interval_core::DecInterval) | the enclosure and its IEEE 1788 decoration: whether every operation was defined (`def`) and continuous (`dac`, `com`) on the box |
 //! | [`DdInterval`](interval_core::DdInterval) | an enclosure in double-double arithmetic, for queries that `f64` rounding keeps open |
 //! | [`Grad<N>`] | the value and the gradient with respect to `x`, `y`, `z` (forward mode) |
 //!
@@ -17,6 +18,7 @@
 //! values at the points of the box where the formula is defined.
 
 mod dd;
+mod decorated;
 mod domain_op;
 mod grad;
 mod interval;

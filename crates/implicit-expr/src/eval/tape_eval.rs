@@ -1,5 +1,7 @@
 //! The walk over a register tape, for one point (or box) at a time and for slices.
 
+use interval_core::Decoration;
+
 use crate::constant::Constant;
 use crate::error::Error;
 use crate::number::{Choice, Number};
@@ -77,7 +79,7 @@ impl<N: Number> Evaluator<N> {
     /// Returns an error when fewer values than the tape's variable slots are given.
     pub fn eval(&mut self, vars: &[N]) -> Result<N, Error> {
         self.check(vars)?;
-        run::<N, false, false, NO_SIDE>(
+        run::<N, false, NO_CHECK, NO_SIDE>(
             self.tape.instrs(),
             &mut self.regs,
             vars,
@@ -87,22 +89,59 @@ impl<N: Number> Evaluator<N> {
         Ok(self.regs[self.tape.outputs()[0] as usize])
     }
 
-    /// Like [`eval`](Self::eval), also telling whether every operation was defined on all of
-    /// its arguments (for set types: at every point of the region). Together with
-    /// [`Tape::is_continuous`] this proves the formula continuous over the region, which a
-    /// sign-change argument (the inclusion test of a beam) needs.
+    /// Like [`eval`](Self::eval), with the decoration of the evaluation (IEEE 1788 §11.7):
+    /// the least decoration of any operation on its arguments over the region, by the rules
+    /// of [`interval_core::decorated::rules`], and `Dac` at most where an intermediate
+    /// result is unbounded. For set types:
+    ///
+    /// * at least [`Decoration::Dac`]: the formula is defined and continuous on the whole
+    ///   region, so a sign change between two of its points proves a root between them (the
+    ///   inclusion test of a beam, the sign-change proofs of the root finders);
+    /// * [`Decoration::Def`]: defined on the whole region, but it may jump there (a step
+    ///   function across a jump, a `domain` test taking both signs), so the sign of the
+    ///   value still holds at every point;
+    /// * [`Decoration::Trv`]: possibly undefined somewhere in the region.
+    ///
+    /// The same decoration as evaluating on [`DecInterval`](interval_core::DecInterval)s
+    /// with `com` inputs, at the cost of the plain evaluation and a comparison per
+    /// operation. Point types give `Com`.
     ///
     /// Returns an error when fewer values than the tape's variable slots are given.
-    pub fn eval_defined(&mut self, vars: &[N]) -> Result<(N, bool), Error> {
+    pub fn eval_decorated(&mut self, vars: &[N]) -> Result<(N, Decoration), Error> {
         self.check(vars)?;
-        let defined = run::<N, false, true, NO_SIDE>(
+        let dec = run::<N, false, DECORATION, NO_SIDE>(
             self.tape.instrs(),
             &mut self.regs,
             vars,
             &mut Vec::new(),
             &mut 0,
         );
-        Ok((self.regs[self.tape.outputs()[0] as usize], defined))
+        // The constants live in the first registers, loaded with the tape (an enclosure of
+        // a literal beyond the format's range is unbounded).
+        let consts = self.tape.consts().len();
+        let dec = self.regs[..consts]
+            .iter()
+            .fold(dec, |d, c| d.min(c.value_decoration()));
+        Ok((self.regs[self.tape.outputs()[0] as usize], dec))
+    }
+
+    /// Like [`eval`](Self::eval), also telling whether the formula is proven defined and
+    /// continuous on the whole region: whether [`eval_decorated`](Self::eval_decorated)
+    /// would give at least [`Decoration::Dac`], found at less cost (only the partial and the
+    /// discontinuous operations are checked).
+    ///
+    /// Returns an error when fewer values than the tape's variable slots are given.
+    pub fn eval_continuous(&mut self, vars: &[N]) -> Result<(N, bool), Error> {
+        self.check(vars)?;
+        let dec = run::<N, false, CONTINUITY, NO_SIDE>(
+            self.tape.instrs(),
+            &mut self.regs,
+            vars,
+            &mut Vec::new(),
+            &mut 0,
+        );
+        let v = self.regs[self.tape.outputs()[0] as usize];
+        Ok((v, dec.min(v.value_decoration()) >= Decoration::Dac))
     }
 
     /// The first output at `vars` on each side of a domain boundary: where exactly one
@@ -118,7 +157,7 @@ impl<N: Number> Evaluator<N> {
         let out = self.tape.outputs()[0] as usize;
         let mut undecided = 0;
         let instrs = self.tape.instrs();
-        run::<N, false, false, INSIDE>(
+        run::<N, false, NO_CHECK, INSIDE>(
             instrs,
             &mut self.regs,
             vars,
@@ -129,7 +168,7 @@ impl<N: Number> Evaluator<N> {
             return Ok(None);
         }
         let inside = self.regs[out];
-        run::<N, false, false, OUTSIDE>(instrs, &mut self.regs, vars, &mut Vec::new(), &mut 0);
+        run::<N, false, NO_CHECK, OUTSIDE>(instrs, &mut self.regs, vars, &mut Vec::new(), &mut 0);
         Ok(Some((inside, self.regs[out])))
     }
 
@@ -145,7 +184,7 @@ impl<N: Number> Evaluator<N> {
                 self.tape.outputs().len()
             )));
         }
-        run::<N, false, false, NO_SIDE>(
+        run::<N, false, NO_CHECK, NO_SIDE>(
             self.tape.instrs(),
             &mut self.regs,
             vars,
@@ -171,7 +210,7 @@ impl<N: Number> Evaluator<N> {
     pub fn eval_traced(&mut self, vars: &[N], trace: &mut Vec<Choice>) -> Result<N, Error> {
         self.check(vars)?;
         trace.clear();
-        run::<N, true, false, NO_SIDE>(self.tape.instrs(), &mut self.regs, vars, trace, &mut 0);
+        run::<N, true, NO_CHECK, NO_SIDE>(self.tape.instrs(), &mut self.regs, vars, trace, &mut 0);
         Ok(self.regs[self.tape.outputs()[0] as usize])
     }
 
@@ -194,32 +233,60 @@ const INSIDE: u8 = 1;
 /// [`run`]'s `SIDE`: a `domain` whose test takes both signs is absent.
 const OUTSIDE: u8 = 2;
 
-/// The interpreter loop. `TRACE` selects choice recording, `CHECK` the definedness check
-/// and `SIDE` the side taken by an undecided `domain` (counted in `undecided`) at compile
-/// time; returns whether every operation was defined on all of its arguments (always `true`
-/// when neither `TRACE` nor `CHECK` is selected).
+/// [`run`]'s `CHECK`: no decoration.
+const NO_CHECK: u8 = 0;
+/// [`run`]'s `CHECK`: whether the formula is defined and continuous, decorations at least
+/// `dac` told apart from the others only: the local decorations of the partial and
+/// discontinuous operations (the caller checks the output for emptiness).
+const CONTINUITY: u8 = 1;
+/// [`run`]'s `CHECK`: the IEEE 1788 decoration, with every intermediate value's own.
+const DECORATION: u8 = 2;
+
+/// The interpreter loop. `TRACE` selects choice recording, `CHECK` the decoration
+/// ([`NO_CHECK`], [`CONTINUITY`], [`DECORATION`]) and `SIDE` the side taken by an undecided
+/// `domain` (counted in `undecided`) at compile time.
+///
+/// Returns the decoration of the evaluation (IEEE 1788 §11.7; every live operation of a
+/// one-output tape feeds the output, so it is the least decoration of any operation on its
+/// arguments and of any intermediate value):
+///
+/// * `DECORATION`: exactly that;
+/// * `CONTINUITY`: at least `dac` exactly where that is, once the output is checked for
+///   emptiness, without the cost of checking the operations that are defined and
+///   continuous everywhere: an empty argument of one of them comes from a partial operation
+///   (checked) or an empty variable, and the total operations return the empty set on an
+///   empty argument, so an empty variable reaches the output (`domain`, which may not, is
+///   checked with the partial operations);
+/// * `TRACE` alone: `Trv` where a partial operation is undefined on part of its arguments,
+///   `Com` otherwise (step functions and `domain` jump but are defined, which does not
+///   stop pruning);
+/// * neither: `Com`.
 #[inline(always)]
-fn run<N: Number, const TRACE: bool, const CHECK: bool, const SIDE: u8>(
+fn run<N: Number, const TRACE: bool, const CHECK: u8, const SIDE: u8>(
     instrs: &[Instr],
     regs: &mut [N],
     vars: &[N],
     trace: &mut Vec<Choice>,
     undecided: &mut u32,
-) -> bool {
+) -> Decoration {
     // `regs.len()` is a power of two above every register index of the tape, so masking
     // changes no index and proves to the compiler that none is out of bounds.
     debug_assert!(regs.len().is_power_of_two());
     let mask = regs.len() - 1;
-    // Whether every operation was defined on all of its arguments (traced and checked runs).
-    let mut defined = true;
+    let mut dec = Decoration::Com;
     for ins in instrs {
         let (a, b) = (ins.a as usize & mask, ins.b as usize & mask);
         let v = match ins.op {
             Opcode::Var => vars[ins.a as usize],
             Opcode::Const | Opcode::Copy => regs[a],
             Opcode::Unary(op) => {
-                if TRACE || CHECK {
-                    defined &= N::defined_unary(op, regs[a]);
+                // The local decoration is needed of the operations that can fail (partial or
+                // step functions); traced runs ask only whether they are defined, which step
+                // functions always are.
+                if (CHECK != NO_CHECK && (!op.is_total() || op.is_discontinuous()))
+                    || (TRACE && !op.is_total())
+                {
+                    dec = dec.min(N::decoration_unary(op, regs[a]));
                 }
                 N::unary(op, regs[a])
             }
@@ -239,28 +306,29 @@ fn run<N: Number, const TRACE: bool, const CHECK: bool, const SIDE: u8>(
                 v
             }
             Opcode::Binary(op) => {
-                // An undecided `domain` is a jump, not a hole: the pruned tape still equals
-                // the formula at every point, so only a continuity check counts it.
-                if CHECK || (TRACE && op != BinaryOp::Domain) {
-                    defined &= N::defined_binary(op, regs[a], regs[b]);
+                if (CHECK != NO_CHECK || TRACE) && !op.is_total() {
+                    dec = dec.min(N::decoration_binary(op, regs[a], regs[b]));
                 }
                 N::binary(op, regs[a], regs[b])
             }
             Opcode::Pown => {
-                if TRACE || CHECK {
-                    defined &= N::defined_pown(regs[a], ins.b as i32);
+                if (CHECK != NO_CHECK || TRACE) && (ins.b as i32) < 0 {
+                    dec = dec.min(N::decoration_pown(regs[a], ins.b as i32));
                 }
                 N::pown(regs[a], ins.b as i32)
             }
         };
+        if CHECK == DECORATION {
+            dec = dec.min(v.value_decoration());
+        }
         regs[ins.out as usize & mask] = v;
     }
-    if TRACE && !defined {
+    if TRACE && dec < Decoration::Def {
         // Somewhere in the region the formula is undefined: a pruned tape would be defined
         // there (it drops the undefined branch), so nothing may be pruned.
         trace.fill(Choice::Both);
     }
-    defined
+    dec
 }
 
 /// Number of inputs a [`SliceEvaluator`] processes per pass over the tape.
@@ -447,24 +515,24 @@ fn step_traced<N: Number>(
             }
             return;
         }
-        Opcode::Unary(op) => {
+        // As in `run`: only partial operations can leave part of a region undefined; step
+        // functions and an undecided `domain` jump, which does not stop pruning.
+        Opcode::Unary(op) if !op.is_total() => {
             for (i, d) in defined.iter_mut().enumerate().take(n) {
-                *d &= N::defined_unary(op, regs[a * c + i]);
+                *d &= N::decoration_unary(op, regs[a * c + i]) >= Decoration::Def;
             }
         }
-        // As in `run`: an undecided `domain` does not stop pruning.
-        Opcode::Binary(BinaryOp::Domain) => {}
-        Opcode::Binary(op) => {
+        Opcode::Binary(op) if !op.is_total() => {
             for (i, d) in defined.iter_mut().enumerate().take(n) {
-                *d &= N::defined_binary(op, regs[a * c + i], regs[b * c + i]);
+                *d &= N::decoration_binary(op, regs[a * c + i], regs[b * c + i]) >= Decoration::Def;
             }
         }
-        Opcode::Pown => {
+        Opcode::Pown if (ins.b as i32) < 0 => {
             for (i, d) in defined.iter_mut().enumerate().take(n) {
-                *d &= N::defined_pown(regs[a * c + i], ins.b as i32);
+                *d &= N::decoration_pown(regs[a * c + i], ins.b as i32) >= Decoration::Def;
             }
         }
-        Opcode::Var | Opcode::Const | Opcode::Copy => {}
+        _ => {}
     }
     step(ins, regs, vars, start, n);
 }

@@ -211,8 +211,9 @@ impl Tape {
 
     /// Whether every operation of the tape is continuous on its domain: no step function
     /// (`floor`, `ceil`, `round`, `not`) and no slope of one. On a region where
-    /// [`Evaluator::eval_defined`](crate::Evaluator::eval_defined) reports every operation
-    /// defined, such a tape is then a continuous function of its variables.
+    /// [`Evaluator::eval_decorated`](crate::Evaluator::eval_decorated) decorates the result
+    /// at least `def` (every operation defined), such a tape is then a continuous function of
+    /// its variables (the decoration is then at least `dac`).
     pub fn is_continuous(&self) -> bool {
         self.instrs().iter().all(|ins| match ins.op {
             Opcode::Unary(op) => !op.is_discontinuous(),
