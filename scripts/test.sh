@@ -6,8 +6,8 @@
 # 1. Installs the system packages the tests need where they are missing (Debian/Ubuntu,
 #    through apt-get; with sudo when not run as root).
 # 2. Runs every test of the workspace (unit, integration, property and doc tests), with the
-#    examples' plots (feature examples/plots) and interval-core's public proptest strategies
-#    (feature interval-core/proptest).
+#    examples' plots (feature examples/plots) and the public proptest strategies of
+#    interval-core and implicit-expr (features interval-core/proptest, implicit-expr/proptest).
 # 3. Runs the differential tests against the inari crate on CPUs with AVX2/FMA, built with
 #    their own flags in their own target directory.
 set -euo pipefail
@@ -41,8 +41,8 @@ if [ "${#need[@]}" -gt 0 ]; then
 fi
 
 # --- the workspace's tests -----------------------------------------------------------------
-step "cargo test --workspace --features examples/plots,interval-core/proptest"
-cargo test --workspace --features examples/plots,interval-core/proptest
+step "cargo test --workspace --features examples/plots,interval-core/proptest,implicit-expr/proptest"
+cargo test --workspace --features examples/plots,interval-core/proptest,implicit-expr/proptest
 
 # --- differential tests against inari ------------------------------------------------------
 # inari needs AVX2/FMA; it is built with its own RUSTFLAGS in a separate target directory so

@@ -124,6 +124,7 @@ pub mod print;
 pub mod ray;
 pub mod semantics;
 pub mod tape;
+pub mod testing;
 pub mod vm;
 pub mod wgsl;
 
