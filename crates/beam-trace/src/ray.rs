@@ -46,6 +46,13 @@ pub trait RayFn {
         None
     }
 
+    /// `t` narrowed to the parameters where `g` may vanish for some ray of the set (a
+    /// contractor such as HC4-revise): every root in `t` must stay in the result. `None`
+    /// proves that `t` holds no root. The default narrows nothing.
+    fn contract(&mut self, t: Interval<f64>) -> Option<Interval<f64>> {
+        Some(t)
+    }
+
     /// Announces that the following interval evaluations all lie inside `t`, which lies
     /// inside the region of the current scope (the whole ray or beam, or an earlier
     /// restriction), so that an implementation may specialise `g` to it (prune its tape).
@@ -343,6 +350,16 @@ impl BeamEval {
 }
 
 impl RayFn for BeamEval {
+    /// One HC4-revise pass over `g`'s graph in `f64`
+    /// ([`RayEvaluator::contract`](implicit_expr::RayEvaluator::contract)); at the other
+    /// precisions nothing is narrowed.
+    fn contract(&mut self, t: Interval<f64>) -> Option<Interval<f64>> {
+        match self.precision {
+            Precision::F64 => self.interval.contract(t),
+            Precision::F32 | Precision::Dd => Some(t),
+        }
+    }
+
     #[inline]
     fn g(&mut self, t: Interval<f64>) -> Interval<f64> {
         match self.precision {

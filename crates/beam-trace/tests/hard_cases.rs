@@ -1482,9 +1482,10 @@ fn solve_escalating(
 /// natural extension of these formulas is about `2K·w` wide (the dependency between the
 /// large terms, which no precision removes), so their final pieces stay open far from the
 /// root whatever the precision; they are checked for soundness only.
-const NEWTON_FINDERS: [RootMethod; 3] = [
+const NEWTON_FINDERS: [RootMethod; 4] = [
     RootMethod::Newton,
     RootMethod::NewtonAlefeldHansen,
+    RootMethod::NewtonHc4,
     RootMethod::MrfroNewton,
 ];
 

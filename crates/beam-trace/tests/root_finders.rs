@@ -401,6 +401,7 @@ fn expected_proofs() {
         RootMethod::Mitchell,
         RootMethod::Newton,
         RootMethod::NewtonAlefeldHansen,
+        RootMethod::NewtonHc4,
         RootMethod::MrfroNewton,
     ] {
         let (r, _) = solve(m, &mut TWO_ROOTS.clone(), iv(0.0, 3.0), &s);
@@ -470,6 +471,7 @@ fn counters() {
         RootMethod::Mitchell,
         RootMethod::Newton,
         RootMethod::NewtonAlefeldHansen,
+        RootMethod::NewtonHc4,
         RootMethod::MrfroNewton,
     ];
     for m in RootMethod::ALL {

@@ -113,6 +113,7 @@
 pub mod catalog;
 pub mod constant;
 pub mod context;
+pub mod contractor;
 mod deriv;
 mod domain;
 pub mod error;

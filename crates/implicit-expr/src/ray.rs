@@ -16,9 +16,11 @@
 //! meets the surface for `t ∈ T` (the rejection test).
 
 use crate::context::{Context, NodeId, Var};
+use crate::contractor::Contractor;
 use crate::error::Error;
 use crate::eval::{Evaluator, Number};
 use crate::tape::Tape;
+use interval_core::Interval;
 
 /// Names of the variable slots of a ray function, in slot order (then the surface's
 /// parameters, in the surface context's order).
@@ -35,6 +37,8 @@ pub struct RayFunction {
     context: Context,
     roots: [NodeId; 2],
     params: Vec<String>,
+    /// The HC4-revise contractor of `g` (on the graph, not the tape).
+    hc4: Contractor<f64>,
 }
 
 impl RayFunction {
@@ -64,6 +68,7 @@ impl RayFunction {
         Ok(Self {
             g: Tape::new(&rc, &[g])?,
             g_dg: Tape::new(&rc, &[g, dg])?,
+            hc4: Contractor::new(&rc, g),
             context: rc,
             roots: [g, dg],
             params,
@@ -102,6 +107,7 @@ impl RayFunction {
             // The tape computes `g` already.
             g: tape.clone(),
             g_dg: Tape::new(&rc, &[g, dg])?,
+            hc4: Contractor::new(&rc, g),
             context: rc,
             roots: [g, dg],
             params: Vec::new(),
@@ -141,6 +147,9 @@ pub struct RayEvaluator<N> {
     g_dg: Evaluator<N>,
     vars: Vec<N>,
     out: [N; 2],
+    /// `g`'s contractor and its box (used by `RayEvaluator<Interval<f64>>::contract`).
+    hc4: Contractor<f64>,
+    hc4_box: Vec<Interval<f64>>,
 }
 
 impl<N: Number> RayEvaluator<N> {
@@ -167,6 +176,8 @@ impl<N: Number> RayEvaluator<N> {
             g_dg: Evaluator::new(&f.g_dg),
             vars,
             out: [zero; 2],
+            hc4: f.hc4.clone(),
+            hc4_box: Vec::new(),
         })
     }
 
@@ -186,6 +197,7 @@ impl<N: Number> RayEvaluator<N> {
         if !self.g_full.ptr_eq(&f.g) {
             self.g_full = f.g.clone();
             self.g_dg.set_tape(&f.g_dg);
+            self.hc4.set_formula(&f.hc4);
         }
         self.g.set_tape(&f.g);
         Ok(())
@@ -288,5 +300,20 @@ impl<N: Number> RayEvaluator<N> {
             .eval_outputs(&self.vars, &mut self.out)
             .expect("slot count checked at construction");
         (self.out[0], self.out[1].widen_undefined())
+    }
+}
+
+impl RayEvaluator<Interval<f64>> {
+    /// `t` narrowed to the parameters where `g` may vanish for some ray of the set, by one
+    /// HC4-revise pass over `g`'s graph ([`Contractor`]): every root of every ray in `t`
+    /// stays in the result (wherever `g` is defined there). `None` when there is none.
+    /// The whole `g` is contracted, whatever [`restrict`](Self::restrict) pruned.
+    pub fn contract(&mut self, t: Interval<f64>) -> Option<Interval<f64>> {
+        self.vars[T.index()] = t;
+        self.hc4_box.clear();
+        self.hc4_box.extend_from_slice(&self.vars);
+        self.hc4
+            .contract(&mut self.hc4_box, Interval::ZERO)
+            .then(|| self.hc4_box[T.index()])
     }
 }

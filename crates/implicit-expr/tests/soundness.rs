@@ -37,6 +37,8 @@
 //! The environment variable `INTERVAL_CORE_TEST_SCALE` (a positive integer) multiplies the
 //! number of cases.
 
+use implicit_expr::contractor::Contractor;
+use implicit_expr::testing::reference;
 use implicit_expr::{
     BinaryOp, Choice, Constant, Context, Evaluator, Grad, Node, NodeId, Number, RayEvaluator,
     RayFunction, SliceEvaluator, Tape, UnaryOp,
@@ -870,6 +872,49 @@ fn check_decorations(b: &[(f64, f64); SLOTS], r: &Recipe) -> Result<(), TestCase
     Ok(())
 }
 
+/// HC4-revise keeps every point of the box whose value lies in the target: the target is
+/// the double-double enclosure of the value at a point of the box (widened by `widen`
+/// times its magnitude), and the point must survive the contraction wherever the formula is
+/// proven defined there. The contracted box lies in the box.
+fn check_contractor_keeps_solutions(
+    r: &Recipe,
+    b: &[(f64, f64); SLOTS],
+    us: &[[f64; SLOTS]],
+    widen: f64,
+) -> Result<(), TestCaseError> {
+    let (ctx, root) = r.build();
+    let tape = Tape::new(&ctx, &[root]).unwrap();
+    let mut hc4 = Contractor::<f64>::new(&ctx, root);
+    let x: Vec<Interval<f64>> = b.iter().map(|&b| iv(b)).collect();
+    for u in us {
+        let p = point(b, u);
+        let (v, dec) = reference(&tape, &p).unwrap();
+        let Some((lo, hi)) = v.bounds() else {
+            continue;
+        };
+        if dec < Decoration::Def {
+            continue;
+        }
+        let (lo, hi) = (lo.to_f64_down(), hi.to_f64_up());
+        let pad = widen * lo.abs().max(hi.abs());
+        let target = Interval::new((lo - pad).min(lo), (hi + pad).max(hi)).unwrap();
+        let mut c = x.clone();
+        let kept = hc4.contract(&mut c, target);
+        prop_assert!(
+            kept,
+            "every point removed, but {p:?} has its value in {target:?}"
+        );
+        for (k, (ck, xk)) in c.iter().zip(&x).enumerate() {
+            prop_assert!(
+                ck.contains(p[k]),
+                "{p:?} removed: slot {k} contracted to {ck:?}"
+            );
+            prop_assert!(ck.subset(*xk), "slot {k} grew to {ck:?}");
+        }
+    }
+    Ok(())
+}
+
 /// `Interval<f32>` contains the real value and the `f32` value at points of the box.
 fn check_interval_f32_contains_real_and_point_values(
     r: &Recipe,
@@ -1297,6 +1342,17 @@ proptest! {
         us in fractions(4),
     ) {
         let res = check_interval_f32_contains_real_and_point_values(&r, &b, &us);
+        res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
+    }
+
+    #[test]
+    fn contractor_keeps_solutions(
+        r in recipe(),
+        b in boxes(),
+        us in fractions(4),
+        widen in prop_oneof![Just(0.0), 0.0..1.0f64],
+    ) {
+        let res = check_contractor_keeps_solutions(&r, &b, &us, widen);
         res.map_err(|e| TestCaseError::fail(format!("{e} in {}", r.describe())))?;
     }
 

@@ -40,7 +40,7 @@ struct Args {
     /// Image height.
     #[arg(long)]
     height: Option<u32>,
-    /// Root finder (bisection, mitchell, newton, newton-alefeld-hansen, mrf, mrfro,
+    /// Root finder (bisection, mitchell, newton, newton-alefeld-hansen, newton-hc4, mrf, mrfro,
     /// mrfro-newton, counter-bisection, point-sampling, sphere-tracing).
     #[arg(long)]
     root_finder: Option<RootMethod>,

@@ -12,7 +12,7 @@
 use interval_core::Interval;
 
 use super::finder::{RootCounters, RootFinder, RootResult, RootSettings};
-use super::newton::newton_search;
+use super::newton::{Variant, newton_search};
 use crate::ray::RayFn;
 
 /// Interval Newton plus the Alefeld–Hansen extended-division step.
@@ -31,6 +31,10 @@ impl RootFinder for NewtonAlefeldHansen {
         settings: &RootSettings,
         counters: &mut RootCounters,
     ) -> RootResult {
-        newton_search(g, t, settings, counters, true)
+        let variant = Variant {
+            extended: true,
+            contract: false,
+        };
+        newton_search(g, t, settings, counters, variant)
     }
 }

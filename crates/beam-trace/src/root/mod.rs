@@ -10,6 +10,7 @@
 //! | Mitchell | `mitchell.rs` | yes | yes |
 //! | interval Newton | `newton.rs` | yes | yes |
 //! | Newton + Alefeld-Hansen | `alefeld_hansen.rs` | yes | yes |
+//! | Newton + HC4-revise contraction | `newton_hc4.rs` | yes | yes |
 //! | MRF and MRFro (San Juan-Estrada) | `mrf.rs` | yes | no |
 //! | MRFro + Newton | `mrfro_newton.rs` | yes | yes |
 //! | counter-based bisection (ns, cs) | `counter_bisection.rs` | yes | no |
@@ -38,6 +39,8 @@ pub enum RootMethod {
     Newton,
     /// Interval Newton with the Alefeld-Hansen extended-division operator.
     NewtonAlefeldHansen,
+    /// Interval Newton on pieces contracted by HC4-revise first.
+    NewtonHc4,
     /// San Juan-Estrada's MRF.
     Mrf,
     /// San Juan-Estrada's MRFro.
@@ -54,11 +57,12 @@ pub enum RootMethod {
 
 impl RootMethod {
     /// Every method, reliable ones first.
-    pub const ALL: [RootMethod; 10] = [
+    pub const ALL: [RootMethod; 11] = [
         RootMethod::Bisection,
         RootMethod::Mitchell,
         RootMethod::Newton,
         RootMethod::NewtonAlefeldHansen,
+        RootMethod::NewtonHc4,
         RootMethod::Mrf,
         RootMethod::Mrfro,
         RootMethod::MrfroNewton,
@@ -74,6 +78,7 @@ impl RootMethod {
             RootMethod::Mitchell => "mitchell",
             RootMethod::Newton => "newton",
             RootMethod::NewtonAlefeldHansen => "newton-alefeld-hansen",
+            RootMethod::NewtonHc4 => "newton-hc4",
             RootMethod::Mrf => "mrf",
             RootMethod::Mrfro => "mrfro",
             RootMethod::MrfroNewton => "mrfro-newton",
@@ -90,6 +95,7 @@ impl RootMethod {
             RootMethod::Mitchell => &mitchell::Mitchell,
             RootMethod::Newton => &newton::Newton,
             RootMethod::NewtonAlefeldHansen => &alefeld_hansen::NewtonAlefeldHansen,
+            RootMethod::NewtonHc4 => &newton_hc4::NewtonHc4,
             RootMethod::Mrf => &mrf::Mrf,
             RootMethod::Mrfro => &mrf::Mrfro,
             RootMethod::MrfroNewton => &mrfro_newton::MrfroNewton,
@@ -135,6 +141,7 @@ pub mod mitchell;
 pub mod mrf;
 pub mod mrfro_newton;
 pub mod newton;
+pub mod newton_hc4;
 pub mod point_sampling;
 pub(crate) mod search;
 pub mod sphere_tracing;

@@ -42,8 +42,18 @@ impl RootFinder for Newton {
         settings: &RootSettings,
         counters: &mut RootCounters,
     ) -> RootResult {
-        newton_search(g, t, settings, counters, false)
+        newton_search(g, t, settings, counters, Variant::default())
     }
+}
+
+/// What a [`newton_search`] adds to the plain interval Newton search.
+#[derive(Copy, Clone, Debug, Default)]
+pub(crate) struct Variant {
+    /// The Alefeld–Hansen extended-division step where `0 ∈ G'(X)`.
+    pub extended: bool,
+    /// A contraction of every piece that may hold a root ([`RayFn::contract`]) before its
+    /// Newton step.
+    pub contract: bool,
 }
 
 /// A piece of the search: `unique` when it is proven to hold exactly one root, with `g`
@@ -60,15 +70,18 @@ impl Piece {
     }
 }
 
-/// The interval Newton search; with `extended`, the Alefeld–Hansen step where
-/// `0 ∈ G'(X)` and `0 ∉ G([m])` (see [`NewtonAlefeldHansen`](super::alefeld_hansen::NewtonAlefeldHansen)).
+/// The interval Newton search; with `variant.extended`, the Alefeld–Hansen step where
+/// `0 ∈ G'(X)` and `0 ∉ G([m])` (see [`NewtonAlefeldHansen`](super::alefeld_hansen::NewtonAlefeldHansen));
+/// with `variant.contract`, each piece that may hold a root contracted first (see
+/// [`NewtonHc4`](super::newton_hc4::NewtonHc4)).
 pub(crate) fn newton_search(
     g: &mut dyn RayFn,
     t: Interval<f64>,
     settings: &RootSettings,
     counters: &mut RootCounters,
-    extended: bool,
+    variant: Variant,
 ) -> RootResult {
+    let extended = variant.extended;
     let Some((mut ev, mut budget)) = begin(g, t, settings, counters) else {
         return RootResult::NoRoot;
     };
@@ -126,6 +139,12 @@ pub(crate) fn newton_search(
             }
             if !left.is_empty() {
                 push_reduced(&mut ev, &mut stack, left, x, false);
+            }
+        } else if variant.contract {
+            // Where Newton cannot narrow, the contractor may: what it leaves is searched
+            // (bisected unless it is at most half as wide).
+            if let Some(c) = ev.contract(x) {
+                push_reduced(&mut ev, &mut stack, c, x, false);
             }
         } else {
             bisect(&mut ev, &mut stack, x);

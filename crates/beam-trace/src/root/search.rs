@@ -66,6 +66,14 @@ impl<'a> Eval<'a> {
         self.g.g_sides(x)
     }
 
+    /// `x` narrowed by the contractor of `g` ([`RayFn::contract`]); counted as two
+    /// evaluations of `g` (its forward and backward passes).
+    #[inline]
+    pub fn contract(&mut self, x: Interval<f64>) -> Option<Interval<f64>> {
+        self.counters.g_evals += 2;
+        self.g.contract(x)
+    }
+
     /// `(G(x), G'(x))`.
     #[inline]
     pub fn g_dg(&mut self, x: Interval<f64>) -> (Interval<f64>, Interval<f64>) {
