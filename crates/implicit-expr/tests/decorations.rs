@@ -1,6 +1,6 @@
 //! Decorated evaluation of tapes: what the renderer's proofs read from it. A step function
-//! is continuous (`com`) on a box where it takes one value and only defined (`def`) across
-//! a jump; a partial operation outside its domain leaves nothing known (`trv`); a ray's `g`
+//! is continuous on a box where it takes one value (`com`, or `dac` where an end of the box
+//! is a jump) and only defined (`def`) across a jump; a partial operation outside its domain leaves nothing known (`trv`); a ray's `g`
 //! is proven continuous on a parameter interval exactly where no jump lies in it.
 
 use implicit_expr::{Context, Evaluator, RayEvaluator, RayFunction, Tape, parse::parse};
@@ -36,7 +36,10 @@ fn decoration(text: &str, x: Interval<f64>) -> Decoration {
 
 #[test]
 fn step_functions_are_continuous_between_their_jumps() {
-    assert_eq!(decoration("floor(x) + 1", iv(1.0, 1.9)), Decoration::Com);
+    assert_eq!(decoration("floor(x) + 1", iv(1.1, 1.9)), Decoration::Com);
+    // One value on the box, but a jump at its end: its restriction is continuous (dac),
+    // enough for a sign-change proof on the box.
+    assert_eq!(decoration("floor(x) + 1", iv(1.0, 1.9)), Decoration::Dac);
     assert_eq!(decoration("floor(x) + 1", iv(0.5, 1.5)), Decoration::Def);
     assert_eq!(decoration("ceil(x)", iv(1.1, 1.9)), Decoration::Com);
     assert_eq!(decoration("ceil(x)", iv(1.0, 1.5)), Decoration::Def);

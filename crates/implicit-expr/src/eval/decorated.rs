@@ -161,8 +161,13 @@ mod tests {
             Decoration::Trv
         );
         assert_eq!(
-            eval("floor(x)", dec(1.0, 1.5)).decoration(),
+            eval("floor(x)", dec(1.25, 1.5)).decoration(),
             Decoration::Com
+        );
+        // Continuous on the box, but not at 1, where floor jumps.
+        assert_eq!(
+            eval("floor(x)", dec(1.0, 1.5)).decoration(),
+            Decoration::Dac
         );
         assert_eq!(
             eval("floor(x)", dec(0.5, 1.5)).decoration(),

@@ -148,11 +148,14 @@ impl<T: Float> Number for Interval<T> {
             UnaryOp::Asin | UnaryOp::Acos => rules::unit(a),
             UnaryOp::Recip => rules::nonzero(a),
             UnaryOp::Tan => rules::tan(a),
-            UnaryOp::Floor => rules::step(a, Interval::floor),
-            UnaryOp::Ceil => rules::step(a, Interval::ceil),
-            UnaryOp::Round => rules::step(a, Interval::round_ties_to_away),
-            // Not a monotone step: 1 at 0 only.
-            UnaryOp::Not => continuous_if(!a.contains(T::ZERO) || a.is_singleton()),
+            UnaryOp::Floor => rules::step(a, Interval::floor, rules::integer),
+            UnaryOp::Ceil => rules::step(a, Interval::ceil, rules::integer),
+            UnaryOp::Round => rules::step(a, Interval::round_ties_to_away, rules::half_integer),
+            // Not a monotone step: 1 at 0 only, so continuous at every point of a box
+            // without 0, and its restriction to `[0, 0]` is continuous (dac).
+            UnaryOp::Not if !a.contains(T::ZERO) => Decoration::Com,
+            UnaryOp::Not if a.is_singleton() => Decoration::Dac,
+            UnaryOp::Not => Decoration::Def,
             // A slope is continuous (zero) where its step function has no jump, and
             // defined everywhere (the whole line across a jump).
             UnaryOp::SlopeFloor | UnaryOp::SlopeRound | UnaryOp::SlopeNot => {

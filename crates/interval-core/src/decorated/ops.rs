@@ -283,12 +283,12 @@ decorated_unary! {
     asinh => rules::everywhere, "`asinh x`; defined and continuous everywhere.";
     acosh => rules::at_least_one, "`acosh x`; defined and continuous on `x ≥ 1`.";
     atanh => rules::open_unit, "`atanh x`; defined and continuous on `(−1, 1)`.";
-    floor => |x| rules::step(x, Interval::floor), "`⌊x⌋`; `def` where the box holds a jump.";
-    ceil => |x| rules::step(x, Interval::ceil), "`⌈x⌉`; `def` where the box holds a jump.";
-    trunc => |x| rules::step(x, Interval::trunc), "Truncation; `def` where the box holds a jump.";
-    sign => |x| rules::step(x, Interval::sign), "Sign; `def` where the box holds the jump at 0.";
-    round_ties_to_even => |x| rules::step(x, Interval::round_ties_to_even), "Rounding, ties to even; `def` at a jump.";
-    round_ties_to_away => |x| rules::step(x, Interval::round_ties_to_away), "Rounding, ties away; `def` at a jump.";
+    floor => |x| rules::step(x, Interval::floor, rules::integer), "`⌊x⌋`; `def` where the box holds a jump.";
+    ceil => |x| rules::step(x, Interval::ceil, rules::integer), "`⌈x⌉`; `def` where the box holds a jump.";
+    trunc => |x| rules::step(x, Interval::trunc, rules::nonzero_integer), "Truncation; `def` where the box holds a jump.";
+    sign => |x| rules::step(x, Interval::sign, rules::zero), "Sign; `def` where the box holds the jump at 0.";
+    round_ties_to_even => |x| rules::step(x, Interval::round_ties_to_even, rules::half_integer), "Rounding, ties to even; `def` at a jump.";
+    round_ties_to_away => |x| rules::step(x, Interval::round_ties_to_away, rules::half_integer), "Rounding, ties away; `def` at a jump.";
 }
 
 macro_rules! decorated_op {
@@ -340,12 +340,18 @@ mod tests {
         check(d(0.0, 4.0).sqrt(), 0.0, 2.0, Com);
         check(d(1.0, 2.0) / d(0.0, 1.0), 1.0, inf, Trv);
         check(d(0.5, 1.5).floor(), 0.0, 1.0, Def);
-        check(d(1.0, 1.5).floor(), 1.0, 1.0, Com);
-        check(d(0.5, 1.0).ceil(), 1.0, 1.0, Com);
+        check(d(1.0, 1.5).floor(), 1.0, 1.0, Dac); // continuous on the box, not at 1
+        check(d(1.2, 1.5).floor(), 1.0, 1.0, Com);
+        check(d(0.5, 1.0).ceil(), 1.0, 1.0, Dac);
+        check(d(2.5, 2.5).round_ties_to_even(), 2.0, 2.0, Dac);
+        check(d(3.0, 3.0).round_ties_to_even(), 3.0, 3.0, Com);
+        check(d(0.0, 0.0).trunc(), 0.0, 0.0, Com);
         check(d(-1.0, 1.0).sign(), -1.0, 1.0, Def);
         check(d(0.0, 2.0).log(), -inf, 2f64.ln().next_up(), Trv);
         assert_eq!(d(-1.0, 1.0).atan2(d(-2.0, -1.0)).decoration(), Def);
-        assert_eq!(d(0.0, 1.0).atan2(d(-2.0, -1.0)).decoration(), Com);
+        // On the cut from above: continuous on the box, not at the points of the cut.
+        assert_eq!(d(0.0, 1.0).atan2(d(-2.0, -1.0)).decoration(), Dac);
+        assert_eq!(d(0.5, 1.0).atan2(d(-2.0, -1.0)).decoration(), Com);
         assert_eq!(d(-1.0, 1.0).atan2(d(-1.0, 1.0)).decoration(), Trv);
         assert_eq!(d(-1.0, 1.0).pown(-2).decoration(), Trv);
         assert_eq!(d(1.0, 2.0).pown(-2).decoration(), Com);

@@ -68,20 +68,51 @@ pub fn tan<T: Float>(x: Interval<T>) -> Decoration {
     defined_if(x.is_empty() || !x.tan().is_entire())
 }
 
-/// A monotone step function `f` is continuous on the box exactly when it takes one value
-/// on it, i.e. at both ends; otherwise it is defined but jumps (`def`).
-pub fn step<T: Float>(x: Interval<T>, f: fn(Interval<T>) -> Interval<T>) -> Decoration {
+/// A monotone step function `f` on the box `x`, with `jumps_at` telling its points of
+/// discontinuity: `def` where it takes two values (a jump inside); otherwise `f` is
+/// constant on `x`, so its restriction to `x` is continuous (`dac`), and it is continuous at
+/// every point of `x` (`com`, IEEE 1788 §11.7) unless an end of `x` is a jump (`floor` on
+/// `[1, 1.5]` or `[1, 1]` is `dac`, on `[1.2, 1.5]` `com`).
+pub fn step<T: Float>(
+    x: Interval<T>,
+    f: fn(Interval<T>) -> Interval<T>,
+    jumps_at: fn(f64) -> bool,
+) -> Decoration {
     match x.bounds() {
         None => Decoration::Com,
         Some((lo, hi)) => {
+            // At an infinite end the value is the function's limit there: `floor` jumps
+            // infinitely often on `[a, +∞]` (its limit is `+∞`), `sign` not at all.
             let at = |v: T| f(Interval::new_unchecked(v, v)).inf();
-            if lo.is_finite() && hi.is_finite() && at(lo) == at(hi) {
-                Decoration::Com
-            } else {
+            if at(lo) != at(hi) {
                 Decoration::Def
+            } else if jumps_at(lo.to_f64()) || jumps_at(hi.to_f64()) {
+                Decoration::Dac
+            } else {
+                Decoration::Com
             }
         }
     }
+}
+
+/// The jumps of `floor` and `ceil`: the integers.
+pub fn integer(v: f64) -> bool {
+    v.is_finite() && v.fract() == 0.0
+}
+
+/// The jumps of `trunc`: the integers but 0.
+pub fn nonzero_integer(v: f64) -> bool {
+    integer(v) && v != 0.0
+}
+
+/// The jumps of the rounding functions: the half-integers `k + 1/2`.
+pub fn half_integer(v: f64) -> bool {
+    v.is_finite() && (v - v.floor()) == 0.5
+}
+
+/// The jump of `sign`: 0.
+pub fn zero(v: f64) -> bool {
+    v == 0.0
 }
 
 /// `pown(x, n)`: everywhere for `n ≥ 0`, on `0 ∉ x` for `n < 0`.
@@ -112,13 +143,19 @@ pub fn pow<T: Float>(x: Interval<T>, y: Interval<T>) -> Decoration {
     defined_if(x.inf() > T::ZERO || (x.inf() >= T::ZERO && y.inf() > T::ZERO))
 }
 
-/// `atan2(y, x)`: undefined at the origin (`trv` if the box holds it), discontinuous across
-/// the cut `{x < 0, y = 0}` when the box reaches below it (`def`), continuous otherwise.
+/// `atan2(y, x)`: undefined at the origin (`trv` if the box holds it); discontinuous at
+/// the points of the cut `{x < 0, y = 0}`: `def` when the box reaches below the cut (a jump
+/// from `π` to `−π` inside it), `dac` when it only touches the cut from above (its
+/// restriction is continuous, the function is not at those points), `com` otherwise.
 pub fn atan2<T: Float>(y: Interval<T>, x: Interval<T>) -> Decoration {
     if y.contains(T::ZERO) && x.contains(T::ZERO) {
         Decoration::Trv
-    } else if x.inf() < T::ZERO && y.inf() < T::ZERO && y.sup() >= T::ZERO {
-        Decoration::Def
+    } else if x.inf() < T::ZERO && y.contains(T::ZERO) {
+        if y.inf() < T::ZERO {
+            Decoration::Def
+        } else {
+            Decoration::Dac
+        }
     } else {
         Decoration::Com
     }

@@ -181,20 +181,15 @@ impl<T: Float> Interval<T> {
             .ok_or_else(|| err(start + t.len(), "expected ']' at the end"))?;
         let at = start + 1;
         let word = inner.trim().to_ascii_lowercase();
-        if word == "empty" {
+        // `[ ]` (nothing between the brackets) is the empty set, as `[empty]`.
+        if word == "empty" || word.is_empty() {
             return Ok(Self::EMPTY);
         }
         if word == "entire" {
             return Ok(Self::ENTIRE);
         }
         let (lo, hi) = match inner.find(',') {
-            None => {
-                if inner.trim().is_empty() {
-                    return Err(err(at, "expected a number, 'empty' or 'entire'"));
-                }
-                let (l, h) = read_bound(inner, at, T::ZERO)?;
-                (l, h)
-            }
+            None => read_bound(inner, at, T::ZERO)?,
             Some(i) => {
                 let (l, _) = read_bound(&inner[..i], at, T::NEG_INFINITY)?;
                 let (_, h) = read_bound(&inner[i + 1..], at + i + 1, T::INFINITY)?;
@@ -263,7 +258,7 @@ mod tests {
             e("[1, x]"),
             IntervalError::Parse { position: 4, .. }
         ));
-        assert!(matches!(e("[]"), IntervalError::Parse { .. }));
+        assert!(p("[]").is_empty() && p("[ ]").is_empty());
         assert!(matches!(e("[1e]"), IntervalError::Parse { .. }));
         assert!(matches!(e("[2, 1]"), IntervalError::Reversed { .. }));
         assert!(matches!(e("[inf]"), IntervalError::InfiniteEndpoint { .. }));
