@@ -33,24 +33,68 @@
 //!   with `n < 0` are checked as accurate (within one ulp); `powRev1`, `powRev2` as valid
 //!   (the expected result inside ours, ours inside `x`).
 //!
+//! * decorated vectors (`tests/data/itf1788_decorated.itl`, `[a, b]_com` and `[nai]`): the
+//!   decoration exactly, the interval part as the bare operation's.
+//!
 //! Every vector is run; all failures are collected and printed together with their line in the
 //! data file. Vectors that fail because of a known defect are listed in [`KNOWN_ISSUES`] with
 //! the reason, so that the suite stays green while the defect stays visible.
 
 use std::collections::BTreeMap;
 
-use interval_core::Interval;
 use interval_core::Overlap;
+use interval_core::{DecInterval, Decoration, Interval};
 use rug::Rational;
 use rug::float::Constant;
 use rug::ops::Pow;
 
 type I = Interval<f64>;
+type D = DecInterval<f64>;
 
 /// The data file, embedded at compile time.
 const DATA: &str = include_str!("data/itf1788_subset.itl");
 /// Its name in failure messages.
 const DATA_NAME: &str = "tests/data/itf1788_subset.itl";
+
+/// The decorated vectors, embedded at compile time.
+const DECORATED_DATA: &str = include_str!("data/itf1788_decorated.itl");
+/// Their file's name in failure messages.
+const DECORATED_DATA_NAME: &str = "tests/data/itf1788_decorated.itl";
+
+/// Every operation the decorated file must exercise at least once.
+const DECORATED_REQUIRED_OPS: &[&str] = &[
+    "add",
+    "sub",
+    "mul",
+    "div",
+    "recip",
+    "sqr",
+    "sqrt",
+    "fma",
+    "neg",
+    "abs",
+    "min",
+    "max",
+    "pown",
+    "exp",
+    "log",
+    "log2",
+    "log10",
+    "sin",
+    "cos",
+    "tan",
+    "asin",
+    "acos",
+    "atan",
+    "atan2",
+    "pow",
+    "floor",
+    "ceil",
+    "trunc",
+    "sign",
+    "roundTiesToEven",
+    "roundTiesToAway",
+];
 
 /// Vectors (by their exact text in the data file) excluded from the assertion because they
 /// expose a known defect of `interval-core`, with the reason. An entry whose vector passes
@@ -171,6 +215,20 @@ enum Literal {
     Bool(bool),
     /// A state of the `overlap` relation (`before`, `meets`, ..., `bothEmpty`).
     State(Overlap),
+    /// A decorated interval `[a, b]_dec`, or `[nai]` (the empty set decorated `ill`).
+    Decorated(Bare, Decoration),
+}
+
+/// The decoration named by the suffix `_dec` of a decorated literal.
+fn decoration(suffix: &str) -> Option<Decoration> {
+    Some(match suffix {
+        "_com" => Decoration::Com,
+        "_dac" => Decoration::Dac,
+        "_def" => Decoration::Def,
+        "_trv" => Decoration::Trv,
+        "_ill" => Decoration::Ill,
+        _ => return None,
+    })
 }
 
 /// The `overlap` state named `w` in the suite's spelling.
@@ -444,16 +502,20 @@ fn parse_literals(
                         other => return Err(format!("line {line}: unexpected {other:?} in [...]")),
                     }
                 }
-                if let Some((Tok::Word(w), _)) = toks.get(*pos)
-                    && w.starts_with('_')
-                {
-                    return Err(format!(
-                        "line {line}: decorated interval ...]{w} is not supported"
-                    ));
+                if matches!(&words[..], [w] if w == "nai") {
+                    out.push(Literal::Decorated(Bare::Empty, Decoration::Ill));
+                    continue;
                 }
-                out.push(Literal::Interval(
-                    parse_interval(&words).map_err(|e| format!("line {line}: {e}"))?,
-                ));
+                let bare = parse_interval(&words).map_err(|e| format!("line {line}: {e}"))?;
+                match toks.get(*pos) {
+                    Some((Tok::Word(w), _)) if w.starts_with('_') => {
+                        let d = decoration(w)
+                            .ok_or_else(|| format!("line {line}: unknown decoration ...]{w}"))?;
+                        *pos += 1;
+                        out.push(Literal::Decorated(bare, d));
+                    }
+                    _ => out.push(Literal::Interval(bare)),
+                }
             }
             Tok::Word(w) if w == "true" => out.push(Literal::Bool(true)),
             Tok::Word(w) if w == "false" => out.push(Literal::Bool(false)),
@@ -1101,6 +1163,9 @@ fn numeric(op: &str) -> Option<fn(I) -> f64> {
 }
 
 fn run(v: &Vector) -> Outcome {
+    if v.args.iter().any(|a| matches!(a, Literal::Decorated(..))) {
+        return run_decorated(v);
+    }
     let op = v.op.as_str();
     let (args, exp) = (&v.args, &v.expected);
     if let Some(f) = unary_tight(op) {
@@ -1267,12 +1332,132 @@ fn run(v: &Vector) -> Outcome {
 }
 
 // ---------------------------------------------------------------------------------------------
+// Running a decorated vector
+// ---------------------------------------------------------------------------------------------
+
+fn dec_at(lits: &[Literal], i: usize) -> Result<D, String> {
+    match lits.get(i) {
+        Some(Literal::Decorated(_, Decoration::Ill)) => Ok(D::NAI),
+        Some(Literal::Decorated(b, d)) => Ok(D::set_dec(to_interval(*b), *d)),
+        other => Err(format!(
+            "literal {i}: expected a decorated interval, found {other:?}"
+        )),
+    }
+}
+
+fn dec_unary(op: &str) -> Option<fn(D) -> D> {
+    Some(match op {
+        "neg" => D::neg,
+        "recip" => D::recip,
+        "sqr" => D::sqr,
+        "sqrt" => D::sqrt,
+        "abs" => D::abs,
+        "floor" => D::floor,
+        "ceil" => D::ceil,
+        "trunc" => D::trunc,
+        "sign" => D::sign,
+        "roundTiesToEven" => D::round_ties_to_even,
+        "roundTiesToAway" => D::round_ties_to_away,
+        "exp" => D::exp,
+        "exp2" => D::exp2,
+        "exp10" => D::exp10,
+        "log" => D::log,
+        "log2" => D::log2,
+        "log10" => D::log10,
+        "sin" => D::sin,
+        "cos" => D::cos,
+        "tan" => D::tan,
+        "asin" => D::asin,
+        "acos" => D::acos,
+        "atan" => D::atan,
+        "sinh" => D::sinh,
+        "cosh" => D::cosh,
+        "tanh" => D::tanh,
+        "asinh" => D::asinh,
+        "acosh" => D::acosh,
+        "atanh" => D::atanh,
+        _ => return None,
+    })
+}
+
+fn dec_binary(op: &str) -> Option<fn(D, D) -> D> {
+    Some(match op {
+        "add" => D::add,
+        "sub" => D::sub,
+        "mul" => D::mul,
+        "div" => D::div,
+        "min" => D::min,
+        "max" => D::max,
+        "pow" => D::pow,
+        "atan2" => D::atan2,
+        "hypot" => D::hypot,
+        _ => return None,
+    })
+}
+
+/// A decorated vector: the decoration must be the expected one exactly (NaI for NaI), and
+/// the interval part pass the bare check of the operation (tight or accurate).
+fn run_decorated(v: &Vector) -> Outcome {
+    let op = v.op.as_str();
+    let (args, exp) = (&v.args, &v.expected);
+    let (inputs, got, pown) = if let Some(f) = dec_unary(op) {
+        arity(v, 1, 1)?;
+        let x = dec_at(args, 0)?;
+        (vec![x], f(x), None)
+    } else if let Some(f) = dec_binary(op) {
+        arity(v, 2, 1)?;
+        let (x, y) = (dec_at(args, 0)?, dec_at(args, 1)?);
+        (vec![x, y], f(x, y), None)
+    } else if op == "fma" {
+        arity(v, 3, 1)?;
+        let (x, y, z) = (dec_at(args, 0)?, dec_at(args, 1)?, dec_at(args, 2)?);
+        (vec![x, y, z], x.fma(y, z), None)
+    } else if op == "pown" {
+        arity(v, 2, 1)?;
+        let x = dec_at(args, 0)?;
+        let n = number_at(args, 1)?;
+        if n != n.trunc() || n.abs() > f64::from(i32::MAX) {
+            return Err(format!("pown exponent {n} is not an i32"));
+        }
+        (vec![x], x.pown(n as i32), Some(n as i32))
+    } else {
+        return Err(format!("decorated `{op}` is not supported by this runner"));
+    };
+    let want = dec_at(exp, 0)?;
+    if want.is_nai() || got.is_nai() {
+        return if want.is_nai() && got.is_nai() {
+            Ok(None)
+        } else {
+            Err(format!("expected {want}, got {got}"))
+        };
+    }
+    if got.decoration() != want.decoration() {
+        return Err(format!(
+            "decoration: expected {}, got {} ({got})",
+            want.decoration(),
+            got.decoration()
+        ));
+    }
+    let tight = unary_tight(op).is_some()
+        || binary_tight(op).is_some()
+        || op == "fma"
+        || pown.is_some_and(|n| (-1..=2).contains(&n));
+    if tight {
+        check_tight(got.interval(), want.interval())
+    } else {
+        let bare: Vec<I> = inputs.iter().map(|x| x.interval()).collect();
+        check_accurate(op, &bare, pown, got.interval(), want.interval())
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
 // Tests
 // ---------------------------------------------------------------------------------------------
 
-#[test]
-fn itf1788_subset() {
-    let vectors = parse_itl(DATA).unwrap_or_else(|e| panic!("{DATA_NAME}: {e}"));
+/// Runs every vector of the file `name` holding `data`, and checks that each operation of
+/// `required` has one.
+fn run_suite(data: &str, name: &str, required: &[&str]) {
+    let vectors = parse_itl(data).unwrap_or_else(|e| panic!("{name}: {e}"));
     let mut counts: BTreeMap<&str, usize> = BTreeMap::new();
     let mut failures = Vec::new();
     let mut known = Vec::new();
@@ -1283,33 +1468,33 @@ fn itf1788_subset() {
         match (run(v), issue) {
             (Ok(note), None) => {
                 if let Some(note) = note {
-                    notes.push(format!("{DATA_NAME}:{}: {}\n    {note}", v.line, v.text));
+                    notes.push(format!("{name}:{}: {}\n    {note}", v.line, v.text));
                 }
             }
             (Ok(_), Some(_)) => failures.push(format!(
-                "{DATA_NAME}:{}: {}\n    passes but is listed in KNOWN_ISSUES: remove the entry",
+                "{name}:{}: {}\n    passes but is listed in KNOWN_ISSUES: remove the entry",
                 v.line, v.text
             )),
-            (Err(e), None) => failures.push(format!("{DATA_NAME}:{}: {}\n    {e}", v.line, v.text)),
+            (Err(e), None) => failures.push(format!("{name}:{}: {}\n    {e}", v.line, v.text)),
             (Err(e), Some((_, why))) => known.push(format!(
-                "{DATA_NAME}:{}: {}\n    {e}\n    known issue: {why}",
+                "{name}:{}: {}\n    {e}\n    known issue: {why}",
                 v.line, v.text
             )),
         }
     }
-    for (text, _) in KNOWN_ISSUES {
+    for (text, _) in KNOWN_ISSUES.iter().filter(|_| data == DATA) {
         if !vectors.iter().any(|v| v.text == *text) {
             failures.push(format!("KNOWN_ISSUES entry matches no vector: {text}"));
         }
     }
-    for op in REQUIRED_OPS {
+    for op in required {
         if !counts.contains_key(op) {
             failures.push(format!("no vector for the operation `{op}`"));
         }
     }
 
     let summary: Vec<String> = counts.iter().map(|(op, n)| format!("{op} {n}")).collect();
-    eprintln!("{} ITF1788 vectors: {}", vectors.len(), summary.join(", "));
+    eprintln!("{name}: {} vectors: {}", vectors.len(), summary.join(", "));
     for n in &notes {
         eprintln!("note: {n}");
     }
@@ -1323,6 +1508,16 @@ fn itf1788_subset() {
         vectors.len(),
         failures.join("\n")
     );
+}
+
+#[test]
+fn itf1788_subset() {
+    run_suite(DATA, DATA_NAME, REQUIRED_OPS);
+}
+
+#[test]
+fn itf1788_decorated() {
+    run_suite(DECORATED_DATA, DECORATED_DATA_NAME, DECORATED_REQUIRED_OPS);
 }
 
 #[test]
@@ -1434,7 +1629,24 @@ fn other_literals_and_structure() {
     );
     assert_eq!(v[1].expected, [Literal::Bool(true)]);
     assert_eq!(v[2].expected.len(), 2);
-    assert!(parse_itl("testcase t { add [1.0,2.0]_com [1.0,2.0] = [2.0,4.0]; }").is_err());
+    let d = parse_itl("testcase t { add [1.0,2.0]_com [nai] = [nai]; }").expect("parses");
+    assert_eq!(
+        d[0].args,
+        [
+            Literal::Decorated(Bare::Bounds(1.0, 2.0), Decoration::Com),
+            Literal::Decorated(Bare::Empty, Decoration::Ill)
+        ]
+    );
+    assert!(parse_itl("testcase t { add [1.0,2.0]_xyz [1.0,2.0]_com = [2.0,4.0]_com; }").is_err());
+    // A wrong decoration, or a wrong interval part, fails a decorated vector.
+    for wrong in [
+        "testcase t { floor [1.0,1.5]_com = [1.0,1.0]_com; }",
+        "testcase t { add [1.0,2.0]_com [1.0,2.0]_com = [2.0,4.5]_com; }",
+        "testcase t { sqrt [nai] = [0.0,1.0]_trv; }",
+    ] {
+        let v = parse_itl(wrong).expect("parses");
+        assert!(run(&v[0]).is_err(), "{wrong}");
+    }
     assert!(parse_itl("testcase t { sqrt [2.0,1.0] = [empty]; }").is_err());
     assert!(parse_itl("/* open").is_err());
 }
