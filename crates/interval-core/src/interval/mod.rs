@@ -25,6 +25,7 @@ mod rev_pow;
 mod rev_trig;
 mod roots;
 mod set_ops;
+mod shave;
 mod trig;
 
 use crate::IntervalError;

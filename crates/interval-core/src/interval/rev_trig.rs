@@ -10,12 +10,15 @@
 //! bound of `x` that is infinite, or beyond `2⁴⁰` in magnitude (where the translates are
 //! coarse), is kept as it is.
 //!
-//! **Accuracy:** valid (an enclosure of the preimage within `x`); each computed bound lies
-//! within a few ulps of the tight one for moderate `|x|` (the inverse function's ulp, plus the
-//! rounding of `k·2π`), which grows with `|k|`. Tightness is not claimed; the oracle tests
-//! check enclosure.
+//! Each end of that hull is then shaved ([`shave`](super::shave)): moved inward past the
+//! floats where the forward function proves `f(z) ∉ c`.
+//!
+//! **Accuracy:** valid (an enclosure of the preimage within `x`); after shaving, each bound
+//! is the tight one away from the extrema of `sin` and `cos` (`tests/rev_tightness.rs`
+//! measures it against MPFR).
 
 use super::Interval;
+use super::shave::{dd_of, misses, shave};
 use super::trig::{PI_DOWN, PI_UP, TWO_PI_DOWN};
 use crate::float::Float;
 
@@ -106,7 +109,8 @@ impl<T: Float> Interval<T> {
             return x;
         }
         let s = c.asin();
-        periodic_preimage(&[s, pi() - s], two_pi(), x)
+        let r = periodic_preimage(&[s, pi() - s], two_pi(), x);
+        shave(r, |z| misses(dd_of(z).sin(), self))
     }
 
     /// `cosRev(c)` with `self = c`: `{z : cos z ∈ c}`.
@@ -127,7 +131,8 @@ impl<T: Float> Interval<T> {
             return x;
         }
         let s = c.acos();
-        periodic_preimage(&[s, -s], two_pi(), x)
+        let r = periodic_preimage(&[s, -s], two_pi(), x);
+        shave(r, |z| misses(dd_of(z).cos(), self))
     }
 
     /// `tanRev(c)` with `self = c`: `{z : tan z ∈ c}`.
@@ -145,7 +150,11 @@ impl<T: Float> Interval<T> {
             return x;
         }
         let s = self.cast::<f64>().atan();
-        periodic_preimage(&[s], pi(), x)
+        let r = periodic_preimage(&[s], pi(), x);
+        shave(r, |z| {
+            let g = dd_of(z);
+            misses(g.sin() / g.cos(), self)
+        })
     }
 }
 
