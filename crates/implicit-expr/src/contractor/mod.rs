@@ -8,7 +8,7 @@
 //! so that a node shared by several parents has met all of them), each node's enclosure
 //! narrows its arguments' to the values that can produce it: for `r = a + b`,
 //! `a ∩ (r − b)` and `b ∩ (r − a)`; for `r = a²`, `a ∩ sqrRev(r)`; and so on
-//! ([`project`]). The variables' enclosures are the contracted box.
+//! (the `project` module). The variables' enclosures are the contracted box.
 //!
 //! **Soundness.** Every point of the box where the formula is defined and its value lies in
 //! the target stays in the contracted box: at such a point every node's value lies in its
