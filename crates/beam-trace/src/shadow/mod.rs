@@ -24,6 +24,7 @@
 
 pub mod beam;
 pub mod certified;
+pub mod exact;
 pub mod hard;
 mod method;
 pub mod minkowski;

@@ -1,0 +1,275 @@
+//! The lazy BSP of occluder edge lines in Plücker space (Algorithm 1 of the method, with
+//! the corrections the analysis lists: the leaf's list saved before it is replaced, an
+//! occluder that the light straddles given two blocked cells, undecided signs counted as
+//! mixed).
+//!
+//! Each inner node holds an oriented occluder edge `a → b`; its children hold the lines
+//! (from a light point to the shaded point) on either side of it (`side > 0`: `pos`). A leaf
+//! is visible or invisible; a visible leaf with occluders still to sort is the "undefined"
+//! class, expanded by the first query that reaches it: one of its occluders, chosen at
+//! random (seeded), becomes the chain of its edges (`bsp(o)`), and the others are inserted
+//! into that chain by the orientation of their vertex-to-vertex lines with the light
+//! (Theorem 1: all on one side of an edge line, so are all lines that stab the light then
+//! the occluder).
+
+use glam::DVec3;
+
+use super::fragment::{Affine, Fragment, Side};
+use super::orient::{side, side_sign};
+use crate::shadow::Patch;
+
+/// An occluder: a convex polygon inside the slab between the light and the receiver.
+#[derive(Clone, Debug)]
+pub(super) struct Occluder {
+    /// The polygon after clipping, its edges `verts[i] → verts[i + 1]`.
+    pub verts: Vec<DVec3>,
+    /// The polygon before clipping (scene vertices): the insertion predicate's points.
+    pub original: Vec<DVec3>,
+    /// The signs of the edge sides of the lines that cross it from the light: `+1`, `-1`, or
+    /// both (`0`) where the light straddles its plane.
+    pub stab: i8,
+}
+
+/// A node of the arena.
+#[derive(Clone, Debug)]
+enum Node {
+    Inner {
+        a: DVec3,
+        b: DVec3,
+        pos: u32,
+        neg: u32,
+    },
+    Leaf {
+        visible: bool,
+        occluders: Vec<u32>,
+    },
+}
+
+/// What the BSP did, for the per-light table.
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
+pub struct BspWork {
+    /// Queries answered.
+    pub queries: u64,
+    /// Leaves expanded (an occluder turned into its chain of edges).
+    pub merges: u64,
+    /// Inner nodes created.
+    pub inner_nodes: u64,
+    /// Fragments split by a query plane.
+    pub splits: u64,
+    /// Visible fragments emitted.
+    pub fragments: u64,
+    /// Query points on an edge's line (the fragment sent to the positive side).
+    pub degenerate: u64,
+    /// The most nodes alive at once.
+    pub peak_nodes: u64,
+}
+
+/// The tree of one light and one group of receivers.
+#[derive(Clone, Debug)]
+pub(super) struct Bsp {
+    nodes: Vec<Node>,
+    occluders: Vec<Occluder>,
+    light: Patch,
+    rng: u64,
+    pub work: BspWork,
+}
+
+impl Bsp {
+    /// The tree holding one undefined leaf with every occluder (a visible leaf when there is
+    /// none), its random choices seeded by `seed`.
+    pub fn new(light: Patch, occluders: Vec<Occluder>, seed: u64) -> Bsp {
+        let mut bsp = Bsp {
+            nodes: Vec::new(),
+            occluders,
+            light,
+            rng: seed,
+            work: BspWork::default(),
+        };
+        bsp.reset();
+        bsp
+    }
+
+    /// Back to the root leaf with every occluder (the method without coherence).
+    pub fn reset(&mut self) {
+        self.nodes.clear();
+        self.nodes.push(Node::Leaf {
+            visible: true,
+            occluders: (0..self.occluders.len() as u32).collect(),
+        });
+    }
+
+    /// The next pseudo-random number (SplitMix64).
+    fn next_random(&mut self) -> u64 {
+        self.rng = self.rng.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.rng;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    fn push(&mut self, n: Node) -> u32 {
+        if matches!(n, Node::Inner { .. }) {
+            self.work.inner_nodes += 1;
+        }
+        self.nodes.push(n);
+        self.work.peak_nodes = self.work.peak_nodes.max(self.nodes.len() as u64);
+        (self.nodes.len() - 1) as u32
+    }
+
+    fn leaf(&mut self, visible: bool) -> u32 {
+        self.push(Node::Leaf {
+            visible,
+            occluders: Vec::new(),
+        })
+    }
+
+    /// The chain of `o`'s edges `from..` for the lines with edge sides of sign `sigma`: each
+    /// node sends the other sign to a visible leaf and `sigma` on, the last to an invisible
+    /// leaf. Returns the chain's first node.
+    fn chain(&mut self, o: usize, from: usize, sigma: i8) -> u32 {
+        let verts = self.occluders[o].verts.clone();
+        let k = verts.len();
+        let mut next = self.leaf(false);
+        for i in (from..k).rev() {
+            let other = self.leaf(true);
+            let (pos, neg) = if sigma > 0 {
+                (next, other)
+            } else {
+                (other, next)
+            };
+            next = self.push(Node::Inner {
+                a: verts[i],
+                b: verts[(i + 1) % k],
+                pos,
+                neg,
+            });
+        }
+        next
+    }
+
+    /// `bsp(o)`: one chain, or, where the light straddles `o`'s plane, the first edge over
+    /// two chains of the others, one per sign.
+    fn occluder_tree(&mut self, o: usize) -> u32 {
+        let stab = self.occluders[o].stab;
+        if stab != 0 {
+            return self.chain(o, 0, stab);
+        }
+        let (pos, neg) = (self.chain(o, 1, 1), self.chain(o, 1, -1));
+        let v = &self.occluders[o].verts;
+        let (a, b) = (v[0], v[1]);
+        self.push(Node::Inner { a, b, pos, neg })
+    }
+
+    /// Sorts occluder `o` into the subtree at `root` (Algorithm 1's `insertOccluder`).
+    fn insert(&mut self, root: u32, o: u32) {
+        let mut stack = vec![root];
+        let corners = self.light.corners();
+        while let Some(n) = stack.pop() {
+            match &mut self.nodes[n as usize] {
+                Node::Leaf { visible, occluders } => {
+                    if *visible {
+                        occluders.push(o);
+                    }
+                }
+                &mut Node::Inner { a, b, pos, neg } => {
+                    let (mut plus, mut minus) = (false, false);
+                    for &l in &corners {
+                        for &p in &self.occluders[o as usize].original {
+                            match side_sign(a, b, l, p) {
+                                1 => plus = true,
+                                -1 => minus = true,
+                                _ => {}
+                            }
+                        }
+                    }
+                    match (plus, minus) {
+                        (true, false) => stack.push(pos),
+                        (false, true) => stack.push(neg),
+                        // Every stabbing line in the hyperplane: a set of measure zero.
+                        (false, false) => {}
+                        (true, true) => {
+                            stack.push(pos);
+                            stack.push(neg);
+                        }
+                    }
+                }
+            }
+        }
+    }
+
+    /// Expands the undefined leaf `n`: a random occluder of its list becomes its chain, the
+    /// others are inserted into that chain.
+    fn expand(&mut self, n: u32) {
+        let Node::Leaf { occluders, .. } = &mut self.nodes[n as usize] else {
+            unreachable!("only leaves are expanded");
+        };
+        let list = std::mem::take(occluders);
+        let pick = list[(self.next_random() % list.len() as u64) as usize];
+        let tree = self.occluder_tree(pick as usize);
+        // The chain's root takes the leaf's place.
+        let root = self.nodes[tree as usize].clone();
+        self.nodes[n as usize] = root;
+        self.work.merges += 1;
+        for o in list.into_iter().filter(|&o| o != pick) {
+            self.insert(n, o);
+        }
+    }
+
+    /// The visible share of the light from `x` (its `(u, v)` area), starting from
+    /// `fragment` (the light above `x`'s horizon), expanding the tree where the query
+    /// reaches undefined leaves.
+    pub fn query(&mut self, x: DVec3, fragment: Fragment) -> f64 {
+        self.work.queries += 1;
+        let Patch {
+            corner: c,
+            edge_u: eu,
+            edge_v: ev,
+        } = self.light;
+        let mut visible = 0.0;
+        let mut stack = vec![(0u32, fragment)];
+        while let Some((n, f)) = stack.pop() {
+            match &self.nodes[n as usize] {
+                Node::Leaf { visible: false, .. } => {}
+                Node::Leaf {
+                    visible: true,
+                    occluders,
+                } if occluders.is_empty() => {
+                    self.work.fragments += 1;
+                    visible += f.area();
+                }
+                Node::Leaf { .. } => {
+                    self.expand(n);
+                    stack.push((n, f));
+                }
+                &Node::Inner { a, b, pos, neg } => {
+                    // The query plane through `x` and the edge, in the light's parameters:
+                    // side(a → b, l(u, v) → x), affine in (u, v).
+                    let s = Affine {
+                        c0: side(a, b, c, x),
+                        cu: side(a, b, a + eu, x),
+                        cv: side(a, b, a + ev, x),
+                    };
+                    match f.side(&s) {
+                        Side::Pos => stack.push((pos, f)),
+                        Side::Neg => stack.push((neg, f)),
+                        Side::On => {
+                            self.work.degenerate += 1;
+                            stack.push((pos, f));
+                        }
+                        Side::Both => {
+                            self.work.splits += 1;
+                            let (p, m) = f.split(&s);
+                            if !p.is_empty() {
+                                stack.push((pos, p));
+                            }
+                            if !m.is_empty() {
+                                stack.push((neg, m));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        visible
+    }
+}

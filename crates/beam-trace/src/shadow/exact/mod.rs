@@ -1,0 +1,244 @@
+//! Exact soft shadows of polygonal occluders by lazy visibility in Plücker space (the
+//! method of seed 003, with the corrections of its analysis).
+//!
+//! The lines from a point `x` to the points of an area light are split by the hyperplanes of
+//! the occluders' edge lines in Plücker space: in each cell of that arrangement, every line
+//! stabs the same occluders. A BSP of those hyperplanes, built lazily by the queries of a
+//! group of points (expanded only where a query reaches a cell whose occluders are not yet
+//! sorted), answers a query by pushing the light, as convex fragments of its parameter
+//! square, down the tree: at each node the plane through `x` and the node's edge splits a
+//! fragment, and the fragments that reach visible leaves are the visible part of the light.
+//! Their area is the visible fraction, exact up to the rounding of the fragments' vertices.
+//!
+//! What makes it correct here, beyond the paper:
+//!
+//! * **Lines against segments.** An occluder blocks `x` only if it meets the segment from
+//!   the light to `x`, not the line beyond. Occluders are clipped to the slab between the
+//!   light's plane and the receiver's plane (where every query point lies), so inside the
+//!   slab a line is its segment.
+//! * **An occluder the light straddles** (its plane crosses the light) is crossed both ways
+//!   and gets two blocked cells.
+//! * **Insertion signs are exact** (Shewchuk's adaptive `orient3d` on the scene's doubles, the
+//!   unclipped polygons: a superset of the clipped one, so Theorem 1 still holds); a sign the
+//!   other way would lose occlusion.
+//! * **Determinism.** The random choices are seeded per group, so results and counters do not
+//!   depend on the thread count.
+//!
+//! The fragments are split in floating point: their areas are exact up to slivers of the
+//! order of rounding (not proven bounds). The receivers are planar groups (a mesh triangle,
+//! a floor); points off the receiver plane are refused.
+
+mod bsp;
+mod fragment;
+mod orient;
+
+use glam::DVec3;
+
+pub use bsp::BspWork;
+use bsp::{Bsp, Occluder};
+use fragment::{Affine, Fragment};
+use orient::side_sign;
+
+use super::Patch;
+
+/// An oriented plane: the points `p` with `(p − point) · normal = 0`.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Plane {
+    /// A point of the plane.
+    pub point: DVec3,
+    /// Its normal (any length).
+    pub normal: DVec3,
+}
+
+impl Plane {
+    fn height(&self, p: DVec3) -> f64 {
+        (p - self.point).dot(self.normal)
+    }
+}
+
+/// Why an exact-shadow group cannot be built or queried.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum ExactError {
+    /// The light has no area.
+    #[error("the light has no area: the exact method needs an area light")]
+    DegenerateLight,
+    /// The receiver's plane does not separate: the light touches or crosses it.
+    #[error("the light is not strictly on one side of the receiver's plane")]
+    LightCrossesReceiver,
+    /// A query point is not on the receiver's plane.
+    #[error("query point {0:?} is not on the receiver's plane")]
+    OffReceiver(DVec3),
+}
+
+/// The exact visibility of one area light from the points of one planar receiver, through
+/// convex polygonal occluders (see the [module documentation](self)).
+#[derive(Clone, Debug)]
+pub struct ExactShadows {
+    light: Patch,
+    receiver: Plane,
+    bsp: Bsp,
+    /// Occluders given, and those clipped away or dropped as degenerate.
+    given: usize,
+    dropped: usize,
+}
+
+/// Sutherland–Hodgman: the part of the convex polygon where `plane`'s height is `≥ 0`.
+fn clip(poly: &[DVec3], plane: &Plane) -> Vec<DVec3> {
+    let n = poly.len();
+    let mut out = Vec::with_capacity(n + 1);
+    for i in 0..n {
+        let (p, q) = (poly[i], poly[(i + 1) % n]);
+        let (hp, hq) = (plane.height(p), plane.height(q));
+        if hp >= 0.0 {
+            out.push(p);
+        }
+        if (hp > 0.0 && hq < 0.0) || (hp < 0.0 && hq > 0.0) {
+            out.push(p + (q - p) * (hp / (hp - hq)));
+        }
+    }
+    out
+}
+
+/// Twice the area of a planar polygon.
+fn twice_area(poly: &[DVec3]) -> f64 {
+    let n = poly.len();
+    (1..n.saturating_sub(1))
+        .map(|i| (poly[i] - poly[0]).cross(poly[i + 1] - poly[0]))
+        .sum::<DVec3>()
+        .length()
+}
+
+impl ExactShadows {
+    /// A group: the light, the receiver's plane (query points lie on it; its normal may
+    /// point either way), the occluders (convex polygons, vertices in order, either
+    /// winding), and the seed of the random choices.
+    ///
+    /// # Errors
+    /// [`ExactError`] for a light without area or one that touches the receiver's plane.
+    pub fn new(
+        light: Patch,
+        receiver: Plane,
+        occluders: &[Vec<DVec3>],
+        seed: u64,
+    ) -> Result<Self, ExactError> {
+        let ln = light.edge_u.cross(light.edge_v);
+        if ln == DVec3::ZERO {
+            return Err(ExactError::DegenerateLight);
+        }
+        // The receiver's normal toward the light, the light's toward the receiver.
+        let heights = light.corners().map(|c| receiver.height(c));
+        let toward_light = if heights.iter().all(|&h| h > 0.0) {
+            receiver.normal
+        } else if heights.iter().all(|&h| h < 0.0) {
+            -receiver.normal
+        } else {
+            return Err(ExactError::LightCrossesReceiver);
+        };
+        let receiver_side = Plane {
+            point: receiver.point,
+            normal: toward_light,
+        };
+        let light_plane = Plane {
+            point: light.corner,
+            normal: if ln.dot(receiver.point - light.corner) > 0.0 {
+                ln
+            } else {
+                -ln
+            },
+        };
+        let mut kept = Vec::new();
+        let mut dropped = 0;
+        for poly in occluders {
+            let clipped = clip(&clip(poly, &light_plane), &receiver_side);
+            let scale = poly
+                .iter()
+                .map(|p| (*p - poly[0]).length_squared())
+                .fold(0.0, f64::max);
+            if clipped.len() < 3 || twice_area(&clipped) <= 1e-12 * scale {
+                dropped += 1;
+                continue;
+            }
+            let stab = stab_sign(&light, &clipped);
+            kept.push(Occluder {
+                verts: clipped,
+                original: poly.clone(),
+                stab,
+            });
+        }
+        Ok(ExactShadows {
+            light,
+            receiver,
+            bsp: Bsp::new(light, kept, seed),
+            given: occluders.len(),
+            dropped,
+        })
+    }
+
+    /// The visible fraction of the light from `x` (a point of the receiver's plane), the
+    /// part below the receiver's horizon (`normal`'s side away from it) counted invisible
+    /// when `normal` is given.
+    ///
+    /// # Errors
+    /// [`ExactError::OffReceiver`] when `x` is not on the receiver's plane (up to rounding
+    /// of its size).
+    pub fn visible_fraction(&mut self, x: DVec3, normal: Option<DVec3>) -> Result<f64, ExactError> {
+        let tolerance =
+            1e-9 * (x - self.receiver.point).length().max(1.0) * self.receiver.normal.length();
+        if self.receiver.height(x).abs() > tolerance {
+            return Err(ExactError::OffReceiver(x));
+        }
+        let mut f = Fragment::whole();
+        if let Some(n) = normal {
+            // Above the horizon: (l(u, v) − x) · n ≥ 0.
+            let s = Affine {
+                c0: (self.light.corner - x).dot(n),
+                cu: self.light.edge_u.dot(n),
+                cv: self.light.edge_v.dot(n),
+            };
+            f = f.clip(&s, 1.0);
+            if f.is_empty() {
+                return Ok(0.0);
+            }
+        }
+        Ok(self.bsp.query(x, f))
+    }
+
+    /// Back to the unexpanded tree (every query then pays the whole construction: the
+    /// method without coherence).
+    pub fn reset(&mut self) {
+        self.bsp.reset();
+    }
+
+    /// The work so far.
+    pub fn work(&self) -> BspWork {
+        self.bsp.work
+    }
+
+    /// Occluders given, and how many were clipped away (outside the slab) or degenerate.
+    pub fn occluder_counts(&self) -> (usize, usize) {
+        (self.given, self.dropped)
+    }
+}
+
+/// The sign of the edge sides of the lines from the light that cross the convex polygon
+/// `poly`: that of a reference line from a light point off its plane through its centroid;
+/// `0` (both) where the light's corners lie on both sides of its plane.
+fn stab_sign(light: &Patch, poly: &[DVec3]) -> i8 {
+    let (p0, p1, p2) = (poly[0], poly[1], poly[2]);
+    let sides = light.corners().map(|c| side_sign(p0, p1, p2, c) as i32);
+    if sides.iter().any(|&s| s > 0) && sides.iter().any(|&s| s < 0) {
+        return 0;
+    }
+    let centroid = poly.iter().copied().sum::<DVec3>() / poly.len() as f64;
+    let from = light
+        .corners()
+        .into_iter()
+        .zip(sides)
+        .find(|&(_, s)| s != 0)
+        .map_or(light.center(), |(c, _)| c);
+    let s = side_sign(poly[0], poly[1], from, centroid);
+    if s == 0 { 1 } else { s }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,261 @@
+//! The exact method against closed forms (squares parallel to a square light and to the
+//! receiver: the blocked part is the light's overlap with the occluders' central
+//! projections, rectangles) and against dense stratified segment tests (triangles in any
+//! position, occluders reaching behind the receiver or through the light's plane).
+
+use super::*;
+
+/// The square light of side 1 at height 2 above the origin, the floor `y = 0`.
+fn setup() -> (Patch, Plane) {
+    let light = Patch::square(DVec3::new(0.0, 2.0, 0.0), 1.0, 1);
+    let floor = Plane {
+        point: DVec3::ZERO,
+        normal: DVec3::Y,
+    };
+    (light, floor)
+}
+
+/// An axis-aligned horizontal rectangle `[x0, x1] × [z0, z1]` at height `h`.
+fn rect(x0: f64, x1: f64, z0: f64, z1: f64, h: f64) -> Vec<DVec3> {
+    vec![
+        DVec3::new(x0, h, z0),
+        DVec3::new(x1, h, z0),
+        DVec3::new(x1, h, z1),
+        DVec3::new(x0, h, z1),
+    ]
+}
+
+/// `[a0, a1] × [b0, b1]` as a closed interval pair.
+type Rect = [(f64, f64); 2];
+
+fn overlap(a: Rect, b: Rect) -> Rect {
+    [
+        (a[0].0.max(b[0].0), a[0].1.min(b[0].1)),
+        (a[1].0.max(b[1].0), a[1].1.min(b[1].1)),
+    ]
+}
+
+fn area(r: Rect) -> f64 {
+    (r[0].1 - r[0].0).max(0.0) * (r[1].1 - r[1].0).max(0.0)
+}
+
+/// The central projection from `x` (on the floor) onto the light's plane `y = 2` of the
+/// rectangle `[x0, x1] × [z0, z1]` at height `h`.
+fn projected(x: DVec3, r: Rect, h: f64) -> Rect {
+    let t = 2.0 / h;
+    let p = |c: f64, o: f64| o + (c - o) * t;
+    [
+        (p(r[0].0, x.x), p(r[0].1, x.x)),
+        (p(r[1].0, x.z), p(r[1].1, x.z)),
+    ]
+}
+
+const LIGHT: Rect = [(-0.5, 0.5), (-0.5, 0.5)];
+
+/// Points of the floor: under the occluders, in the penumbrae and outside.
+fn floor_points() -> Vec<DVec3> {
+    let mut v = Vec::new();
+    for i in -12..=12 {
+        for k in -12..=12 {
+            v.push(DVec3::new(0.17 * f64::from(i), 0.0, 0.13 * f64::from(k)));
+        }
+    }
+    v
+}
+
+#[test]
+fn a_square_parallel_to_the_light_matches_the_closed_form() {
+    let (light, floor) = setup();
+    let r: Rect = [(-0.3, 0.4), (-0.2, 0.25)];
+    let h = 1.0;
+    let occ = [rect(r[0].0, r[0].1, r[1].0, r[1].1, h)];
+    let mut ex = ExactShadows::new(light, floor, &occ, 7).unwrap();
+    for x in floor_points() {
+        let got = ex.visible_fraction(x, Some(DVec3::Y)).unwrap();
+        let want = 1.0 - area(overlap(LIGHT, projected(x, r, h)));
+        assert!((got - want).abs() < 1e-9, "at {x}: {got} against {want}");
+    }
+    let w = ex.work();
+    assert_eq!(w.queries, floor_points().len() as u64);
+    assert_eq!(
+        w.merges, 1,
+        "one occluder: one expansion, reused by every query"
+    );
+}
+
+#[test]
+fn two_overlapping_squares_match_the_closed_form() {
+    let (light, floor) = setup();
+    let (ra, ha): (Rect, f64) = ([(-0.6, 0.1), (-0.3, 0.3)], 1.2);
+    let (rb, hb): (Rect, f64) = ([(-0.2, 0.5), (-0.1, 0.6)], 0.7);
+    let occ = [
+        rect(ra[0].0, ra[0].1, ra[1].0, ra[1].1, ha),
+        rect(rb[0].0, rb[0].1, rb[1].0, rb[1].1, hb),
+    ];
+    for seed in [1, 2, 3] {
+        let mut ex = ExactShadows::new(light, floor, &occ, seed).unwrap();
+        for x in floor_points() {
+            let got = ex.visible_fraction(x, None).unwrap();
+            let (pa, pb) = (projected(x, ra, ha), projected(x, rb, hb));
+            let blocked = area(overlap(LIGHT, pa)) + area(overlap(LIGHT, pb))
+                - area(overlap(overlap(LIGHT, pa), pb));
+            let want = 1.0 - blocked;
+            assert!(
+                (got - want).abs() < 1e-9,
+                "seed {seed} at {x}: {got} against {want}"
+            );
+        }
+    }
+}
+
+/// The visible fraction by `n × n` stratified segments (cell centres), each tested against
+/// every occluder triangle (fan) in floating point.
+fn sampled(light: &Patch, occ: &[Vec<DVec3>], x: DVec3, n: usize) -> f64 {
+    let hits = |o: DVec3, d: DVec3, t: [DVec3; 3]| {
+        // Möller–Trumbore on the segment o + s·d, s ∈ (0, 1).
+        let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+        let p = d.cross(e2);
+        let det = e1.dot(p);
+        if det.abs() < 1e-300 {
+            return false;
+        }
+        let tv = o - t[0];
+        let u = tv.dot(p) / det;
+        let q = tv.cross(e1);
+        let v = d.dot(q) / det;
+        let s = e2.dot(q) / det;
+        (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && s > 0.0 && s < 1.0
+    };
+    let mut free = 0;
+    for i in 0..n {
+        for k in 0..n {
+            let l = light.point((i as f64 + 0.5) / n as f64, (k as f64 + 0.5) / n as f64);
+            let blocked = occ.iter().any(|poly| {
+                (1..poly.len() - 1).any(|j| hits(l, x - l, [poly[0], poly[j], poly[j + 1]]))
+            });
+            free += usize::from(!blocked);
+        }
+    }
+    free as f64 / (n * n) as f64
+}
+
+#[test]
+fn triangles_anywhere_match_dense_segment_sampling() {
+    let (light, floor) = setup();
+    let occ = vec![
+        // A tilted triangle.
+        vec![
+            DVec3::new(-0.4, 0.8, -0.3),
+            DVec3::new(0.5, 1.3, 0.0),
+            DVec3::new(0.0, 0.9, 0.6),
+        ],
+        // A triangle reaching below the floor (clipped there: it cannot shadow from behind).
+        vec![
+            DVec3::new(0.6, -0.5, -0.6),
+            DVec3::new(0.9, 0.9, -0.2),
+            DVec3::new(0.2, 0.6, -0.9),
+        ],
+        // A triangle through the light's plane (its part above the light casts nothing).
+        vec![
+            DVec3::new(-0.8, 1.5, 0.4),
+            DVec3::new(-0.3, 2.6, 0.5),
+            DVec3::new(-0.6, 1.6, 0.9),
+        ],
+        // A vertical quadrilateral.
+        vec![
+            DVec3::new(0.3, 0.4, 0.5),
+            DVec3::new(0.7, 0.4, 0.5),
+            DVec3::new(0.7, 1.4, 0.5),
+            DVec3::new(0.3, 1.4, 0.5),
+        ],
+    ];
+    let mut ex = ExactShadows::new(light, floor, &occ, 11).unwrap();
+    let n = 400;
+    let mut worst: f64 = 0.0;
+    for x in floor_points().into_iter().step_by(7) {
+        let got = ex.visible_fraction(x, Some(DVec3::Y)).unwrap();
+        let want = sampled(&light, &occ, x, n);
+        worst = worst.max((got - want).abs());
+        // A sample cell crossed by the shadow's boundary may count wrong: at most the cells
+        // along a few edges of length about 1 (in cells of side 1/n).
+        assert!(
+            (got - want).abs() < 8.0 / n as f64,
+            "at {x}: {got} against {want}"
+        );
+    }
+    eprintln!("largest difference from {n}² samples: {worst:.2e}");
+}
+
+#[test]
+fn coherence_and_seeds_change_the_cost_not_the_answer() {
+    let (light, floor) = setup();
+    let occ: Vec<Vec<DVec3>> = (0..12)
+        .map(|i| {
+            let a = f64::from(i) * 0.52;
+            let c = DVec3::new(0.5 * a.cos(), 0.5 + 0.08 * f64::from(i), 0.5 * a.sin());
+            vec![
+                c + DVec3::new(0.2, 0.0, 0.0),
+                c + DVec3::new(-0.1, 0.05, 0.17),
+                c + DVec3::new(-0.1, -0.05, -0.17),
+            ]
+        })
+        .collect();
+    let points = floor_points();
+    let answers = |seed: u64, reset: bool| {
+        let mut ex = ExactShadows::new(light, floor, &occ, seed).unwrap();
+        let v: Vec<f64> = points
+            .iter()
+            .map(|&x| {
+                if reset {
+                    ex.reset();
+                }
+                ex.visible_fraction(x, None).unwrap()
+            })
+            .collect();
+        (v, ex.work())
+    };
+    let (a, wa) = answers(1, false);
+    let (b, _) = answers(99, false);
+    let (c, wc) = answers(1, true);
+    for i in 0..points.len() {
+        assert!(
+            (a[i] - b[i]).abs() < 1e-9 && (a[i] - c[i]).abs() < 1e-9,
+            "{i}"
+        );
+    }
+    assert!(wc.merges > wa.merges, "{wc:?} against {wa:?}");
+    // The same seed gives the same tree, counters included.
+    assert_eq!(answers(1, false).1, wa);
+}
+
+#[test]
+fn bad_groups_and_points_are_errors() {
+    let (light, floor) = setup();
+    let mut ex = ExactShadows::new(light, floor, &[], 1).unwrap();
+    assert_eq!(
+        ex.visible_fraction(DVec3::new(3.0, 0.0, 1.0), None),
+        Ok(1.0)
+    );
+    assert_eq!(
+        ex.visible_fraction(DVec3::new(0.0, 0.5, 0.0), None),
+        Err(ExactError::OffReceiver(DVec3::new(0.0, 0.5, 0.0)))
+    );
+    let through = Plane {
+        point: DVec3::new(0.0, 2.0, 0.0),
+        normal: DVec3::X,
+    };
+    assert_eq!(
+        ExactShadows::new(light, through, &[], 1).unwrap_err(),
+        ExactError::LightCrossesReceiver
+    );
+    let segment = Patch {
+        edge_v: DVec3::ZERO,
+        ..light
+    };
+    assert_eq!(
+        ExactShadows::new(segment, floor, &[], 1).unwrap_err(),
+        ExactError::DegenerateLight
+    );
+    // Below the horizon: a receiver facing away sees nothing of the light.
+    assert_eq!(ex.visible_fraction(DVec3::ZERO, Some(-DVec3::Y)), Ok(0.0));
+}
