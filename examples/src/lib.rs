@@ -11,5 +11,6 @@
 #[cfg(feature = "plots")]
 pub mod accuracy;
 pub mod catalog_view;
+pub mod polygon_scene;
 pub mod report;
 pub mod soft_scene;

@@ -11,6 +11,11 @@ use glam::DVec3;
 
 /// The sign (−1, 0, 1) of `side(a → b, c → d) = det[b − a, c − a, d − a]`, exactly.
 pub(super) fn side_sign(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
+    // A shared point makes the lines meet: zero, without the adaptive stages that an exact
+    // zero would run through (neighbouring mesh triangles share vertices).
+    if d == a || d == b || c == a || c == b || c == d || a == b {
+        return 0;
+    }
     let p = |v: DVec3| robust::Coord3D {
         x: v.x,
         y: v.y,

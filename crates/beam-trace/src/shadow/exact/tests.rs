@@ -259,3 +259,18 @@ fn bad_groups_and_points_are_errors() {
     // Below the horizon: a receiver facing away sees nothing of the light.
     assert_eq!(ex.visible_fraction(DVec3::ZERO, Some(-DVec3::Y)), Ok(0.0));
 }
+
+#[test]
+fn a_square_split_into_two_triangles_leaks_no_light_along_the_diagonal() {
+    let (light, floor) = setup();
+    let r: Rect = [(-0.3, 0.4), (-0.2, 0.25)];
+    let h = 1.0;
+    let q = rect(r[0].0, r[0].1, r[1].0, r[1].1, h);
+    let occ = [vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]];
+    let mut ex = ExactShadows::new(light, floor, &occ, 5).unwrap();
+    for x in floor_points() {
+        let got = ex.visible_fraction(x, Some(DVec3::Y)).unwrap();
+        let want = 1.0 - area(overlap(LIGHT, projected(x, r, h)));
+        assert!((got - want).abs() < 1e-9, "at {x}: {got} against {want}");
+    }
+}

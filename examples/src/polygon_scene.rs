@@ -1,0 +1,299 @@
+//! Polygonal test scenes for the exact soft shadows: procedural triangle meshes above a
+//! floor lit by horizontal square lights, a bounding-volume hierarchy for the segment tests
+//! of the stochastic baseline, and shaft culling of the occluders of a floor tile.
+//!
+//! The meshes stand in for the paper's scanned models, which cannot be fetched here: a
+//! *lumpy ball* (a latitude-longitude sphere whose radius varies with a seeded sum of
+//! sines, so that its silhouette has many small features) and a *canopy* of small leaf
+//! triangles scattered over it, the kind of occluder set whose penumbrae overlap.
+
+use beam_trace::shadow::Patch;
+use glam::DVec3;
+
+/// A triangle.
+pub type Triangle = [DVec3; 3];
+
+/// SplitMix64, for seeded scenes.
+struct Rng(u64);
+
+impl Rng {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// About `triangles` triangles: a lumpy ball of radius about 0.7 centred at height 1.4
+/// (outward winding, closed), and (a tenth of the count) leaves above it, both from `seed`.
+/// Returns the ball's triangles and the leaves apart.
+pub fn lumpy_ball_and_canopy(triangles: usize, seed: u64) -> (Vec<Triangle>, Vec<Triangle>) {
+    let mut rng = Rng(seed);
+    let leaves = triangles / 10;
+    let ball = triangles - leaves;
+    // rings · segments · 2 ≈ ball, with segments = 2 · rings.
+    let rings = ((ball as f64 / 4.0).sqrt().round() as usize).max(3);
+    let segments = 2 * rings;
+    let waves: Vec<(f64, f64, f64, f64)> = (0..6)
+        .map(|_| {
+            (
+                1.0 + 6.0 * rng.next(),
+                1.0 + 6.0 * rng.next(),
+                6.3 * rng.next(),
+                0.04 + 0.05 * rng.next(),
+            )
+        })
+        .collect();
+    let centre = DVec3::new(0.0, 1.4, 0.0);
+    let point = |i: usize, j: usize| {
+        let theta = std::f64::consts::PI * i as f64 / rings as f64;
+        let phi = std::f64::consts::TAU * j as f64 / segments as f64;
+        let r = 0.7
+            + waves
+                .iter()
+                .map(|&(a, b, p, h)| h * (a * theta + p).sin() * (b * phi).cos())
+                .sum::<f64>();
+        centre
+            + r * DVec3::new(
+                theta.sin() * phi.cos(),
+                theta.cos(),
+                theta.sin() * phi.sin(),
+            )
+    };
+    let mut out = Vec::with_capacity(ball);
+    for i in 0..rings {
+        for j in 0..segments {
+            let (a, b) = (point(i, j), point(i, j + 1));
+            let (c, d) = (point(i + 1, j), point(i + 1, j + 1));
+            if i > 0 {
+                out.push([a, b, d]);
+            }
+            if i + 1 < rings {
+                out.push([a, d, c]);
+            }
+        }
+    }
+    let mut canopy = Vec::with_capacity(leaves);
+    for _ in 0..leaves {
+        let c = DVec3::new(
+            3.0 * rng.next() - 1.5,
+            2.3 + 0.6 * rng.next(),
+            3.0 * rng.next() - 1.5,
+        );
+        let s = 0.05 + 0.1 * rng.next();
+        let mut corner =
+            || c + s * DVec3::new(rng.next() - 0.5, 0.4 * (rng.next() - 0.5), rng.next() - 0.5);
+        canopy.push([corner(), corner(), corner()]);
+    }
+    (out, canopy)
+}
+
+/// An axis-aligned box.
+#[derive(Copy, Clone, Debug)]
+struct Aabb {
+    lo: DVec3,
+    hi: DVec3,
+}
+
+impl Aabb {
+    fn of(t: &Triangle) -> Aabb {
+        Aabb {
+            lo: t[0].min(t[1]).min(t[2]),
+            hi: t[0].max(t[1]).max(t[2]),
+        }
+    }
+
+    fn join(self, o: Aabb) -> Aabb {
+        Aabb {
+            lo: self.lo.min(o.lo),
+            hi: self.hi.max(o.hi),
+        }
+    }
+
+    /// Whether the segment `a + s·d`, `s ∈ [0, 1]`, meets the box (slab test).
+    fn meets(&self, a: DVec3, inv: DVec3) -> bool {
+        let t0 = (self.lo - a) * inv;
+        let t1 = (self.hi - a) * inv;
+        let (tmin, tmax) = (t0.min(t1), t0.max(t1));
+        let enter = tmin.max_element().max(0.0);
+        let leave = tmax.min_element().min(1.0);
+        enter <= leave
+    }
+}
+
+/// A bounding-volume hierarchy over triangles (median splits, leaves of at most 4).
+pub struct Bvh {
+    tris: Vec<Triangle>,
+    /// `(box, first, count)` for leaves (`count > 0`), `(box, left child, 0)` for inner
+    /// nodes, whose right child follows the left subtree.
+    nodes: Vec<(Aabb, usize, usize)>,
+}
+
+impl Bvh {
+    /// The hierarchy of `tris`.
+    pub fn new(mut tris: Vec<Triangle>) -> Bvh {
+        let mut nodes = Vec::new();
+        let n = tris.len();
+        if n > 0 {
+            build(&mut tris, 0, n, &mut nodes);
+        }
+        Bvh { tris, nodes }
+    }
+
+    /// Whether the open segment from `a` to `b` meets a triangle (floating point,
+    /// Möller–Trumbore): the stochastic baseline's test.
+    pub fn blocked(&self, a: DVec3, b: DVec3) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let d = b - a;
+        let inv = DVec3::ONE / d;
+        let mut stack = vec![0usize];
+        while let Some(i) = stack.pop() {
+            let (bb, first, count) = self.nodes[i];
+            if !bb.meets(a, inv) {
+                continue;
+            }
+            if count > 0 {
+                if self.tris[first..first + count]
+                    .iter()
+                    .any(|t| hits(a, d, t))
+                {
+                    return true;
+                }
+            } else {
+                stack.push(first);
+                stack.push(skip(&self.nodes, first));
+            }
+        }
+        false
+    }
+}
+
+/// The index after the subtree rooted at `i`.
+fn skip(nodes: &[(Aabb, usize, usize)], i: usize) -> usize {
+    let mut end = i + 1;
+    let mut pending = if nodes[i].2 > 0 { 0 } else { 2 };
+    while pending > 0 {
+        pending -= 1;
+        if nodes[end].2 == 0 {
+            pending += 2;
+        }
+        end += 1;
+    }
+    end
+}
+
+fn build(tris: &mut [Triangle], first: usize, count: usize, nodes: &mut Vec<(Aabb, usize, usize)>) {
+    let part = &mut tris[first..first + count];
+    let bb = part
+        .iter()
+        .map(Aabb::of)
+        .reduce(Aabb::join)
+        .expect("nonempty");
+    if count <= 4 {
+        nodes.push((bb, first, count));
+        return;
+    }
+    let axis = (bb.hi - bb.lo).max_position();
+    part.sort_by(|p, q| {
+        let c = |t: &Triangle| t[0][axis] + t[1][axis] + t[2][axis];
+        c(p).total_cmp(&c(q))
+    });
+    let me = nodes.len();
+    nodes.push((bb, me + 1, 0));
+    let half = count / 2;
+    build(tris, first, half, nodes);
+    build(tris, first + half, count - half, nodes);
+}
+
+/// Möller–Trumbore on the open segment `a + s·d`, `s ∈ (0, 1)`.
+fn hits(a: DVec3, d: DVec3, t: &Triangle) -> bool {
+    let (e1, e2) = (t[1] - t[0], t[2] - t[0]);
+    let p = d.cross(e2);
+    let det = e1.dot(p);
+    if det.abs() < 1e-300 {
+        return false;
+    }
+    let tv = a - t[0];
+    let u = tv.dot(p) / det;
+    let q = tv.cross(e1);
+    let v = d.dot(q) / det;
+    let s = e2.dot(q) / det;
+    (0.0..=1.0).contains(&u) && v >= 0.0 && u + v <= 1.0 && s > 0.0 && s < 1.0
+}
+
+/// The triangles that may meet a segment from the floor rectangle `[x0, x1] × [z0, z1]`
+/// (at `y = 0`) to the horizontal, axis-aligned square `light`: those not entirely outside
+/// one face of the convex hull of the two rectangles (shaft culling).
+pub fn shaft(
+    tris: &[Triangle],
+    x0: f64,
+    x1: f64,
+    z0: f64,
+    z1: f64,
+    light: &Patch,
+) -> Vec<Vec<DVec3>> {
+    let c = light.corners();
+    let (lx0, lx1) = (
+        c.iter().map(|p| p.x).fold(f64::INFINITY, f64::min),
+        c.iter().map(|p| p.x).fold(f64::NEG_INFINITY, f64::max),
+    );
+    let (lz0, lz1) = (
+        c.iter().map(|p| p.z).fold(f64::INFINITY, f64::min),
+        c.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max),
+    );
+    let h = c[0].y;
+    // Each face as (point, outward normal): floor, light, and the four sides through
+    // corresponding edges of the two parallel rectangles.
+    let side = |p0: DVec3, p1: DVec3, q0: DVec3, inward: DVec3| {
+        let mut n = (p1 - p0).cross(q0 - p0);
+        if n.dot(inward) > 0.0 {
+            n = -n;
+        }
+        (p0, n)
+    };
+    let mid = DVec3::new(
+        (x0 + x1 + lx0 + lx1) / 4.0,
+        h / 2.0,
+        (z0 + z1 + lz0 + lz1) / 4.0,
+    );
+    let faces = [
+        (DVec3::ZERO, -DVec3::Y),
+        (DVec3::new(0.0, h, 0.0), DVec3::Y),
+        side(
+            DVec3::new(x0, 0.0, z0),
+            DVec3::new(x0, 0.0, z1),
+            DVec3::new(lx0, h, z0.min(lz0)),
+            mid - DVec3::new(x0, 0.0, z0),
+        ),
+        side(
+            DVec3::new(x1, 0.0, z0),
+            DVec3::new(x1, 0.0, z1),
+            DVec3::new(lx1, h, z0.min(lz0)),
+            mid - DVec3::new(x1, 0.0, z0),
+        ),
+        side(
+            DVec3::new(x0, 0.0, z0),
+            DVec3::new(x1, 0.0, z0),
+            DVec3::new(x0.min(lx0), h, lz0),
+            mid - DVec3::new(x0, 0.0, z0),
+        ),
+        side(
+            DVec3::new(x0, 0.0, z1),
+            DVec3::new(x1, 0.0, z1),
+            DVec3::new(x0.min(lx0), h, lz1),
+            mid - DVec3::new(x0, 0.0, z1),
+        ),
+    ];
+    tris.iter()
+        .filter(|t| {
+            !faces
+                .iter()
+                .any(|&(p, n)| t.iter().all(|v| (*v - p).dot(n) > 0.0))
+        })
+        .map(|t| t.to_vec())
+        .collect()
+}
