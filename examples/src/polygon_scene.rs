@@ -28,7 +28,10 @@ impl Rng {
 
 /// About `triangles` triangles: a lumpy ball of radius about 0.7 centred at height 1.4
 /// (outward winding, closed), and (a tenth of the count) leaves above it, both from `seed`.
-/// Returns the ball's triangles and the leaves apart.
+/// Returns the ball's triangles (closed, wound outward) and the leaves apart: a segment
+/// from a light point through the ball enters it through a face that has that point in
+/// front, so the ball's faces with every light point behind their plane need not be
+/// occluders ([`facing`]).
 pub fn lumpy_ball_and_canopy(triangles: usize, seed: u64) -> (Vec<Triangle>, Vec<Triangle>) {
     let mut rng = Rng(seed);
     let leaves = triangles / 10;
@@ -47,14 +50,20 @@ pub fn lumpy_ball_and_canopy(triangles: usize, seed: u64) -> (Vec<Triangle>, Vec
         })
         .collect();
     let centre = DVec3::new(0.0, 1.4, 0.0);
+    // The bumps fade toward the poles (each pole is one point) and the seam reuses the
+    // first meridian's vertices, so the mesh is closed.
     let point = |i: usize, j: usize| {
+        let j = j % segments;
         let theta = std::f64::consts::PI * i as f64 / rings as f64;
         let phi = std::f64::consts::TAU * j as f64 / segments as f64;
-        let r = 0.7
-            + waves
-                .iter()
-                .map(|&(a, b, p, h)| h * (a * theta + p).sin() * (b * phi).cos())
-                .sum::<f64>();
+        let bumps: f64 = waves
+            .iter()
+            .map(|&(a, b, p, h)| h * (a * theta + p).sin() * (b * phi).cos())
+            .sum();
+        let r = 0.7 + theta.sin() * bumps;
+        if i == 0 || i == rings {
+            return centre + DVec3::new(0.0, if i == 0 { r } else { -r }, 0.0);
+        }
         centre
             + r * DVec3::new(
                 theta.sin() * phi.cos(),
@@ -75,6 +84,14 @@ pub fn lumpy_ball_and_canopy(triangles: usize, seed: u64) -> (Vec<Triangle>, Vec
             }
         }
     }
+    // Outward winding (the ball is star-shaped around its centre).
+    let mid = out[out.len() / 2];
+    let n = (mid[1] - mid[0]).cross(mid[2] - mid[0]);
+    if n.dot(mid[0] - centre) < 0.0 {
+        for t in &mut out {
+            t.swap(1, 2);
+        }
+    }
     let mut canopy = Vec::with_capacity(leaves);
     for _ in 0..leaves {
         let c = DVec3::new(
@@ -88,6 +105,18 @@ pub fn lumpy_ball_and_canopy(triangles: usize, seed: u64) -> (Vec<Triangle>, Vec
         canopy.push([corner(), corner(), corner()]);
     }
     (out, canopy)
+}
+
+/// The triangles of a closed, outward-wound mesh that have some corner of `light` in front
+/// of their plane (the others are redundant occluders, see [`lumpy_ball_and_canopy`]).
+pub fn facing(tris: &[Triangle], light: &Patch) -> Vec<Triangle> {
+    tris.iter()
+        .copied()
+        .filter(|t| {
+            let n = (t[1] - t[0]).cross(t[2] - t[0]);
+            light.corners().iter().any(|c| n.dot(*c - t[0]) > 0.0)
+        })
+        .collect()
 }
 
 /// An axis-aligned box.
@@ -296,4 +325,58 @@ pub fn shaft(
         })
         .map(|t| t.to_vec())
         .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use beam_trace::shadow::exact::{ExactShadows, Plane};
+
+    /// The ball is closed: dropping the faces turned away from the light changes no exact
+    /// visible fraction, and every edge is shared by exactly two triangles.
+    #[test]
+    fn the_ball_is_closed_and_its_back_faces_are_redundant() {
+        let (ball, canopy) = lumpy_ball_and_canopy(400, 3);
+        let mut edges = std::collections::HashMap::new();
+        for t in &ball {
+            for k in 0..3 {
+                let (a, b) = (t[k], t[(k + 1) % 3]);
+                let key = |p: DVec3| p.to_array().map(f64::to_bits);
+                let e = if key(a) < key(b) {
+                    (key(a), key(b))
+                } else {
+                    (key(b), key(a))
+                };
+                *edges.entry(e).or_insert(0) += 1;
+            }
+        }
+        assert!(
+            edges.values().all(|&n| n == 2),
+            "an edge not shared by two triangles"
+        );
+        let light = Patch::square(DVec3::new(0.3, 4.0, -0.2), 1.5, 1);
+        let floor = Plane {
+            point: DVec3::ZERO,
+            normal: DVec3::Y,
+        };
+        let poly = |v: &[Triangle]| v.iter().map(|t| t.to_vec()).collect::<Vec<_>>();
+        let mut all = poly(&ball);
+        all.extend(poly(&canopy));
+        let mut front = poly(&facing(&ball, &light));
+        assert!(front.len() < ball.len());
+        front.extend(poly(&canopy));
+        let mut a = ExactShadows::new(light, floor, &all, 1).unwrap();
+        let mut f = ExactShadows::new(light, floor, &front, 1).unwrap();
+        for i in 0..12 {
+            let x = DVec3::new(-1.0 + 0.18 * f64::from(i), 0.0, 0.3 - 0.07 * f64::from(i));
+            let (va, vf) = (
+                a.visible_fraction(x, None).unwrap(),
+                f.visible_fraction(x, None).unwrap(),
+            );
+            assert!(
+                (va - vf).abs() < 1e-9,
+                "at {x}: {va} with every face, {vf} with the front ones"
+            );
+        }
+    }
 }
