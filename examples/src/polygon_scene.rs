@@ -13,11 +13,17 @@ use glam::DVec3;
 /// A triangle.
 pub type Triangle = [DVec3; 3];
 
-/// SplitMix64, for seeded scenes.
-struct Rng(u64);
+/// SplitMix64: seeded scenes and samples.
+pub struct SplitMix64(u64);
 
-impl Rng {
-    fn next(&mut self) -> f64 {
+impl SplitMix64 {
+    /// The generator starting from `seed`.
+    pub fn new(seed: u64) -> Self {
+        SplitMix64(seed)
+    }
+
+    /// The next number, uniform in `[0, 1)`.
+    pub fn next_f64(&mut self) -> f64 {
         self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = self.0;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
@@ -33,7 +39,7 @@ impl Rng {
 /// front, so the ball's faces with every light point behind their plane need not be
 /// occluders ([`facing`]).
 pub fn lumpy_ball_and_canopy(triangles: usize, seed: u64) -> (Vec<Triangle>, Vec<Triangle>) {
-    let mut rng = Rng(seed);
+    let mut rng = SplitMix64::new(seed);
     let leaves = triangles / 10;
     let ball = triangles - leaves;
     // rings · segments · 2 ≈ ball, with segments = 2 · rings.
@@ -42,10 +48,10 @@ pub fn lumpy_ball_and_canopy(triangles: usize, seed: u64) -> (Vec<Triangle>, Vec
     let waves: Vec<(f64, f64, f64, f64)> = (0..6)
         .map(|_| {
             (
-                1.0 + 6.0 * rng.next(),
-                1.0 + 6.0 * rng.next(),
-                6.3 * rng.next(),
-                0.04 + 0.05 * rng.next(),
+                1.0 + 6.0 * rng.next_f64(),
+                1.0 + 6.0 * rng.next_f64(),
+                6.3 * rng.next_f64(),
+                0.04 + 0.05 * rng.next_f64(),
             )
         })
         .collect();
@@ -95,13 +101,18 @@ pub fn lumpy_ball_and_canopy(triangles: usize, seed: u64) -> (Vec<Triangle>, Vec
     let mut canopy = Vec::with_capacity(leaves);
     for _ in 0..leaves {
         let c = DVec3::new(
-            3.0 * rng.next() - 1.5,
-            2.3 + 0.6 * rng.next(),
-            3.0 * rng.next() - 1.5,
+            3.0 * rng.next_f64() - 1.5,
+            2.3 + 0.6 * rng.next_f64(),
+            3.0 * rng.next_f64() - 1.5,
         );
-        let s = 0.05 + 0.1 * rng.next();
-        let mut corner =
-            || c + s * DVec3::new(rng.next() - 0.5, 0.4 * (rng.next() - 0.5), rng.next() - 0.5);
+        let s = 0.05 + 0.1 * rng.next_f64();
+        let mut corner = || {
+            c + s * DVec3::new(
+                rng.next_f64() - 0.5,
+                0.4 * (rng.next_f64() - 0.5),
+                rng.next_f64() - 0.5,
+            )
+        };
         canopy.push([corner(), corner(), corner()]);
     }
     (out, canopy)

@@ -21,6 +21,7 @@
 //! cargo run --release -p examples --bin exact-shadows -- --size 128 --images out/
 //! ```
 
+use std::ops::Range;
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -29,7 +30,7 @@ use beam_trace::image::Image;
 use beam_trace::shadow::Patch;
 use beam_trace::shadow::exact::{BspWork, ExactShadows, Plane};
 use clap::Parser;
-use examples::polygon_scene::{Bvh, Triangle, facing, lumpy_ball_and_canopy, shaft};
+use examples::polygon_scene::{Bvh, SplitMix64, Triangle, facing, lumpy_ball_and_canopy, shaft};
 use glam::DVec3;
 use rayon::prelude::*;
 
@@ -71,19 +72,29 @@ struct Args {
     light_counts: Vec<usize>,
 }
 
+/// The floor point of row `r` and column `c` of the `size × size` grid over `[-2, 2]²` (cell
+/// centres).
+fn floor_point(size: usize, r: usize, c: usize) -> DVec3 {
+    let cell = 4.0 / size as f64;
+    DVec3::new(
+        -2.0 + (c as f64 + 0.5) * cell,
+        0.0,
+        -2.0 + (r as f64 + 0.5) * cell,
+    )
+}
+
 /// The floor points (row-major, `size × size`).
 fn floor_points(size: usize) -> Vec<DVec3> {
-    let cell = 4.0 / size as f64;
     (0..size * size)
-        .map(|i| {
-            let (r, c) = (i / size, i % size);
-            DVec3::new(
-                -2.0 + (c as f64 + 0.5) * cell,
-                0.0,
-                -2.0 + (r as f64 + 0.5) * cell,
-            )
-        })
+        .map(|i| floor_point(size, i / size, i % size))
         .collect()
+}
+
+/// The rows and columns of tile `t` of a `size × size` grid cut into tiles of `tile²`.
+fn tile_cells(t: usize, tile: usize, size: usize) -> (Range<usize>, Range<usize>) {
+    let tiles = size.div_ceil(tile);
+    let (r0, c0) = (t / tiles * tile, t % tiles * tile);
+    (r0..(r0 + tile).min(size), c0..(c0 + tile).min(size))
 }
 
 /// The lights: the square of side `side` at height 4 split into `k × k` squares.
@@ -123,49 +134,45 @@ fn exact(
     };
     let tiles = size.div_ceil(tile);
     let cell = 4.0 / size as f64;
+    // Per light, the occluders before culling to a tile's shaft.
+    let candidates: Vec<Vec<Triangle>> = lights
+        .iter()
+        .map(|light| {
+            let mut v = facing(&tris.ball, light);
+            v.extend_from_slice(&tris.canopy);
+            v
+        })
+        .collect();
     let start = Instant::now();
     let per_tile: Vec<(usize, Vec<f64>, BspWork)> = (0..tiles * tiles)
         .into_par_iter()
         .map(|t| {
-            let (tr, tc) = (t / tiles, t % tiles);
-            let (r0, c0) = (tr * tile, tc * tile);
-            let (r1, c1) = ((r0 + tile).min(size), (c0 + tile).min(size));
-            let (x0, x1) = (-2.0 + c0 as f64 * cell, -2.0 + c1 as f64 * cell);
-            let (z0, z1) = (-2.0 + r0 as f64 * cell, -2.0 + r1 as f64 * cell);
-            let mut sums = vec![0.0; (r1 - r0) * (c1 - c0)];
+            let (rows, cols) = tile_cells(t, tile, size);
+            let (x0, x1) = (
+                -2.0 + cols.start as f64 * cell,
+                -2.0 + cols.end as f64 * cell,
+            );
+            let (z0, z1) = (
+                -2.0 + rows.start as f64 * cell,
+                -2.0 + rows.end as f64 * cell,
+            );
+            let mut sums = vec![0.0; rows.len() * cols.len()];
             let mut work = BspWork::default();
-            for (li, light) in lights.iter().enumerate() {
-                let mut candidates = facing(&tris.ball, light);
-                candidates.extend_from_slice(&tris.canopy);
-                let occ = shaft(&candidates, x0, x1, z0, z1, light);
+            for (li, (light, candidates)) in lights.iter().zip(&candidates).enumerate() {
+                let occ = shaft(candidates, x0, x1, z0, z1, light);
                 let seed = (t as u64) << 8 | li as u64;
                 let mut ex =
                     ExactShadows::new(*light, floor, &occ, seed).expect("a light above the floor");
-                let mut k = 0;
-                for r in r0..r1 {
-                    for c in c0..c1 {
-                        let x = DVec3::new(
-                            -2.0 + (c as f64 + 0.5) * cell,
-                            0.0,
-                            -2.0 + (r as f64 + 0.5) * cell,
-                        );
-                        if reset {
-                            ex.reset();
-                        }
-                        sums[k] += ex
-                            .visible_fraction(x, Some(DVec3::Y))
-                            .expect("on the floor");
-                        k += 1;
+                let points = rows.clone().flat_map(|r| cols.clone().map(move |c| (r, c)));
+                for (sum, (r, c)) in sums.iter_mut().zip(points) {
+                    if reset {
+                        ex.reset();
                     }
+                    *sum += ex
+                        .visible_fraction(floor_point(size, r, c), Some(DVec3::Y))
+                        .expect("on the floor");
                 }
-                let w = ex.work();
-                work.queries += w.queries;
-                work.merges += w.merges;
-                work.inner_nodes += w.inner_nodes;
-                work.splits += w.splits;
-                work.fragments += w.fragments;
-                work.degenerate += w.degenerate;
-                work.peak_nodes = work.peak_nodes.max(w.peak_nodes);
+                work.add(&ex.work());
             }
             (t, sums, work)
         })
@@ -174,23 +181,12 @@ fn exact(
     let mut out = vec![0.0; size * size];
     let mut work = BspWork::default();
     for (t, sums, w) in per_tile {
-        let (tr, tc) = (t / tiles, t % tiles);
-        let (r0, c0) = (tr * tile, tc * tile);
-        let (r1, c1) = ((r0 + tile).min(size), (c0 + tile).min(size));
-        let mut k = 0;
-        for r in r0..r1 {
-            for c in c0..c1 {
-                out[r * size + c] = sums[k] / lights.len() as f64;
-                k += 1;
-            }
+        let (rows, cols) = tile_cells(t, tile, size);
+        let points = rows.flat_map(|r| cols.clone().map(move |c| (r, c)));
+        for (sum, (r, c)) in sums.iter().zip(points) {
+            out[r * size + c] = sum / lights.len() as f64;
         }
-        work.queries += w.queries;
-        work.merges += w.merges;
-        work.inner_nodes += w.inner_nodes;
-        work.splits += w.splits;
-        work.fragments += w.fragments;
-        work.degenerate += w.degenerate;
-        work.peak_nodes = work.peak_nodes.max(w.peak_nodes);
+        work.add(&w);
     }
     (out, seconds, work)
 }
@@ -203,14 +199,10 @@ fn stochastic(bvh: &Bvh, points: &[DVec3], lights: &[Patch], n: usize) -> (Vec<f
         .enumerate()
         .map(|(i, &x)| {
             // A per-point generator: results do not depend on the thread count.
-            let mut state = (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0xD1B5_4A32_D192_ED03;
-            let mut next = || {
-                state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-                let mut z = state;
-                z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-                z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-                ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-            };
+            let mut rng = SplitMix64::new(
+                (i as u64).wrapping_mul(0x9E37_79B9_7F4A_7C15) ^ 0xD1B5_4A32_D192_ED03,
+            );
+            let mut next = || rng.next_f64();
             let mut free = 0usize;
             for light in lights {
                 for a in 0..n {
@@ -253,13 +245,14 @@ fn run(args: &Args) -> Result<(), String> {
     }
     let (ball, canopy) = lumpy_ball_and_canopy(args.triangles, args.seed);
     let all: Vec<Triangle> = ball.iter().chain(&canopy).copied().collect();
+    let triangle_count = all.len();
     let tris = Scene { ball, canopy };
     let points = floor_points(args.size);
-    let bvh = Bvh::new(all.clone());
+    let bvh = Bvh::new(all);
     let one = lights(args.light, 1);
     let mut md = format!(
         "# Exact soft shadows against stochastic sampling\n\n{} triangles (lumpy ball and canopy, seed {}), floor {}², tiles of {}², light side {} at height 4, {} threads\n\n",
-        all.len(),
+        triangle_count,
         args.seed,
         args.size,
         args.tile,

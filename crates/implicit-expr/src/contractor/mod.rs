@@ -64,14 +64,21 @@ struct Program {
 }
 
 /// An HC4-revise contractor of one formula (see the [module documentation](self)). Cloning
-/// shares the formula and copies the scratch space: make one per thread.
-#[derive(Clone, Debug)]
+/// shares the formula and starts with scratch space of its own: make one per thread.
+#[derive(Debug)]
 pub struct Contractor<T: Float = f64> {
     program: Arc<Program>,
-    /// Each node's enclosure, forward then backward.
+    /// Each node's enclosure, forward then backward (sized by the first contraction).
     values: Vec<Interval<T>>,
-    /// The enclosures of the constants in `T`, by step (empty for the other steps).
-    consts: Vec<Interval<T>>,
+}
+
+impl<T: Float> Clone for Contractor<T> {
+    fn clone(&self) -> Self {
+        Self {
+            program: Arc::clone(&self.program),
+            values: Vec::new(),
+        }
+    }
 }
 
 impl<T: Float> Contractor<T> {
@@ -96,11 +103,9 @@ impl<T: Float> Contractor<T> {
             });
         }
         debug_assert_eq!(order.last(), Some(&root), "the root comes last");
-        let program = Arc::new(Program { steps, var_count });
         Self {
-            values: vec![Interval::EMPTY; program.steps.len()],
-            consts: constants(&program),
-            program,
+            program: Arc::new(Program { steps, var_count }),
+            values: Vec::new(),
         }
     }
 
@@ -109,7 +114,6 @@ impl<T: Float> Contractor<T> {
     pub fn set_formula(&mut self, other: &Contractor<T>) {
         if !Arc::ptr_eq(&self.program, &other.program) {
             self.program = Arc::clone(&other.program);
-            self.consts.clone_from(&other.consts);
         }
     }
 
@@ -139,7 +143,7 @@ impl<T: Float> Contractor<T> {
         for (k, step) in steps.iter().enumerate() {
             values[k] = match *step {
                 Step::Var(slot) => vars[slot],
-                Step::Const(_) => self.consts[k],
+                Step::Const(c) => <Interval<T> as Number>::constant(&c),
                 Step::Unary(op, a) => <Interval<T> as Number>::unary(op, values[a]),
                 Step::Binary(op, a, b) => <Interval<T> as Number>::binary(op, values[a], values[b]),
                 Step::Pown(a, n) => values[a].pown(n),
@@ -175,16 +179,4 @@ impl<T: Float> Contractor<T> {
         }
         true
     }
-}
-
-/// The constants of `program` enclosed in `T`, by step.
-fn constants<T: Float>(program: &Program) -> Vec<Interval<T>> {
-    program
-        .steps
-        .iter()
-        .map(|s| match s {
-            Step::Const(c) => <Interval<T> as Number>::constant(c),
-            _ => Interval::EMPTY,
-        })
-        .collect()
 }

@@ -122,14 +122,14 @@ impl<T: Float> Number for DecInterval<T> {
 
     #[inline]
     fn min_choice(a: Self, b: Self) -> (Self, Choice) {
-        let (_, c) = <Plain<T> as Number>::min_choice(a.interval(), b.interval());
-        (Self::binary(BinaryOp::Min, a, b), c)
+        let (v, c) = <Plain<T> as Number>::min_choice(a.interval(), b.interval());
+        (propagate(v, &[a, b], Decoration::Com), c)
     }
 
     #[inline]
     fn max_choice(a: Self, b: Self) -> (Self, Choice) {
-        let (_, c) = <Plain<T> as Number>::max_choice(a.interval(), b.interval());
-        (Self::binary(BinaryOp::Max, a, b), c)
+        let (v, c) = <Plain<T> as Number>::max_choice(a.interval(), b.interval());
+        (propagate(v, &[a, b], Decoration::Com), c)
     }
 }
 

@@ -64,6 +64,19 @@ pub struct BspWork {
     pub peak_nodes: u64,
 }
 
+impl BspWork {
+    /// Adds `other`'s counts to these (the peak is the larger one).
+    pub fn add(&mut self, other: &BspWork) {
+        self.queries += other.queries;
+        self.merges += other.merges;
+        self.inner_nodes += other.inner_nodes;
+        self.splits += other.splits;
+        self.fragments += other.fragments;
+        self.degenerate += other.degenerate;
+        self.peak_nodes = self.peak_nodes.max(other.peak_nodes);
+    }
+}
+
 /// The tree of one light and one group of receivers.
 #[derive(Clone, Debug)]
 pub(super) struct Bsp {
