@@ -58,12 +58,25 @@ fn integer_and_cancel(x: Iv, y: Iv) -> Result<(), TestCaseError> {
     Ok(())
 }
 
-/// Identical bounds, except where the exact result lies beyond the largest double: then
-/// ours is the tightest interval around it (`[MAX, +∞]` or `[−∞, −MAX]`), inari's the whole
-/// line; both satisfy the standard's `y + z ⊇ x`, ours is tighter (noted, not an error).
+/// Identical bounds, except where inari gives the whole line and ours a tighter interval
+/// that still satisfies the standard's `y + z ⊇ x` (`y` negated for `cancel_plus`): inari
+/// decides `wid x ≥ wid y` with rounded widths and gives up when they overflow or round
+/// equal, ours compares them exactly (`tests/rev_oracle.rs` checks ours against exact
+/// arithmetic). Noted, not errors.
 fn check_cancel(op: &str, args: &[Iv], ours: Iv, theirs: In) -> Result<(), TestCaseError> {
-    let beyond = ours.inf() == f64::MAX || ours.sup() == -f64::MAX;
-    if theirs.is_entire() && beyond {
+    if theirs.is_entire() && !ours.is_entire() {
+        let (x, y) = (
+            args[0],
+            if op == "cancel_plus" {
+                -args[1]
+            } else {
+                args[1]
+            },
+        );
+        prop_assert!(
+            x.subset(y + ours),
+            "{op}{args:?}: interval-core {ours:?} is not a valid cancellation"
+        );
         return Ok(());
     }
     check_same(op, args, ours, theirs)
