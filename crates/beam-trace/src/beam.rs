@@ -116,6 +116,11 @@ pub struct BeamSettings {
     pub max_bisections: u64,
     /// Bisection steps spent tightening `T_final` after an inclusion.
     pub refine_steps: u32,
+    /// A search that ends undecided because rounding, not the beam's width, keeps `g`
+    /// open (on the beam's central ray, as [`crate::root::rounding_dominates`] decides) is
+    /// run again from there in the next precision ([`RayFn::escalate`]; double-double
+    /// over a beam is narrowed by the centred form of [`crate::centred`]).
+    pub escalate: bool,
 }
 
 impl Default for BeamSettings {
@@ -125,6 +130,7 @@ impl Default for BeamSettings {
             rel_epsilon: 0.0,
             max_bisections: 1024,
             refine_steps: 12,
+            escalate: true,
         }
     }
 }
@@ -164,7 +170,7 @@ pub fn rejection_search(
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> BoxClass {
-    search(
+    escalating_search(
         g,
         ranges,
         None,
@@ -186,7 +192,7 @@ pub fn evaluate_box(
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> BoxClass {
-    search(
+    escalating_search(
         g,
         ranges,
         extent,
@@ -224,7 +230,78 @@ pub fn evaluate_box_within(
     settings: &BeamSettings,
     counters: &mut RootCounters,
 ) -> (BoxClass, Option<BeamScope>) {
-    search(g, ranges, extent, settings, true, inherited, counters)
+    escalating_search(g, ranges, extent, settings, true, inherited, counters)
+}
+
+/// [`search`], and where it ends undecided because rounding keeps `g` open (see
+/// [`BeamSettings::escalate`]), the search again in the next precision from the start of
+/// the undecided piece (every ray is proven root-free before it), over the rest of its
+/// range and the ranges after it. Counted in `escalated` and `escalated_resolved`.
+fn escalating_search(
+    g: &mut dyn RayFn,
+    ranges: &[Interval<f64>],
+    extent: Option<&Extent<'_>>,
+    settings: &BeamSettings,
+    inclusion: bool,
+    inherited: Inherited<'_>,
+    counters: &mut RootCounters,
+) -> (BoxClass, Option<BeamScope>) {
+    let mut enclosure = Interval::EMPTY;
+    let found = search(
+        g,
+        ranges,
+        extent,
+        settings,
+        inclusion,
+        inherited,
+        &mut enclosure,
+        counters,
+    );
+    if !settings.escalate {
+        return found;
+    }
+    let mut restore = None;
+    let mut again = found;
+    // Escalate as long as the search ends undecided and a higher precision may decide it.
+    while let BoxClass::Undecided { t } = again.0 {
+        let range_end = rest_end(ranges, t);
+        if !g.escalation_helps(t, enclosure, range_end, settings.epsilon, counters) {
+            break;
+        }
+        let Some(previous) = g.escalate() else {
+            break;
+        };
+        restore.get_or_insert(previous);
+        counters.escalated += 1;
+        let rest: Vec<Interval<f64>> = std::iter::once(Interval::new_unchecked(t.inf(), range_end))
+            .chain(ranges.iter().filter(|r| r.inf() >= range_end).copied())
+            .collect();
+        again = search(
+            g,
+            &rest,
+            extent,
+            settings,
+            inclusion,
+            Inherited::default(),
+            &mut enclosure,
+            counters,
+        );
+        if !matches!(again.0, BoxClass::Undecided { .. }) {
+            counters.escalated_resolved += 1;
+        }
+    }
+    if let Some(previous) = restore {
+        g.restore(previous);
+    }
+    again
+}
+
+/// The end of the range of `ranges` (increasing) that holds the start of `t`.
+fn rest_end(ranges: &[Interval<f64>], t: Interval<f64>) -> f64 {
+    ranges
+        .iter()
+        .find(|r| r.inf() <= t.inf() && t.inf() <= r.sup())
+        .map_or(t.sup(), |r| r.sup())
 }
 
 /// Largest number of pieces a range is cut into from [`Inherited::near`].
@@ -253,6 +330,10 @@ fn graded(range: Interval<f64>, near: Interval<f64>) -> Vec<Interval<f64>> {
     out
 }
 
+/// The front-to-back search of EvaluateBox (or of the rejection test alone, without
+/// `inclusion`). Where it ends undecided, `enclosure` is set to the enclosure of `g` over
+/// the undecided piece.
+#[allow(clippy::too_many_arguments)]
 fn search(
     g: &mut dyn RayFn,
     ranges: &[Interval<f64>],
@@ -260,6 +341,7 @@ fn search(
     settings: &BeamSettings,
     inclusion: bool,
     inherited: Inherited<'_>,
+    enclosure: &mut Interval<f64>,
     counters: &mut RootCounters,
 ) -> (BoxClass, Option<BeamScope>) {
     let Inherited {
@@ -362,6 +444,7 @@ fn search(
             {
                 return hit(g, t, settings, counters);
             }
+            *enclosure = gt;
             return (BoxClass::Undecided { t }, range_scope);
         }
         let (l, r) = t.bisect();

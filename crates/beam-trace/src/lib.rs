@@ -70,6 +70,7 @@ pub mod aa;
 pub mod backend;
 pub mod beam;
 pub mod camera;
+pub mod centred;
 pub mod error;
 pub mod float_map;
 pub mod grid;

@@ -200,6 +200,7 @@ impl Plan {
             root: s.root,
             beam: BeamSettings {
                 epsilon: (s.root.epsilon * 100.0).max(1e-3 * diagonal),
+                escalate: s.root.escalate,
                 ..BeamSettings::default()
             },
             t_final_width: s.t_final_width * diagonal,

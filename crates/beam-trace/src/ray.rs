@@ -15,6 +15,8 @@ use glam::DVec3;
 use implicit_expr::{RayEvaluator, RayFunction, Tape};
 use interval_core::{DdInterval, Interval};
 
+use crate::centred::Centred;
+
 pub use crate::ibox::{IBox, ipoint, ival, point_box};
 
 /// `g` and `g'` of one ray or beam, as inclusion functions of the ray parameter.
@@ -74,6 +76,28 @@ pub trait RayFn {
     /// that precision as they were.
     fn restore(&mut self, _previous: Precision) {}
 
+    /// Whether a higher precision may decide the beam over `piece` (the first piece its
+    /// search left undecided, where `g`'s enclosure is `now`, in a range ending at `end`),
+    /// so that the search is worth
+    /// running again from there ([`escalate`](RayFn::escalate)): rounding dominates on the
+    /// beam's central ray ([`rounding_dominates`], tolerance `epsilon`), or the centred form
+    /// of double-double evaluations over the beam ([`crate::centred`]) is much narrower than
+    /// the enclosure over `piece` now (large terms that cancel, whose natural extension is
+    /// as wide as the terms vary over the beam, in any precision). The beam and its
+    /// restriction stay set. The default: `false` (no escalation).
+    ///
+    /// [`rounding_dominates`]: crate::root::rounding_dominates
+    fn escalation_helps(
+        &mut self,
+        _piece: Interval<f64>,
+        _now: Interval<f64>,
+        _end: f64,
+        _epsilon: f64,
+        _counters: &mut crate::root::RootCounters,
+    ) -> bool {
+        false
+    }
+
     /// A handle of the current restriction, to return to it with
     /// [`set_scope`](RayFn::set_scope) after evaluations elsewhere (`None`: nothing to
     /// return to, the default).
@@ -85,6 +109,19 @@ pub trait RayFn {
     /// only parameters inside its region may be asked then.
     fn set_scope(&mut self, _scope: &Tape) {}
 }
+
+/// Where the rounding of `g` at one point of a beam's central ray is at least this fraction
+/// of `g`'s own scale there (its slope times the length of the range left), the formula
+/// loses thousands of units in the last place to cancellation (large terms `K` round to
+/// `K²·2^-52`), and [`RayFn::escalation_helps`] looks further; ordinary formulas round a
+/// few units of their scale. One evaluation of `g` and `g'` on the central ray is all an
+/// undecided beam of an ordinary scene pays.
+const LOSSY: f64 = 1.0 / (1u64 << 40) as f64;
+
+/// A beam escalates for its centred form ([`RayFn::escalation_helps`]) where that form is at
+/// most this fraction of the enclosure's width now (large terms that cancel give about
+/// `1/K`).
+const ESCALATE_NARROWER: f64 = 0.25;
 
 /// A ray `origin + t · dir`.
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -252,6 +289,8 @@ pub struct BeamEval {
     interval32: RayEvaluator<Interval<f32>>,
     interval_dd: RayEvaluator<DdInterval>,
     point: RayEvaluator<f64>,
+    /// The mean-value form of double-double evaluations over beams (made on first use).
+    centred: Option<Box<Centred>>,
 }
 
 /// A parameter interval as a double-double interval (exact).
@@ -283,6 +322,7 @@ impl BeamEval {
             interval32: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
             interval_dd: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
             point: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
+            centred: None,
         }
     }
 
@@ -347,6 +387,42 @@ impl BeamEval {
         self.point
             .set_ray(ray.origin.to_array(), ray.dir.to_array());
     }
+
+    /// Whether a beam (not a single ray) is set.
+    fn is_beam(&self) -> bool {
+        self.origin
+            .iter()
+            .chain(&self.dir)
+            .any(|x| x.inf() != x.sup())
+    }
+
+    /// The double-double enclosure `natural` of `g` over `t` for the beam set, narrowed by
+    /// the mean-value form over the box of the beam's points ([`Centred`]): over a beam the
+    /// natural extension of large terms that cancel is as wide as the terms vary, in any
+    /// precision, while the centred form is as wide as `g` varies. Rays keep `natural`.
+    fn centred_dd(&mut self, t: Interval<f64>, natural: DdInterval) -> Interval<f64> {
+        let natural = natural.to_interval();
+        if natural.is_empty() || !self.is_beam() {
+            return natural;
+        }
+        let tape = self.interval_dd.scope().clone();
+        let centred = self
+            .centred
+            .get_or_insert_with(|| Box::new(Centred::new(&tape)));
+        let beam = Beam {
+            origin: self.origin,
+            dir: self.dir,
+        };
+        match centred.enclose(&tape, &beam.points(t)) {
+            Some(c) => {
+                // Both enclose g's values over the beam (which has some: natural is not
+                // empty), so they meet; keep natural should rounding say otherwise.
+                let both = natural.intersection(c.to_interval());
+                if both.is_empty() { natural } else { both }
+            }
+            None => natural,
+        }
+    }
 }
 
 impl RayFn for BeamEval {
@@ -365,7 +441,10 @@ impl RayFn for BeamEval {
         match self.precision {
             Precision::F64 => self.interval.g(t),
             Precision::F32 => self.interval32.g(t.cast()).cast(),
-            Precision::Dd => self.interval_dd.g(dd(t)).to_interval(),
+            Precision::Dd => {
+                let natural = self.interval_dd.g(dd(t));
+                self.centred_dd(t, natural)
+            }
         }
     }
 
@@ -394,7 +473,7 @@ impl RayFn for BeamEval {
             }
             Precision::Dd => {
                 let (g, ok) = self.interval_dd.g_checked(dd(t));
-                (g.to_interval(), ok)
+                (self.centred_dd(t, g), ok)
             }
         }
     }
@@ -441,6 +520,53 @@ impl RayFn for BeamEval {
 
     fn restore(&mut self, previous: Precision) {
         self.precision = previous;
+    }
+
+    fn escalation_helps(
+        &mut self,
+        piece: Interval<f64>,
+        now: Interval<f64>,
+        end: f64,
+        epsilon: f64,
+        counters: &mut crate::root::RootCounters,
+    ) -> bool {
+        if self.precision.escalated().is_none() {
+            return false;
+        }
+        let (origin, dir) = (self.origin, self.dir);
+        let beam = Beam { origin, dir };
+        let scope = self.scope();
+        // On the central ray: the rounding at one point, and the test of the root finders.
+        let central = beam.central_ray();
+        self.set_interval_ray(point_box(central.origin), point_box(central.dir));
+        let (at, slope) = self.g_dg(ipoint(piece.inf()));
+        counters.dg_evals += 1;
+        let rounding = at.wid();
+        let scale = slope.mag() * (end - piece.inf());
+        let lossy = rounding > 0.0 && scale.is_finite() && rounding >= LOSSY * scale;
+        let dominates =
+            lossy && crate::root::rounding_dominates(self, piece.inf(), end, epsilon, counters);
+        self.set_interval_ray(origin, dir);
+        if let Some(scope) = &scope {
+            self.set_scope(scope);
+        }
+        if !lossy || dominates || !self.is_beam() {
+            return dominates;
+        }
+        // Large terms that cancel: the centred form in double-double, with the tape of the
+        // current restriction.
+        let Some(tape) = scope else {
+            return false;
+        };
+        counters.g_evals += 2;
+        counters.dg_evals += 1;
+        let centred = self
+            .centred
+            .get_or_insert_with(|| Box::new(Centred::new(&tape)));
+        match centred.enclose(&tape, &beam.points(piece)) {
+            Some(c) => c.to_interval().wid() <= ESCALATE_NARROWER * now.wid(),
+            None => false,
+        }
     }
 
     fn unrestrict(&mut self) {

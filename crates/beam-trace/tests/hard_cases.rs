@@ -1627,3 +1627,43 @@ fn a_cluster_of_close_roots_is_separated_by_escalation() {
         }
     }
 }
+
+#[test]
+fn cancelling_beams_are_decided_by_escalation() {
+    // Screen boxes and pixel beams (the default primary mode): over a beam the natural
+    // extension of the large terms is as wide as they vary (about 4K times the beam's
+    // width) in any precision; escalated beams use the double-double centred form, so the
+    // boxes are classed as the plain sphere's are. Every proven class is right.
+    let render_of = |formula: &str| run(&formula_scene(formula, 1.25, 5.0, 32, ""));
+    let plain = render_of("x^2 + y^2 + z^2 - 1");
+    let boxes = plain.stats.pass("screen-boxes").unwrap();
+    assert_eq!(boxes.counter("escalated"), 0, "the plain sphere's beams");
+    let plain_undecided = boxes.counter("undecided_pixels");
+    for formula in CANCELLING {
+        let scene = formula_scene(formula, 1.25, 5.0, 32, "");
+        let out = run(&scene);
+        check_classes(formula, &scene, &out, sphere_hits(DVec3::ZERO, 1.0));
+        let b = out.stats.pass("screen-boxes").unwrap();
+        let undecided = b.counter("undecided_pixels");
+        eprintln!(
+            "{formula}: undecided pixels {undecided} (plain {plain_undecided}), beams escalated {} resolved {}",
+            b.counter("escalated"),
+            b.counter("escalated_resolved")
+        );
+        assert!(
+            undecided <= 2 * plain_undecided,
+            "{formula}: {undecided} undecided pixels against the plain sphere's {plain_undecided}"
+        );
+        if formula.contains("1e11") {
+            assert!(b.counter("escalated_resolved") > 0, "{formula}");
+        }
+        let differ = out
+            .image
+            .pixels
+            .iter()
+            .zip(&plain.image.pixels)
+            .filter(|(a, b)| a.iter().zip(b.iter()).any(|(x, y)| (x - y).abs() > 0.02))
+            .count();
+        eprintln!("{formula}: {differ} pixels differ by more than 0.02");
+    }
+}

@@ -29,7 +29,7 @@ use interval_core::Interval;
 use crate::beams::{self, BeamKernel, GpuBeam, GpuClass, KernelSettings};
 use crate::device::Gpu;
 use crate::error::GpuError;
-use crate::escalation::escalate_open;
+use crate::escalation::{escalate_open, escalate_open_beams};
 use crate::shading::{MAX_LIGHTS, ShadingInput, ShadingKernel};
 
 /// The GPU backend: a device whose kernels answer the pipeline's queries.
@@ -327,9 +327,13 @@ impl Queries for GpuQueries<'_> {
             .iter()
             .map(|b| self.query(b.beam, child_window(b.parent.as_ref())))
             .collect();
-        Ok(map(self.classify(&q, &self.primary)?, |c| {
+        let mut answers = map(self.classify(&q, &self.primary)?, |c| {
             Classified::from(box_class(c))
-        }))
+        });
+        let searched: Vec<(Beam, Interval<f64>)> = q.iter().map(|b| (b.beam, b.t)).collect();
+        let escalated = escalate_open_beams(self.scene, self.plan, &searched, &mut answers.values);
+        answers.search.add(&escalated);
+        Ok(answers)
     }
 
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error> {

@@ -1,11 +1,13 @@
-//! Roots the kernels leave open where `f32` rounding dominates, searched again on the CPU:
-//! in `f64`, and in double-double beyond where `f64` rounding dominates too
-//! ([`Escalating`]). This is how the GPU backend escalates precision: only the rays whose
-//! open answer the rounding test picks pay for it, and the answers count as `escalated`
-//! (`escalated_resolved` where the CPU proves a root or no root).
+//! Roots and beams the kernels leave open where `f32` rounding dominates, searched again on
+//! the CPU: in `f64`, and in double-double beyond where `f64` rounding dominates too
+//! ([`Escalating`] for rays, [`BeamSettings::escalate`] for beams). This is how the GPU
+//! backend escalates precision: only the rays and beams whose open answer the rounding test
+//! picks pay for it, and the answers count as `escalated` (`escalated_resolved` where the
+//! CPU proves a root, no root, or the beam's class).
 
-use beam_trace::backend::RayQuery;
-use beam_trace::ray::{BeamEval, Precision};
+use beam_trace::backend::{Classified, RayQuery};
+use beam_trace::beam::{BeamSettings, BoxClass, Extent, evaluate_box};
+use beam_trace::ray::{Beam, BeamEval, Precision, RayFn};
 use beam_trace::root::{Escalating, RootCounters, RootFinder, RootResult, rounding_dominates};
 use beam_trace::{Plan, Scene};
 use interval_core::Interval;
@@ -66,6 +68,77 @@ pub(crate) fn escalate_open(
     for (i, r, c) in redone {
         if let Some(r) = r {
             answers[i] = r;
+        }
+        total.add(&c);
+    }
+    total
+}
+
+/// Re-classifies on the CPU the Undecided `answers` of the beam queries `beams` (each with
+/// the parameters its kernel searched) where a higher precision may decide them
+/// ([`RayFn::escalation_helps`], in `f32` as the kernels evaluate), replacing
+/// them: EvaluateBox in `f64` from the start of the undecided piece, escalating to
+/// double-double where `f64` rounding dominates too. Returns the counters of that work.
+/// Nothing when the plan does not escalate.
+pub(crate) fn escalate_open_beams(
+    scene: &Scene,
+    plan: &Plan,
+    beams: &[(Beam, Interval<f64>)],
+    answers: &mut [Classified],
+) -> RootCounters {
+    let mut total = RootCounters::default();
+    if !plan.beam.escalate {
+        return total;
+    }
+    let open: Vec<(usize, Interval<f64>)> = answers
+        .iter()
+        .enumerate()
+        .filter_map(|(i, a)| match a.class {
+            BoxClass::Undecided { t } => Some((i, t)),
+            _ => None,
+        })
+        .collect();
+    if open.is_empty() {
+        return total;
+    }
+    let f = scene.geometry.ray_function();
+    let bounds = scene.geometry.bounds();
+    let settings: BeamSettings = plan.beam;
+    let redone: Vec<(usize, Option<BoxClass>, RootCounters)> = open
+        .par_iter()
+        .map_init(
+            || BeamEval::new(f),
+            |ev, &(i, piece)| {
+                let mut c = RootCounters::default();
+                let (beam, searched) = &beams[i];
+                // Everything before the undecided piece is proven free of roots.
+                let rest = Interval::new_unchecked(piece.inf(), searched.sup().max(piece.inf()));
+                ev.set_precision(Precision::F32);
+                ev.set_beam(beam);
+                let now = ev.g(piece);
+                c.g_evals += 1;
+                let dominated =
+                    ev.escalation_helps(piece, now, rest.sup(), settings.epsilon, &mut c);
+                ev.set_precision(Precision::F64);
+                if !dominated {
+                    return (i, None, c);
+                }
+                c.escalated += 1;
+                let extent = Extent {
+                    beam,
+                    bounds: &bounds,
+                };
+                let class = evaluate_box(ev, &[rest], Some(&extent), &settings, &mut c);
+                if !matches!(class, BoxClass::Undecided { .. }) {
+                    c.escalated_resolved += 1;
+                }
+                (i, Some(class), c)
+            },
+        )
+        .collect();
+    for (i, class, c) in redone {
+        if let Some(class) = class {
+            answers[i] = class.into();
         }
         total.add(&c);
     }
