@@ -285,6 +285,13 @@ impl fmt::Display for Plan {
             "  {:<13} {} intervals for g and g' on rays and beams (root searches, beam tests)",
             "precision", self.precision
         )?;
+        if self.root.escalate {
+            writeln!(
+                f,
+                "  {:<13} open root searches and undecided beams that rounding or cancelling terms keep open run again in the next precision, up to dd (a GPU backend sends them to the CPU)",
+                "escalation"
+            )?;
+        }
         Ok(())
     }
 }

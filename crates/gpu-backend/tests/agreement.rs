@@ -262,6 +262,59 @@ rays_per_undecided = 1
 }
 
 #[test]
+fn undecided_beams_that_cancellation_keeps_open_escalate_on_the_cpu() {
+    // The same sphere in the default primary mode: the kernels' screen boxes stay undecided
+    // where the large terms cancel; the backend sends those beams to the CPU, which
+    // classifies them in double-double with the centred form, as the CPU backend does.
+    let Some(gpu) = Gpu::for_tests() else { return };
+    let backend = GpuBackend::new(gpu);
+    let text = |escalate: bool| {
+        format!(
+            r#"
+[camera]
+eye = [0.0, 0.0, 5.0]
+look_at = [0.0, 0.0, 0.0]
+fov = 40.0
+width = 32
+height = 32
+[[surfaces]]
+formula = "(x + 1e11)^2 - 2e11*x - 1e22 + y^2 + z^2 - 1"
+bounds = [[-1.25, -1.25, -1.25], [1.25, 1.25, 1.25]]
+[render]
+escalate = {escalate}
+"#
+        )
+    };
+    let scene = |escalate| {
+        Scene::from_toml(&text(escalate), "cancel.toml", None).unwrap_or_else(|e| panic!("{e}"))
+    };
+    let undecided = |out: &beam_trace::RenderOutput| {
+        out.stats
+            .pass("screen-boxes")
+            .unwrap()
+            .counter("undecided_pixels")
+    };
+    let out = render_on(&scene(true), &backend, &NoProgress).expect("the GPU backend renders");
+    let open = render_on(&scene(false), &backend, &NoProgress).expect("the GPU backend renders");
+    let cpu = render(&scene(true), &NoProgress).expect("the CPU renders");
+    let boxes = out.stats.pass("screen-boxes").unwrap();
+    assert!(boxes.counter("escalated_resolved") > 0);
+    // Without escalation only the beams that miss the bounds are decided.
+    assert!(
+        undecided(&open) >= 4 * undecided(&out),
+        "GPU {} undecided pixels, {} without escalation",
+        undecided(&out),
+        undecided(&open)
+    );
+    assert!(
+        undecided(&out) <= 2 * undecided(&cpu).max(32),
+        "GPU {} undecided pixels, CPU {}",
+        undecided(&out),
+        undecided(&cpu)
+    );
+}
+
+#[test]
 fn gpu_shadow_proofs_agree_with_many_cpu_samples() {
     let Some(gpu) = Gpu::for_tests() else { return };
     let g =
