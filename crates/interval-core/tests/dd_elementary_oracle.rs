@@ -1,8 +1,9 @@
-//! `exp`, `sin`, `cos`, `ln`, `log10` and `pow` of double-double intervals against MPFR
-//! (`rug`, 400 bits with directed rounding): the exact range inside every enclosure, each
-//! bound within the documented accuracy (`2^-90` relative for `exp`, `2^-95` absolute for
-//! `sin`/`cos`, `2^-88` absolute for `ln`/`log10`, `2^-80` relative for `pow`), and the
-//! extremes of `sin`/`cos` found inside wider intervals.
+//! `exp`, `sin`, `cos`, `tan`, `asin`, `acos`, `atan`, `ln`, `log10` and `pow` of
+//! double-double intervals against MPFR (`rug`, 400 bits with directed rounding): the exact
+//! range inside every enclosure, each bound within the documented accuracy (`2^-90`
+//! relative for `exp`, `2^-95` absolute for `sin`/`cos` and the inverse functions, `2^-90`
+//! relative (at least absolute) for `tan`, `2^-88` absolute for `ln`/`log10`, `2^-80`
+//! relative for `pow`), and the extremes of `sin`/`cos` found inside wider intervals.
 
 use interval_core::{Dd, DdInterval, Interval};
 use proptest::prelude::*;
@@ -39,6 +40,18 @@ fn sin_r(f: &mut Float, r: Round) -> std::cmp::Ordering {
 }
 fn cos_r(f: &mut Float, r: Round) -> std::cmp::Ordering {
     f.cos_round(r)
+}
+fn tan_r(f: &mut Float, r: Round) -> std::cmp::Ordering {
+    f.tan_round(r)
+}
+fn atan_r(f: &mut Float, r: Round) -> std::cmp::Ordering {
+    f.atan_round(r)
+}
+fn asin_r(f: &mut Float, r: Round) -> std::cmp::Ordering {
+    f.asin_round(r)
+}
+fn acos_r(f: &mut Float, r: Round) -> std::cmp::Ordering {
+    f.acos_round(r)
 }
 fn ln_r(f: &mut Float, r: Round) -> std::cmp::Ordering {
     f.ln_round(r)
@@ -108,6 +121,28 @@ proptest! {
     }
 
     #[test]
+    fn tan_encloses_tightly(x in dd(1e4)) {
+        // Relative: tan grows without bound near its poles.
+        let exact = bracket(x, tan_r);
+        let scale = exact.1.clone().abs().max(Rational::from(1));
+        let tol = scale * Rational::from_f64(2f64.powi(-90)).unwrap();
+        let r = DdInterval::new(x, x).unwrap().tan();
+        prop_assume!(r.to_interval().is_common_interval());
+        check_point("tan", r, exact, &tol)?;
+    }
+
+    #[test]
+    fn inverse_trig_enclose_tightly(x in dd(1.0), big in dd(1e30)) {
+        let tol = Rational::from_f64(2f64.powi(-95)).unwrap();
+        let p = DdInterval::new(x, x).unwrap();
+        check_point("asin", p.asin(), bracket(x, asin_r), &tol)?;
+        check_point("acos", p.acos(), bracket(x, acos_r), &tol)?;
+        check_point("atan", p.atan(), bracket(x, atan_r), &tol)?;
+        let b = DdInterval::new(big, big).unwrap();
+        check_point("atan", b.atan(), bracket(big, atan_r), &tol)?;
+    }
+
+    #[test]
     fn ln_and_log10_enclose_tightly(x in positive()) {
         let p = DdInterval::new(x, x).unwrap();
         let tol = Rational::from_f64(2f64.powi(-88)).unwrap();
@@ -149,16 +184,37 @@ proptest! {
             ("sin", sin_r, x.sin()),
             ("cos", cos_r, x.cos()),
             ("ln", ln_r, x.ln()),
+            ("tan", tan_r, x.tan()),
+            ("atan", atan_r, x.atan()),
         ] {
             if name == "ln" && p.signum() <= 0 {
                 continue;
             }
             let (d, u) = bracket(p, f);
             let (lo, hi) = v.bounds().unwrap();
-            // Infinite bounds (ln over an interval reaching 0, exp beyond f64) hold anything.
+            // Infinite bounds (tan over a pole among them) (ln over an interval reaching 0, exp beyond f64) hold anything.
             let below = lo.hi() == f64::NEG_INFINITY || q(lo) <= d;
             let above = hi.hi() == f64::INFINITY || u <= q(hi);
             prop_assert!(below && above, "{name} over {x}: {v} misses the value at {}", p.hi());
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(600))]
+
+    #[test]
+    fn asin_and_acos_hold_the_values_inside(a in -1.2..1.2f64, w in 0.0..1.0f64, s in 0.0..=1.0f64) {
+        let x = DdInterval::from_interval(Interval::new(a, a + w).unwrap());
+        let p = a + s * w;
+        prop_assume!(p.abs() <= 1.0);
+        for (name, f, v) in [
+            ("asin", asin_r as fn(&mut Float, Round) -> std::cmp::Ordering, x.asin()),
+            ("acos", acos_r, x.acos()),
+        ] {
+            let (d, u) = bracket(Dd::from_f64(p), f);
+            let (lo, hi) = v.bounds().unwrap();
+            prop_assert!(q(lo) <= d && u <= q(hi), "{name} over {x}: {v} misses the value at {p}");
         }
     }
 }
@@ -176,4 +232,23 @@ fn extremes_and_special_cases() {
         iv(0.0, 0.0).exp().to_interval(),
         Interval::new(1.0, 1.0).unwrap()
     );
+    // tan over a pole is the whole line; atan of the whole line is (−π/2, π/2) enclosed.
+    assert_eq!(iv(1.0, 2.0).tan().to_interval(), Interval::ENTIRE);
+    let a = DdInterval::ENTIRE.atan().to_interval();
+    assert!(a.contains(std::f64::consts::FRAC_PI_2) && a.sup() < 1.5708);
+    // asin and acos outside [−1, 1] are empty; at its ends, ±π/2, 0 and π.
+    assert!(iv(1.5, 2.0).asin().is_empty());
+    assert!(
+        iv(1.0, 1.0)
+            .asin()
+            .to_interval()
+            .contains(std::f64::consts::FRAC_PI_2)
+    );
+    assert!(
+        iv(-1.0, -1.0)
+            .acos()
+            .to_interval()
+            .contains(std::f64::consts::PI)
+    );
+    assert_eq!(iv(1.0, 1.0).acos().to_interval().inf(), 0.0);
 }

@@ -2,8 +2,9 @@
 //! when rounding, not the width of its box, keeps `f64` intervals from deciding it.
 //!
 //! `+ − × /`, `sqr`, `√`, `pown`, `abs`, `min`, `max` and `domain` run in double-double
-//! (within a few units of `2^-104` per operation), `exp`, `sin`, `cos`, `ln`, `log` and `pow`
-//! too (within about `2^-80` to `2^-95`); the other operations, and the definedness
+//! (within a few units of `2^-104` per operation), `exp`, `sin`, `cos`, `tan`, `asin`,
+//! `acos`, `atan`, `ln`, `log` and `pow` too (within about `2^-80` to `2^-95`); the other
+//! operations (the step functions), and the definedness
 //! checks, take the `f64` hull of their arguments (outward, so every check that holds on the
 //! hull holds on the double-double interval) and the `f64` interval operation: sound, no
 //! tighter than `f64` there. Constants are the `f64` enclosures of the formula's literals
@@ -61,6 +62,10 @@ impl Number for DdInterval {
             UnaryOp::Log10 => a.log10(),
             UnaryOp::Sin => a.sin(),
             UnaryOp::Cos => a.cos(),
+            UnaryOp::Tan => a.tan(),
+            UnaryOp::Asin => a.asin(),
+            UnaryOp::Acos => a.acos(),
+            UnaryOp::Atan => a.atan(),
             _ => a.map_f64(|x| <F64 as Number>::unary(op, x)),
         }
     }

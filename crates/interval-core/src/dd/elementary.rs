@@ -13,7 +13,15 @@
 //! * `ln x = y₀ + ln(x·e^{−y₀})` with `y₀` the `f64` logarithm, the second term by a short
 //!   Taylor sum (within about `2^-90`, absolute); `log₁₀ = ln / ln 10`; `pow(a, b) =
 //!   exp(b·ln a)` for `a > 0`.
-//! * Over an interval, `exp` and `ln` are monotone; `sin` and `cos` take the hull of the end values
+//! * `tan x = sin x / cos x` at the ends of an interval that holds no pole (a pole it may
+//!   hold gives the `f64` path, the whole line).
+//! * `atan x = y₀ + atan δ` with `y₀` the `f64` arctangent, `δ = (x − tan y₀)/(1 + x·tan y₀)`
+//!   (about `10⁻¹⁶`) and `atan δ = δ − δ³/3` plus a remainder below `|δ|⁵/5`; for `|x| > 1`,
+//!   `atan x = ±π/2 − atan(1/x)`. `asin x = atan(x / √((1 − x)(1 + x)))` and
+//!   `acos x = 2·atan(√((1 − x)/(1 + x)))`, with `±π/2` and `π` at the ends of the domain;
+//!   within about `2^-95` absolute.
+//! * Over an interval, `exp`, `ln`, `tan` (between poles), `atan` and `asin` are increasing,
+//!   `acos` decreasing; `sin` and `cos` take the hull of the end values
 //!   and of the extremes `±1` at the multiples of `π/2` the interval may hold.
 //! * Out of these ranges (`|x| > 700` for `exp`, or a result whose trailing part would be
 //!   subnormal, below about `2^-960`; `|x| > 2^20`
@@ -43,6 +51,10 @@ const HALF_PI: [f64; 3] = [
 /// ln 10 as a sum of two doubles, and a bound of the error of their sum.
 const LN10: [f64; 2] = [core::f64::consts::LN_10, -2.1707562233822494e-16];
 const LN10_ERROR: f64 = 1e-32;
+
+/// π / 2 as a sum of two doubles, and a bound of the error of their sum (the third double of
+/// [`HALF_PI`] and beyond).
+const HALF_PI_ERROR: f64 = 2e-33;
 
 /// An enclosure of `c[0] + c[1] ± error`.
 fn constant(c: [f64; 2], error: f64) -> Option<DdInterval> {
@@ -192,6 +204,85 @@ fn sin_cos_point(x: Dd) -> Option<(DdInterval, DdInterval)> {
     })
 }
 
+/// `π/2` enclosed.
+fn half_pi() -> Option<DdInterval> {
+    constant([HALF_PI[0], HALF_PI[1]], HALF_PI_ERROR)
+}
+
+/// `atan(x)` for a finite point, enclosed: `y₀ + atan δ` near `x` (see the module
+/// documentation), and `±π/2 − atan(1/x)` for `|x| > 1`.
+fn atan_point(x: Dd) -> Option<DdInterval> {
+    if !x.is_finite() {
+        return None;
+    }
+    if x.signum() == 0 {
+        return Some(DdInterval::point(0.0));
+    }
+    let p = DdInterval::new(x, x).ok()?;
+    if x.hi().abs() > 1.0 {
+        // atan x = sign(x)·π/2 − atan(1/x), with |1/x| < 1.
+        let inverse = atan_interval(DdInterval::point(1.0) / p)?;
+        let quarter = half_pi()?;
+        return Some(if x.signum() > 0 {
+            quarter - inverse
+        } else {
+            -quarter - inverse
+        });
+    }
+    let y0 = x.hi().atan();
+    let (s, c) = sin_cos_point(Dd::from_f64(y0))?;
+    let t0 = s / c;
+    let d = (p - t0) / (DdInterval::point(1.0) + p * t0);
+    let m = d.to_interval().mag();
+    // tan y₀ is within a few ulps of x: |δ| is about 1e-16, and |δ|⁵/5 below 1e-50.
+    if m.is_nan() || m > 1e-10 {
+        return None;
+    }
+    let third = DdInterval::point(1.0) / DdInterval::point(3.0);
+    let coefficients = [
+        -third,
+        DdInterval::point(0.0),
+        DdInterval::point(1.0),
+        DdInterval::point(0.0),
+    ];
+    Some(DdInterval::point(y0) + taylor(d, coefficients.into_iter(), 1e-49))
+}
+
+/// `atan` over an interval of finite bounds (increasing).
+fn atan_interval(x: DdInterval) -> Option<DdInterval> {
+    let (lo, hi) = x.bounds()?;
+    let (a, _) = atan_point(lo)?.bounds()?;
+    let (_, b) = atan_point(hi)?.bounds()?;
+    DdInterval::new(a, b).ok()
+}
+
+/// `asin(x)` for a point of `[−1, 1]`, enclosed.
+fn asin_point(x: Dd) -> Option<DdInterval> {
+    let one = Dd::from_f64(1.0);
+    if x == one {
+        return half_pi();
+    }
+    if x == -one {
+        return Some(-half_pi()?);
+    }
+    let p = DdInterval::new(x, x).ok()?;
+    let u = DdInterval::point(1.0);
+    let root = ((u - p) * (u + p)).sqrt();
+    atan_interval(p / root)
+}
+
+/// `acos(x)` for a point of `[−1, 1]`, enclosed.
+fn acos_point(x: Dd) -> Option<DdInterval> {
+    if x == -Dd::from_f64(1.0) {
+        let quarter = half_pi()?;
+        return Some(quarter + quarter);
+    }
+    let p = DdInterval::new(x, x).ok()?;
+    let u = DdInterval::point(1.0);
+    let a = atan_interval(((u - p) / (u + p)).sqrt())?;
+    Some(a + a)
+}
+
 /// The integers `q` that `x / (π/2)` may equal, as `[q0, q1]`; `None` when too many.
 fn quarter_turns(x: DdInterval) -> Option<(i64, i64)> {
     let half_pi = Interval::new(HALF_PI[0].next_down(), HALF_PI[0].next_up()).ok()?;
@@ -314,6 +405,84 @@ impl DdInterval {
         }
         // The values lie in [−1, 1].
         out.intersection_unit()
+    }
+
+    /// `tan x`: the values at the ends where the interval holds no pole (`(2q + 1)·π/2`),
+    /// else the `f64` path (the whole line).
+    pub fn tan(self) -> Self {
+        let fallback = || self.map_f64(Interval::tan);
+        let Some((lo, hi)) = self.bounds() else {
+            return self;
+        };
+        let Some((q0, q1)) = quarter_turns(self) else {
+            return fallback();
+        };
+        if (q0..=q1).any(|q| q.rem_euclid(2) == 1) {
+            return fallback();
+        }
+        let end = |x: Dd| sin_cos_point(x).map(|(s, c)| s / c);
+        match (end(lo), end(hi)) {
+            (Some(a), Some(b)) => match (a.bounds(), b.bounds()) {
+                (Some((a, _)), Some((_, b))) => Self::new(a, b).unwrap_or_else(|_| fallback()),
+                _ => fallback(),
+            },
+            _ => fallback(),
+        }
+    }
+
+    /// `atan x` (increasing; `±π/2` at infinite bounds).
+    pub fn atan(self) -> Self {
+        let fallback = || self.map_f64(Interval::atan);
+        let Some((lo, hi)) = self.bounds() else {
+            return self;
+        };
+        let quarter = half_pi();
+        let low = if lo.is_finite() {
+            atan_point(lo).and_then(|v| v.bounds()).map(|(a, _)| a)
+        } else {
+            quarter.and_then(|q| (-q).bounds()).map(|(a, _)| a)
+        };
+        let high = if hi.is_finite() {
+            atan_point(hi).and_then(|v| v.bounds()).map(|(_, b)| b)
+        } else {
+            quarter.and_then(|q| q.bounds()).map(|(_, b)| b)
+        };
+        match (low, high) {
+            (Some(a), Some(b)) => Self::new(a, b).unwrap_or_else(|_| fallback()),
+            _ => fallback(),
+        }
+    }
+
+    /// `asin x` over the part of the interval in `[−1, 1]` (increasing; empty where there
+    /// is none).
+    pub fn asin(self) -> Self {
+        self.inverse_trig(asin_point, false, Interval::asin)
+    }
+
+    /// `acos x` over the part of the interval in `[−1, 1]` (decreasing; empty where there
+    /// is none).
+    pub fn acos(self) -> Self {
+        self.inverse_trig(acos_point, true, Interval::acos)
+    }
+
+    /// `asin` or `acos` (`decreasing`) over `self ∩ [−1, 1]`, from `point` at its ends.
+    fn inverse_trig(
+        self,
+        point: fn(Dd) -> Option<DdInterval>,
+        decreasing: bool,
+        f64_op: fn(Interval<f64>) -> Interval<f64>,
+    ) -> Self {
+        let unit = self.intersection_unit();
+        let Some((lo, hi)) = unit.bounds() else {
+            return Self::EMPTY;
+        };
+        let (first, last) = if decreasing { (hi, lo) } else { (lo, hi) };
+        let low = point(first).and_then(|v| v.bounds()).map(|(a, _)| a);
+        let high = point(last).and_then(|v| v.bounds()).map(|(_, b)| b);
+        match (low, high) {
+            (Some(a), Some(b)) => Self::new(a, b).unwrap_or_else(|_| unit.map_f64(f64_op)),
+            _ => unit.map_f64(f64_op),
+        }
     }
 
     /// `self · 2^k`, exactly (`None` where a part would leave the normal range).
