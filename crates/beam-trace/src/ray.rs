@@ -110,13 +110,14 @@ pub trait RayFn {
     fn set_scope(&mut self, _scope: &Tape) {}
 }
 
-/// Where the rounding of `g` at one point of a beam's central ray is at least this fraction
-/// of `g`'s own scale there (its slope times the length of the range left), the formula
-/// loses thousands of units in the last place to cancellation (large terms `K` round to
-/// `K²·2^-52`), and [`RayFn::escalation_helps`] looks further; ordinary formulas round a
-/// few units of their scale. One evaluation of `g` and `g'` on the central ray is all an
+/// Where the rounding of `g` at one point of a beam's central ray is at least this many
+/// units of the precision's rounding (`2^-52` in `f64`, `2^-23` in `f32`) times the
+/// magnitude of `g` there and at the end of the range, the formula loses that many units in
+/// the last place to cancellation (large terms `K` round to `K²·2^-52` while `g` stays near
+/// its own scale), and [`RayFn::escalation_helps`] looks further; ordinary formulas lose a
+/// few. One or two evaluations of the restricted `g` on the central ray are all an
 /// undecided beam of an ordinary scene pays.
-const LOSSY: f64 = 1.0 / (1u64 << 40) as f64;
+const LOSSY_ULPS: f64 = 4096.0;
 
 /// A beam escalates for its centred form ([`RayFn::escalation_helps`]) where that form is at
 /// most this fraction of the enclosure's width now (large terms that cancel give about
@@ -536,14 +537,28 @@ impl RayFn for BeamEval {
         let (origin, dir) = (self.origin, self.dir);
         let beam = Beam { origin, dir };
         let scope = self.scope();
-        // On the central ray: the rounding at one point, and the test of the root finders.
+        // On the central ray, with the current restriction: the rounding of `g` at `a`,
+        // against the magnitude of `g` there and at the end of the range.
         let central = beam.central_ray();
         self.set_interval_ray(point_box(central.origin), point_box(central.dir));
-        let (at, slope) = self.g_dg(ipoint(piece.inf()));
-        counters.dg_evals += 1;
-        let rounding = at.wid();
-        let scale = slope.mag() * (end - piece.inf());
-        let lossy = rounding > 0.0 && scale.is_finite() && rounding >= LOSSY * scale;
+        if let Some(scope) = &scope {
+            self.set_scope(scope);
+        }
+        let unit = match self.precision {
+            Precision::F32 => f64::from(f32::EPSILON) / 2.0,
+            Precision::F64 | Precision::Dd => f64::EPSILON / 2.0,
+        };
+        let lost = |rounding: f64, scale: f64| {
+            rounding > 0.0 && scale.is_finite() && rounding >= LOSSY_ULPS * unit * scale
+        };
+        let at = self.g(ipoint(piece.inf()));
+        counters.g_evals += 1;
+        // Most often `g(a)` alone is far larger than its rounding: one evaluation.
+        let lossy = lost(at.wid(), at.mag()) && {
+            let far = self.g(ipoint(end));
+            counters.g_evals += 1;
+            lost(at.wid(), far.mag())
+        };
         let dominates =
             lossy && crate::root::rounding_dominates(self, piece.inf(), end, epsilon, counters);
         self.set_interval_ray(origin, dir);

@@ -18,6 +18,7 @@ use beam_trace::beam::child_window;
 use beam_trace::ray::{Beam, IBox, Ray, point_box};
 use beam_trace::root::{Proof, RootCounters, RootResult};
 use beam_trace::sample::{Hit, SHADOW_OFFSET};
+use beam_trace::shadow::beam::shadow_beam_settings;
 use beam_trace::shadow::hard::Visibility;
 use beam_trace::shadow::rounds::{Answer, Question, RoundsError, visibility_in_rounds};
 use beam_trace::shadow::{Occlusion, ShadowQuery, ShadowSpec};
@@ -29,7 +30,7 @@ use interval_core::Interval;
 use crate::beams::{self, BeamKernel, GpuBeam, GpuClass, KernelSettings};
 use crate::device::Gpu;
 use crate::error::GpuError;
-use crate::escalation::{escalate_open, escalate_open_beams};
+use crate::escalation::{OpenBeam, escalate_open, escalate_open_beams};
 use crate::shading::{MAX_LIGHTS, ShadingInput, ShadingKernel};
 
 /// The GPU backend: a device whose kernels answer the pipeline's queries.
@@ -272,11 +273,58 @@ impl GpuQueries<'_> {
                 .kernel
                 .classify(self.gpu, &queries, &settings)
                 .map_err(backend)?;
-            for (&i, b) in picked.iter().zip(answers) {
-                let c = RootCounters {
+            // Undecided shadow beams where a higher precision may decide them: on the CPU.
+            let (at, open): (Vec<usize>, Vec<OpenBeam>) = picked
+                .iter()
+                .zip(&queries)
+                .zip(&answers)
+                .enumerate()
+                .filter_map(|(k, ((&i, q), b))| match (b.class, questions[i]) {
+                    (
+                        GpuClass::Undecided { t },
+                        Question::Beam {
+                            from,
+                            light,
+                            inclusion,
+                            ..
+                        },
+                    ) => Some((
+                        k,
+                        OpenBeam {
+                            beam: q.beam,
+                            searched: q.t,
+                            piece: t,
+                            settings: shadow_beam_settings(
+                                &self.plan.beam,
+                                self.scene.geometry.diagonal(),
+                                from,
+                                &light,
+                            ),
+                            inclusion,
+                        },
+                    )),
+                    _ => None,
+                })
+                .unzip();
+            let mut again: Vec<Option<(Option<BoxClass>, RootCounters)>> = vec![None; picked.len()];
+            for (k, redo) in at
+                .into_iter()
+                .zip(escalate_open_beams(self.scene, self.plan, &open))
+            {
+                again[k] = Some(redo);
+            }
+            for ((&i, b), redo) in picked.iter().zip(answers).zip(again) {
+                let mut c = RootCounters {
                     g_evals: u64::from(b.steps),
                     ..RootCounters::default()
                 };
+                if let Some((class, extra)) = redo {
+                    c.add(&extra);
+                    if let Some(class) = class {
+                        out[i] = Some((Answer::Beam(class), c));
+                        continue;
+                    }
+                }
                 let a = if group == 0 {
                     Answer::Segment(Occlusion {
                         visibility: visibility(b.class),
@@ -330,9 +378,33 @@ impl Queries for GpuQueries<'_> {
         let mut answers = map(self.classify(&q, &self.primary)?, |c| {
             Classified::from(box_class(c))
         });
-        let searched: Vec<(Beam, Interval<f64>)> = q.iter().map(|b| (b.beam, b.t)).collect();
-        let escalated = escalate_open_beams(self.scene, self.plan, &searched, &mut answers.values);
-        answers.search.add(&escalated);
+        let (at, open): (Vec<usize>, Vec<OpenBeam>) = answers
+            .values
+            .iter()
+            .enumerate()
+            .filter_map(|(i, a)| match a.class {
+                BoxClass::Undecided { t } => Some((
+                    i,
+                    OpenBeam {
+                        beam: q[i].beam,
+                        searched: q[i].t,
+                        piece: t,
+                        settings: self.plan.beam,
+                        inclusion: true,
+                    },
+                )),
+                _ => None,
+            })
+            .unzip();
+        for (i, (class, c)) in at
+            .into_iter()
+            .zip(escalate_open_beams(self.scene, self.plan, &open))
+        {
+            if let Some(class) = class {
+                answers.values[i] = class.into();
+            }
+            answers.search.add(&c);
+        }
         Ok(answers)
     }
 

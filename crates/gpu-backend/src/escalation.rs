@@ -5,8 +5,8 @@
 //! picks pay for it, and the answers count as `escalated` (`escalated_resolved` where the
 //! CPU proves a root, no root, or the beam's class).
 
-use beam_trace::backend::{Classified, RayQuery};
-use beam_trace::beam::{BeamSettings, BoxClass, Extent, evaluate_box};
+use beam_trace::backend::RayQuery;
+use beam_trace::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
 use beam_trace::ray::{Beam, BeamEval, Precision, RayFn};
 use beam_trace::root::{Escalating, RootCounters, RootFinder, RootResult, rounding_dominates};
 use beam_trace::{Plan, Scene};
@@ -74,73 +74,74 @@ pub(crate) fn escalate_open(
     total
 }
 
-/// Re-classifies on the CPU the Undecided `answers` of the beam queries `beams` (each with
-/// the parameters its kernel searched) where a higher precision may decide them
-/// ([`RayFn::escalation_helps`], in `f32` as the kernels evaluate), replacing
-/// them: EvaluateBox in `f64` from the start of the undecided piece, escalating to
-/// double-double where `f64` rounding dominates too. Returns the counters of that work.
-/// Nothing when the plan does not escalate.
+/// A beam a kernel left undecided: what the CPU needs to search it again.
+pub(crate) struct OpenBeam {
+    /// The beam.
+    pub beam: Beam,
+    /// The parameters its kernel searched.
+    pub searched: Interval<f64>,
+    /// Its kernel's undecided piece (everything before it is proven free of roots).
+    pub piece: Interval<f64>,
+    /// The tolerances of its search.
+    pub settings: BeamSettings,
+    /// Whether the inclusion test runs (EvaluateBox), or the rejection test alone.
+    pub inclusion: bool,
+}
+
+/// Classifies again on the CPU the undecided beams `open` where a higher precision may
+/// decide them ([`RayFn::escalation_helps`], in `f32` as the kernels evaluate): EvaluateBox
+/// (or the rejection test) in `f64` from the start of the undecided piece, escalating to
+/// double-double where `f64` does not decide them either. Returns, per beam, its new class
+/// (`None`: left as the kernel answered) and the counters of that work. Nothing when the
+/// plan does not escalate.
 pub(crate) fn escalate_open_beams(
     scene: &Scene,
     plan: &Plan,
-    beams: &[(Beam, Interval<f64>)],
-    answers: &mut [Classified],
-) -> RootCounters {
-    let mut total = RootCounters::default();
-    if !plan.beam.escalate {
-        return total;
-    }
-    let open: Vec<(usize, Interval<f64>)> = answers
-        .iter()
-        .enumerate()
-        .filter_map(|(i, a)| match a.class {
-            BoxClass::Undecided { t } => Some((i, t)),
-            _ => None,
-        })
-        .collect();
-    if open.is_empty() {
-        return total;
+    open: &[OpenBeam],
+) -> Vec<(Option<BoxClass>, RootCounters)> {
+    if !plan.beam.escalate || open.is_empty() {
+        return vec![(None, RootCounters::default()); open.len()];
     }
     let f = scene.geometry.ray_function();
     let bounds = scene.geometry.bounds();
-    let settings: BeamSettings = plan.beam;
-    let redone: Vec<(usize, Option<BoxClass>, RootCounters)> = open
-        .par_iter()
+    open.par_iter()
         .map_init(
             || BeamEval::new(f),
-            |ev, &(i, piece)| {
+            |ev, o| {
                 let mut c = RootCounters::default();
-                let (beam, searched) = &beams[i];
-                // Everything before the undecided piece is proven free of roots.
-                let rest = Interval::new_unchecked(piece.inf(), searched.sup().max(piece.inf()));
+                // Everything before the undecided piece is proven free of roots; the search
+                // stays inside the scene bounds, as on the CPU.
+                let rest =
+                    Interval::new_unchecked(o.piece.inf(), o.searched.sup().max(o.piece.inf()));
+                let Some(rest) = o.beam.t_range_within(&bounds, rest) else {
+                    return (None, c);
+                };
                 ev.set_precision(Precision::F32);
-                ev.set_beam(beam);
-                let now = ev.g(piece);
+                ev.set_beam(&o.beam);
+                let now = ev.g(o.piece);
                 c.g_evals += 1;
-                let dominated =
-                    ev.escalation_helps(piece, now, rest.sup(), settings.epsilon, &mut c);
+                let helps =
+                    ev.escalation_helps(o.piece, now, rest.sup(), o.settings.epsilon, &mut c);
                 ev.set_precision(Precision::F64);
-                if !dominated {
-                    return (i, None, c);
+                if !helps {
+                    return (None, c);
                 }
                 c.escalated += 1;
-                let extent = Extent {
-                    beam,
-                    bounds: &bounds,
+                ev.set_beam(&o.beam);
+                let class = if o.inclusion {
+                    let extent = Extent {
+                        beam: &o.beam,
+                        bounds: &bounds,
+                    };
+                    evaluate_box(ev, &[rest], Some(&extent), &o.settings, &mut c)
+                } else {
+                    rejection_search(ev, &[rest], &o.settings, &mut c)
                 };
-                let class = evaluate_box(ev, &[rest], Some(&extent), &settings, &mut c);
                 if !matches!(class, BoxClass::Undecided { .. }) {
                     c.escalated_resolved += 1;
                 }
-                (i, Some(class), c)
+                (Some(class), c)
             },
         )
-        .collect();
-    for (i, class, c) in redone {
-        if let Some(class) = class {
-            answers[i] = class.into();
-        }
-        total.add(&c);
-    }
-    total
+        .collect()
 }

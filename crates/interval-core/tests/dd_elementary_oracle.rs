@@ -235,7 +235,9 @@ fn extremes_and_special_cases() {
     // tan over a pole is the whole line; atan of the whole line is (−π/2, π/2) enclosed.
     assert_eq!(iv(1.0, 2.0).tan().to_interval(), Interval::ENTIRE);
     let a = DdInterval::ENTIRE.atan().to_interval();
-    assert!(a.contains(std::f64::consts::FRAC_PI_2) && a.sup() - std::f64::consts::FRAC_PI_2 < 1e-15);
+    assert!(
+        a.contains(std::f64::consts::FRAC_PI_2) && a.sup() - std::f64::consts::FRAC_PI_2 < 1e-15
+    );
     // asin and acos outside [−1, 1] are empty; at its ends, ±π/2, 0 and π.
     assert!(iv(1.5, 2.0).asin().is_empty());
     assert!(

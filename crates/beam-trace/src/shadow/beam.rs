@@ -18,10 +18,44 @@
 //! range differently and can differ on a few grazing cells; each fraction is a proven lower
 //! bound of the true one.
 
+use glam::DVec3;
+
 use super::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
+use super::patch::Patch;
 use super::spec::ShadowSpec;
 pub use super::spec::Strategy;
-use crate::beam::BoxClass;
+use crate::beam::{BeamSettings, BoxClass};
+use crate::sample::SHADOW_OFFSET;
+
+/// Width of a shadow beam's final pieces relative to their parameter (see
+/// [`BeamSettings::rel_epsilon`]).
+const SHADOW_REL_EPSILON: f64 = 1.0 / 16.0;
+
+/// The beam tolerances of a shadow beam from `from` over `light` (`t ∈ [0, 1]`) in a scene
+/// whose bounds have the diagonal `diagonal`, from the primary beams' `base`: pieces down to
+/// a tenth of the shadow offset in length, so that the first piece can be cleared of the
+/// surface the beam leaves; no `T_final` refinement. Every backend searches shadow beams
+/// with these.
+pub fn shadow_beam_settings(
+    base: &BeamSettings,
+    diagonal: f64,
+    from: DVec3,
+    light: &Patch,
+) -> BeamSettings {
+    let reach = light
+        .corners()
+        .iter()
+        .map(|c| c.distance(from))
+        .fold(0.0, f64::max)
+        .max(f64::MIN_POSITIVE);
+    let offset = SHADOW_OFFSET * diagonal;
+    BeamSettings {
+        epsilon: 0.1 * offset / reach,
+        rel_epsilon: SHADOW_REL_EPSILON,
+        refine_steps: 0,
+        ..*base
+    }
+}
 
 /// The beam method with `n × n` sub-beams.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]

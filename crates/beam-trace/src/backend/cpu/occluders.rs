@@ -5,43 +5,18 @@ use glam::DVec3;
 use interval_core::Interval;
 
 use super::queries::{CpuQueries, Evals};
-use crate::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
+use crate::beam::{BoxClass, Extent, evaluate_box, rejection_search};
 use crate::ray::{Beam, Ray, point_box};
 use crate::root::{Proof, RootCounters, RootFinder, RootResult};
-use crate::sample::SHADOW_OFFSET;
+use crate::shadow::beam::shadow_beam_settings;
 use crate::shadow::hard::segment_visibility;
 use crate::shadow::{Occluders, Occlusion, Patch};
-
-/// Width of a shadow beam's final pieces relative to their parameter (see
-/// [`BeamSettings::rel_epsilon`]).
-const SHADOW_REL_EPSILON: f64 = 1.0 / 16.0;
 
 /// The scene's occluders as the shadow methods see them: the CPU queries and one thread's
 /// evaluators.
 pub(super) struct SceneOccluders<'q, 'a, 'e> {
     pub(super) queries: &'q CpuQueries<'a>,
     pub(super) ev: &'e mut Evals,
-}
-
-impl CpuQueries<'_> {
-    /// The beam tolerances of a shadow beam from `from` over `light` (`t ∈ [0, 1]`): pieces
-    /// down to a tenth of the shadow offset in length, so that the first piece can be
-    /// cleared of the surface the beam leaves; no `T_final` refinement.
-    fn shadow_beam_settings(&self, from: DVec3, light: &Patch) -> BeamSettings {
-        let reach = light
-            .corners()
-            .iter()
-            .map(|c| c.distance(from))
-            .fold(0.0, f64::max)
-            .max(f64::MIN_POSITIVE);
-        let offset = SHADOW_OFFSET * self.scene.geometry.diagonal();
-        BeamSettings {
-            epsilon: 0.1 * offset / reach,
-            rel_epsilon: SHADOW_REL_EPSILON,
-            refine_steps: 0,
-            ..self.plan.beam
-        }
-    }
 }
 
 impl Occluders for SceneOccluders<'_, '_, '_> {
@@ -114,7 +89,12 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         if ranges.is_empty() {
             return BoxClass::Miss;
         }
-        let settings = self.queries.shadow_beam_settings(from, light);
+        let settings = shadow_beam_settings(
+            &self.queries.plan.beam,
+            self.queries.scene.geometry.diagonal(),
+            from,
+            light,
+        );
         self.ev.geo.beam.set_beam(&beam);
         if !inclusion {
             return rejection_search(&mut self.ev.geo.beam, &ranges, &settings, c);
