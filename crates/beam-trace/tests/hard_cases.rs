@@ -1667,3 +1667,58 @@ fn cancelling_beams_are_decided_by_escalation() {
         eprintln!("{formula}: {differ} pixels differ by more than 0.02");
     }
 }
+
+#[test]
+fn escalated_beams_class_random_cancelling_ellipsoids_soundly() {
+    // Ellipsoids with random centres and radii, each coordinate written with its own large
+    // terms that cancel, `((x − c) + K)² − 2K(x − c) − K²` for K from 1e3 to 1e12: the
+    // screen boxes and pixel beams of the default mode escalate, and every class they prove
+    // is checked against the exact ellipsoid (a grazing ray, whose answer rounding could
+    // change, proves nothing either way).
+    let mut state = 0x5851_f42d_4c95_7f2d_u64;
+    let mut next = move || {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        (state >> 11) as f64 / (1u64 << 53) as f64
+    };
+    let mut escalated = 0;
+    for case in 0..6 {
+        let c: [f64; 3] = std::array::from_fn(|_| 0.6 * next() - 0.3);
+        let r: [f64; 3] = std::array::from_fn(|_| 0.5 + 0.4 * next());
+        let k: [f64; 3] = std::array::from_fn(|_| 10f64.powi(3 + (9.0 * next()) as i32));
+        let terms: Vec<String> = ["x", "y", "z"]
+            .iter()
+            .enumerate()
+            .map(|(i, v)| {
+                let (ci, ki, ri) = (c[i], k[i], r[i]);
+                format!(
+                    "(({v} - ({ci:e}) + {ki:e})^2 - 2*{ki:e}*({v} - ({ci:e})) - {ksq:e}) / {rsq:e}",
+                    ksq = ki * ki,
+                    rsq = ri * ri
+                )
+            })
+            .collect();
+        let formula = format!("{} - 1", terms.join(" + "));
+        let scene = formula_scene(&formula, 1.25, 5.0, 24, "");
+        let out = run(&scene);
+        let truth = |ray: &Ray| {
+            // The ray in the ellipsoid's unit-sphere coordinates.
+            let o = DVec3::from_array(std::array::from_fn(|i| (ray.origin[i] - c[i]) / r[i]));
+            let d = DVec3::from_array(std::array::from_fn(|i| ray.dir[i] / r[i]));
+            let (a, b, cc) = (d.dot(d), o.dot(d), o.dot(o) - 1.0);
+            let disc = b * b - a * cc;
+            if disc.abs() <= 1e-9 * b * b {
+                None
+            } else {
+                Some(disc > 0.0 && b < 0.0)
+            }
+        };
+        check_classes(&formula, &scene, &out, truth);
+        let boxes = out.stats.pass("screen-boxes").unwrap();
+        assert!(boxes.counter("hit_pixels") > 0, "case {case}: {formula}");
+        escalated += boxes.counter("escalated_resolved");
+    }
+    // The K ≥ 1e6 terms keep f64 beams open: some escalations must have decided them.
+    assert!(escalated > 0);
+}
