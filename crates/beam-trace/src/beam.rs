@@ -88,7 +88,12 @@ pub fn child_window(parent: Option<&BoxClass>) -> Interval<f64> {
 /// A restriction of the scene function to a beam over the parameters `t` (a tape pruned by
 /// [`RayFn::restrict`], see [`RayFn::scope`]), which a beam lying inside that beam may start
 /// its own restrictions from: over any `t' ⊆ t` its rays' points lie in the region the tape
-/// was pruned for. Only meaningful to the evaluator (function and precision) that made it.
+/// was pruned for. Only meaningful to evaluators of the function it was pruned from. The
+/// pruning holds in real arithmetic (a `min` or `max` is decided only where the enclosures
+/// of its arguments are disjoint), so an evaluator of any precision may evaluate a scope
+/// made in another (escalated beams hand double-double scopes to `f64` beams and rays):
+/// its interval enclosures stay sound; only its rounded point values may differ in the last
+/// bits from the whole function's.
 #[derive(Clone, Debug, PartialEq)]
 pub struct BeamScope {
     /// The pruned tape.
@@ -296,12 +301,14 @@ fn escalating_search(
     again
 }
 
-/// The end of the range of `ranges` (increasing) that holds the start of `t`.
+/// The end of the range of `ranges` (increasing) that holds the start of `t`; should none
+/// hold it, the end of the last range (searching further is never wrong).
 fn rest_end(ranges: &[Interval<f64>], t: Interval<f64>) -> f64 {
+    let last = ranges.last().map_or(t.sup(), |r| r.sup()).max(t.sup());
     ranges
         .iter()
         .find(|r| r.inf() <= t.inf() && t.inf() <= r.sup())
-        .map_or(t.sup(), |r| r.sup())
+        .map_or(last, |r| r.sup())
 }
 
 /// Largest number of pieces a range is cut into from [`Inherited::near`].

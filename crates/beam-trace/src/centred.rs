@@ -56,9 +56,9 @@ impl Centred {
     /// An enclosure of `f` over every point of `b`, where `tape` is a ray tape of `f`
     /// (`g(c, t, d) = f(c + t·d)`, any restriction of it valid on `b`): the mean-value
     /// form with the centre's value in double-double. `None` where the form does not hold
-    /// (`f` not proven continuous on `b`, a bound not finite, a slope undefined).
+    /// (`f` not proven continuous on `b`, `b` empty or unbounded, a slope undefined).
     pub fn enclose(&mut self, tape: &Tape, b: &IBox) -> Option<DdInterval> {
-        if tape.var_count() > RAY_SLOTS || b.iter().any(|x| x.is_empty()) {
+        if tape.var_count() > RAY_SLOTS || !b.iter().all(|x| x.is_common_interval()) {
             return None;
         }
         self.value.set_tape(tape);

@@ -72,8 +72,9 @@ pub trait RayFn {
         None
     }
 
-    /// Returns to `previous` after [`escalate`](RayFn::escalate), with the evaluations of
-    /// that precision as they were.
+    /// Returns to `previous` after [`escalate`](RayFn::escalate), with the ray or beam of
+    /// that precision as it was (its restriction may have been undone in between: the whole
+    /// `g`, valid everywhere, is evaluated then).
     fn restore(&mut self, _previous: Precision) {}
 
     /// Whether a higher precision may decide the beam over `piece` (the first piece its

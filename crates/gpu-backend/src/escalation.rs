@@ -109,6 +109,9 @@ pub(crate) fn escalate_open_beams(
             || BeamEval::new(f),
             |ev, o| {
                 let mut c = RootCounters::default();
+                if o.piece.is_empty() {
+                    return (None, c);
+                }
                 // Everything before the undecided piece is proven free of roots; the search
                 // stays inside the scene bounds, as on the CPU.
                 let rest =
