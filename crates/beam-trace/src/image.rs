@@ -69,6 +69,55 @@ impl Image {
     }
 }
 
+/// Writes `frames` (all of one size) as an animated PNG (APNG) that plays at `rate` frames
+/// per second and loops; browsers and most image viewers play it, and a viewer without
+/// APNG shows the first frame. Written atomically, as [`Image::write_png`].
+///
+/// # Errors
+///
+/// [`Error::Io`] when there is no frame, the frames differ in size, the rate is not
+/// positive, or the file cannot be written.
+pub fn write_apng(frames: &[Image], rate: f64, path: &Path) -> Result<(), Error> {
+    let invalid = |m: String| Error::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidInput, m),
+    };
+    let Some(first) = frames.first() else {
+        return Err(invalid("an animation needs at least one frame".into()));
+    };
+    if let Some(f) = frames
+        .iter()
+        .find(|f| (f.width, f.height) != (first.width, first.height))
+    {
+        return Err(invalid(format!(
+            "frames of {} × {} and {} × {} pixels",
+            first.width, first.height, f.width, f.height
+        )));
+    }
+    if !(rate.is_finite() && rate > 0.0) {
+        return Err(invalid(format!(
+            "frames per second must be positive, got {rate}"
+        )));
+    }
+    // The delay of each frame as a fraction of a second, to a thousandth.
+    let delay_ms = (1000.0 / rate).round().clamp(1.0, f64::from(u16::MAX)) as u16;
+    write_atomic(path, |file| {
+        let mut enc = png::Encoder::new(BufWriter::new(file), first.width, first.height);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let n = u32::try_from(frames.len()).map_err(std::io::Error::other)?;
+        enc.set_animated(n, 0).map_err(std::io::Error::other)?;
+        enc.set_frame_delay(delay_ms, 1000)
+            .map_err(std::io::Error::other)?;
+        let mut w = enc.write_header().map_err(std::io::Error::other)?;
+        for f in frames {
+            w.write_image_data(&f.to_rgb8())
+                .map_err(std::io::Error::other)?;
+        }
+        w.finish().map_err(std::io::Error::other)
+    })
+}
+
 fn temp_path(path: &Path) -> PathBuf {
     let name = path
         .file_name()

@@ -12,6 +12,12 @@
 //! ```
 //!
 //! `SCENE` is a TOML scene file or the name of a catalog surface.
+//!
+//! A scene file with an `[animation]` table (`beam_trace::scene::animation`) is rendered
+//! frame by frame: `--out anim.png` writes `anim-0000.png`, `anim-0001.png`, … (numbered by
+//! the frame time `t`) and `anim.apng`, an animated PNG that plays at the file's rate; each
+//! frame's per-pass table is printed, and a summary at the end. The other outputs
+//! (`--classification`, `--stats`, …) are for single images.
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -19,7 +25,7 @@ use std::sync::Mutex;
 
 use beam_trace::image::{check_writable, write_atomic};
 use beam_trace::root::RootMethod;
-use beam_trace::scene::{AaMode, PrimaryMode};
+use beam_trace::scene::{AaMode, Animation, PrimaryMode};
 use beam_trace::shadow::ShadowSpec;
 use beam_trace::{Precision, Progress, Scene, render_on};
 use clap::Parser;
@@ -139,15 +145,32 @@ impl Progress for Bar {
     }
 }
 
-fn load(args: &Args) -> Result<Scene, String> {
-    let mut scene = match &args.scene {
+/// What the command renders: one scene, or the frames of an animated scene file.
+enum Source {
+    Still(Box<Scene>),
+    Frames(Animation),
+}
+
+fn source(args: &Args) -> Result<Source, String> {
+    let scene = match &args.scene {
         None => Scene::default_scene(),
-        Some(s) if Path::new(s).exists() => Scene::load(Path::new(s)).map_err(|e| e.to_string())?,
+        Some(s) if Path::new(s).exists() => {
+            let path = Path::new(s);
+            if let Some(a) = Animation::load(path).map_err(|e| e.to_string())? {
+                return Ok(Source::Frames(a));
+            }
+            Scene::load(path).map_err(|e| e.to_string())?
+        }
         Some(s) if !s.ends_with(".toml") => {
             Scene::catalog(s, 512, 512).map_err(|e| e.to_string())?
         }
         Some(s) => return Err(format!("{s}: no such scene file")),
     };
+    Ok(Source::Still(Box::new(scene)))
+}
+
+/// `scene` with the command line's settings applied.
+fn apply(args: &Args, mut scene: Scene) -> Result<Scene, String> {
     if args.width.is_some() || args.height.is_some() {
         let w = args.width.unwrap_or(scene.camera.width());
         let h = args.height.unwrap_or(scene.camera.height());
@@ -214,7 +237,10 @@ fn run(args: Args) -> Result<(), String> {
             .build_global()
             .map_err(|e| e.to_string())?;
     }
-    let scene = load(&args)?;
+    let scene = match source(&args)? {
+        Source::Still(scene) => apply(&args, *scene)?,
+        Source::Frames(animation) => return run_animation(&args, &animation),
+    };
     // Report unwritable outputs before the work starts.
     for p in [
         Some(&args.out),
@@ -245,13 +271,7 @@ fn run(args: Args) -> Result<(), String> {
         bar: Mutex::new(None),
         quiet: args.quiet,
     };
-    let backend: Box<dyn beam_trace::Backend> = if args.backend == "gpu" {
-        let gpu = gpu_backend::Gpu::new().map_err(|e| e.to_string())?;
-        println!("GPU adapter: {}", gpu.name());
-        Box::new(gpu_backend::GpuBackend::new(gpu))
-    } else {
-        Box::new(beam_trace::Cpu)
-    };
+    let backend = backend(&args)?;
     let plan = beam_trace::Plan::for_scene(&scene);
     print!("{plan}");
     print!(
@@ -288,6 +308,93 @@ fn run(args: Args) -> Result<(), String> {
             .map_err(|e| e.to_string())?;
         println!("wrote {}", p.display());
     }
+    Ok(())
+}
+
+/// The backend `--backend` names.
+fn backend(args: &Args) -> Result<Box<dyn beam_trace::Backend>, String> {
+    Ok(if args.backend == "gpu" {
+        let gpu = gpu_backend::Gpu::new().map_err(|e| e.to_string())?;
+        println!("GPU adapter: {}", gpu.name());
+        Box::new(gpu_backend::GpuBackend::new(gpu))
+    } else {
+        Box::new(beam_trace::Cpu)
+    })
+}
+
+/// `PATH` with `-SUFFIX.EXT` in place of its extension (`anim.png` → `anim-0007.png`).
+fn sibling(path: &Path, suffix: &str, ext: &str) -> PathBuf {
+    let stem = path
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "render".into());
+    path.with_file_name(format!("{stem}{suffix}.{ext}"))
+}
+
+/// Renders every frame of `animation`: numbered PNG files and an animated PNG.
+fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
+    let frames = animation.frames();
+    let count = frames.end() - frames.start() + 1;
+    let frame_file = |t: i64| sibling(&args.out, &format!("-{t:04}"), "png");
+    let apng = sibling(&args.out, "", "apng");
+    for p in [frame_file(*frames.start()), apng.clone()] {
+        check_writable(&p).map_err(|e| format!("cannot write output: {e}"))?;
+    }
+    println!(
+        "animation: {count} frame(s), t = {} ..= {}, {} frame(s) per second, {} value(s) \
+         written as formulas of t, {} thread(s)",
+        frames.start(),
+        frames.end(),
+        animation.rate(),
+        animation.time_values(),
+        rayon::current_num_threads()
+    );
+    let backend = backend(args)?;
+    let bar = Bar {
+        bar: Mutex::new(None),
+        quiet: args.quiet,
+    };
+    let start = std::time::Instant::now();
+    let mut images = Vec::new();
+    let mut slowest = (0.0f64, *frames.start());
+    for t in frames {
+        let scene = apply(args, animation.scene(t).map_err(|e| e.to_string())?)?;
+        if images.is_empty() {
+            let plan = beam_trace::Plan::for_scene(&scene);
+            print!("{plan}");
+            print!(
+                "{}",
+                beam_trace::Routing::new(backend.as_ref(), &scene, &plan)
+            );
+        }
+        let frame_start = std::time::Instant::now();
+        let out = render_on(&scene, backend.as_ref(), &bar).map_err(|e| e.to_string())?;
+        let seconds = frame_start.elapsed().as_secs_f64();
+        if seconds > slowest.0 {
+            slowest = (seconds, t);
+        }
+        let file = frame_file(t);
+        out.image.write_png(&file).map_err(|e| e.to_string())?;
+        println!(
+            "frame t = {t} ({}/{count}): {seconds:.3} s, wrote {}",
+            images.len() + 1,
+            file.display()
+        );
+        if !args.quiet {
+            println!("{}", out.stats);
+        }
+        images.push(out.image);
+    }
+    beam_trace::image::write_apng(&images, animation.rate(), &apng).map_err(|e| e.to_string())?;
+    let total = start.elapsed().as_secs_f64();
+    println!(
+        "{count} frame(s) in {total:.3} s ({:.3} s per frame, the slowest t = {} in {:.3} s); \
+         wrote {}",
+        total / count as f64,
+        slowest.1,
+        slowest.0,
+        apng.display()
+    );
     Ok(())
 }
 

@@ -20,6 +20,7 @@ use implicit_expr::Context;
 use serde::Deserialize;
 use toml::de::DeTable;
 
+use super::animation::Animation;
 use super::camera::camera;
 use super::csg::{Ref, csg_tree, ref_path, resolve_csg};
 use super::diagnostics::Doc;
@@ -43,6 +44,7 @@ fn build(
     doc: &Doc<'_>,
     raw: &RawScene,
     base: Option<&Path>,
+    time: Option<f64>,
 ) -> Result<(Scene, Option<DVec3>), Error> {
     let background = match raw.background {
         Some(c) => doc.color("background", c)?,
@@ -62,7 +64,7 @@ fn build(
     // Surfaces: source, parameters, bounds, transform, material.
     let mut built = Vec::with_capacity(raw.surfaces.len());
     for (i, s) in raw.surfaces.iter().enumerate() {
-        let b = build_surface(doc, i, s, base)?;
+        let b = build_surface(doc, i, s, base, time)?;
         let aff = match &s.transform {
             Some(t) => transform(doc, &format!("surfaces[{i}].transform"), t)?,
             None => Affine::new([0.0; 3], None, [1.0; 3])
@@ -254,6 +256,11 @@ impl Scene {
     /// precision = "f64"                 # f64 | f32 (interval evaluation of the scene function)
     /// ```
     ///
+    /// An `[animation]` table (`frames = [first, last]`, `rate = 25`) makes the file an
+    /// animation whose numbers may be formulas of the frame time `t`
+    /// ([`Animation`](super::Animation), `docs/animation.md`); this function builds its
+    /// first frame.
+    ///
     /// # Reference
     ///
     /// Unknown keys are errors everywhere. Numbers must be finite (TOML's `nan` and `inf` are
@@ -342,6 +349,20 @@ impl Scene {
     /// [`FromStr`]: std::str::FromStr
     /// [`RootMethod`]: crate::root::RootMethod
     pub fn from_toml(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Scene, Error> {
+        match Animation::from_toml(text, file, base_dir)? {
+            Some(a) => a.scene(*a.frames().start()),
+            None => Scene::from_toml_at(text, file, base_dir, None),
+        }
+    }
+
+    /// [`Scene::from_toml`] of a static file, with the frame time `t` bound in the surface
+    /// formulas when `time` is given (a frame of an [`Animation`]).
+    pub(super) fn from_toml_at(
+        text: &str,
+        file: &str,
+        base_dir: Option<&Path>,
+        time: Option<f64>,
+    ) -> Result<Scene, Error> {
         let mut doc = Doc {
             file,
             text,
@@ -351,7 +372,7 @@ impl Scene {
         doc.tree = Some(tree.clone());
         let raw = RawScene::deserialize(toml::Deserializer::from(tree))
             .map_err(|e| doc.serde_error(&e))?;
-        build(&doc, &raw, base_dir).map(|(s, _)| s)
+        build(&doc, &raw, base_dir, time).map(|(s, _)| s)
     }
 
     /// Reads the scene file at `path`; relative `.vm` paths are resolved against its folder.
@@ -400,8 +421,9 @@ impl Scene {
             csg: Vec::new(),
             lights: Vec::new(),
             render: RawRender::default(),
+            animation: None,
         };
-        let (mut scene, light) = build(&doc, &raw, None)?;
+        let (mut scene, light) = build(&doc, &raw, None, None)?;
         if let Some(position) = light {
             scene.lights.push(Light::Point(PointLight {
                 position,

@@ -8,6 +8,7 @@
 //! `max`, difference `a − b` = `max(a, −b)`: the point-set operations of thesis 6.3), and
 //! the scene function the union of the top-level objects.
 
+pub mod animation;
 mod camera;
 mod csg;
 mod diagnostics;
@@ -21,6 +22,7 @@ mod settings;
 mod surface;
 mod transform;
 
+pub use animation::Animation;
 pub use file::DEFAULT_SCENE;
 pub use geometry::{Csg, Geometry, Leaf};
 pub use material::Material;

@@ -19,6 +19,9 @@ pub(super) struct RawScene {
     pub(super) lights: Vec<RawLight>,
     #[serde(default)]
     pub(super) render: RawRender,
+    /// Read by [`Animation`](super::Animation); a frame's file keeps it.
+    #[allow(dead_code)]
+    pub(super) animation: Option<serde::de::IgnoredAny>,
 }
 
 #[derive(Deserialize, Default)]

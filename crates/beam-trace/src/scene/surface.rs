@@ -8,6 +8,7 @@ use implicit_expr::parse::{is_valid_param, parse, suggest};
 use implicit_expr::vm::import_vm;
 use implicit_expr::{Context, NodeId, catalog};
 
+use super::animation::TIME;
 use super::diagnostics::{Doc, fmt3};
 use super::material::Material;
 use super::schema::{RawMaterial, RawSurface};
@@ -116,11 +117,14 @@ pub(super) fn read_vm(
     String::from_utf8(bytes).map_err(|_| fail("not UTF-8 text".into()))
 }
 
+/// Builds surface `i` of the file; `time` is the frame time `t` of an animation, which its
+/// formula may use (unless a parameter of its own is called `t`).
 pub(super) fn build_surface(
     doc: &Doc<'_>,
     i: usize,
     s: &RawSurface,
     base: Option<&Path>,
+    time: Option<f64>,
 ) -> Result<Built, Error> {
     let at = |field: &str| format!("surfaces[{i}].{field}");
     let sources: Vec<&str> = [
@@ -186,7 +190,10 @@ pub(super) fn build_surface(
             };
             return Err(doc.err(&at(&format!("params.{k}")), format!("'{k}' {problem}")));
         }
-        let names: Vec<&str> = s.params.keys().map(String::as_str).collect();
+        let mut names: Vec<&str> = s.params.keys().map(String::as_str).collect();
+        if time.is_some() && !s.params.contains_key(TIME) {
+            names.push(TIME);
+        }
         let root = parse(&mut ctx, formula, &names)
             .map_err(|e| doc.err_detail(&at("formula"), &e, &formula_snippet(formula, &e)))?;
         (root, format!("surface-{i}"), None, false)
@@ -244,7 +251,7 @@ pub(super) fn build_surface(
                     .ok()
                     .and_then(|c| c.params.iter().find(|p| p.0 == var).map(|p| p.1))
             }),
-            None => s.params.get(var).copied(),
+            None => s.params.get(var).copied().or(time.filter(|_| var == TIME)),
         };
         let Some(v) = v else {
             return Err(doc.err(&at("params"), format!("no value for parameter '{var}'")));
