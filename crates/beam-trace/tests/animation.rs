@@ -16,7 +16,7 @@ rate = {rate}
 [camera]
 eye = [0.0, 1.0, 5.0]
 look_at = [0.0, 0.0, 0.0]
-width = 32
+width = "32 + 0*t"
 height = 24
 
 [[surfaces]]
@@ -98,8 +98,8 @@ fn every_frame_is_the_static_file_with_its_numbers() {
         .expect("animated");
     assert_eq!(a.frames(), 0..=3);
     assert_eq!(a.rate(), 12.0);
-    // a, translate x, rotate x and y, light x, light z.
-    assert_eq!(a.time_values(), 6);
+    // The width (an integer field), a, translate x, rotate x and y, light x, light z.
+    assert_eq!(a.time_values(), 7);
     let mut images = Vec::new();
     for t in a.frames() {
         let frame = render(&a.scene(t).expect("frame builds"), &NoProgress).expect("renders");

@@ -208,7 +208,13 @@ impl Animation {
                 ));
             }
             out.push_str(&self.text[at..v.span.start]);
-            out.push_str(&format!("{value:?}"));
+            // Whole values as integers, which the integer fields (`width`, …) need and the
+            // float fields accept; others in the shortest form that reads back exactly.
+            if value.fract() == 0.0 && value.abs() < 9.0e15 {
+                out.push_str(&format!("{}", value as i64));
+            } else {
+                out.push_str(&format!("{value:?}"));
+            }
             at = v.span.end;
         }
         out.push_str(&self.text[at..]);
