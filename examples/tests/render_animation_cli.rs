@@ -1,5 +1,6 @@
 //! The `render` example on an animated scene file, as a user runs it: one PNG per frame and
-//! an animated PNG, and an error naming the field and frame where a formula of `t` fails.
+//! an animated PNG, and an error naming the field and frame where a formula of `t` fails,
+//! before any frame is rendered.
 
 use std::path::PathBuf;
 use std::process::{Command, Output};
@@ -77,7 +78,7 @@ fn a_formula_of_t_without_a_value_is_an_error_naming_field_and_frame() {
         err.contains("lights[0].position[0]") && err.contains("t = 5"),
         "{err}"
     );
-    // The frames before the failing one were written; the animated file was not.
-    assert!(scratch("bad-0004.png").exists());
+    // Every frame is checked before the rendering starts: nothing was written.
+    assert!(!scratch("bad-0003.png").exists());
     assert!(!scratch("bad.apng").exists());
 }

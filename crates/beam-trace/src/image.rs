@@ -78,44 +78,88 @@ impl Image {
 /// [`Error::Io`] when there is no frame, the frames differ in size, the rate is not
 /// positive, or the file cannot be written.
 pub fn write_apng(frames: &[Image], rate: f64, path: &Path) -> Result<(), Error> {
-    let invalid = |m: String| Error::Io {
-        path: path.to_path_buf(),
-        source: std::io::Error::new(std::io::ErrorKind::InvalidInput, m),
-    };
-    let Some(first) = frames.first() else {
-        return Err(invalid("an animation needs at least one frame".into()));
-    };
-    if let Some(f) = frames
-        .iter()
-        .find(|f| (f.width, f.height) != (first.width, first.height))
-    {
-        return Err(invalid(format!(
-            "frames of {} × {} and {} × {} pixels",
-            first.width, first.height, f.width, f.height
-        )));
+    let size = frames.first().map_or((0, 0), |f| (f.width, f.height));
+    if let Some(f) = frames.iter().find(|f| (f.width, f.height) != size) {
+        return Err(invalid_input(
+            path,
+            format!(
+                "frames of {} × {} and {} × {} pixels",
+                size.0, size.1, f.width, f.height
+            ),
+        ));
+    }
+    let rgb: Vec<Vec<u8>> = frames.iter().map(Image::to_rgb8).collect();
+    write_apng_rgb8(size.0, size.1, &rgb, rate, path)
+}
+
+/// [`write_apng`] of frames already encoded as 8-bit RGB rows ([`Image::to_rgb8`]), each
+/// `width × height × 3` bytes: a long animation keeps a quarter of the memory of its
+/// [`Image`]s.
+///
+/// # Errors
+///
+/// As [`write_apng`], and when a frame has another number of bytes.
+pub fn write_apng_rgb8(
+    width: u32,
+    height: u32,
+    frames: &[Vec<u8>],
+    rate: f64,
+    path: &Path,
+) -> Result<(), Error> {
+    if frames.is_empty() {
+        return Err(invalid_input(
+            path,
+            "an animation needs at least one frame".into(),
+        ));
+    }
+    let bytes = width as usize * height as usize * 3;
+    if let Some(f) = frames.iter().find(|f| f.len() != bytes) {
+        return Err(invalid_input(
+            path,
+            format!(
+                "a frame of {} bytes, {width} × {height} RGB needs {bytes}",
+                f.len()
+            ),
+        ));
     }
     if !(rate.is_finite() && rate > 0.0) {
-        return Err(invalid(format!(
-            "frames per second must be positive, got {rate}"
-        )));
+        return Err(invalid_input(
+            path,
+            format!("frames per second must be positive, got {rate}"),
+        ));
     }
-    // The delay of each frame as a fraction of a second, to a thousandth.
-    let delay_ms = (1000.0 / rate).round().clamp(1.0, f64::from(u16::MAX)) as u16;
+    // The delay of each frame in seconds as a fraction: exactly 1/rate for whole rates,
+    // else to the nearest thousandth.
+    let (num, den) = if rate.fract() == 0.0 && rate <= f64::from(u16::MAX) {
+        (1, rate as u16)
+    } else {
+        (
+            (1000.0 / rate).round().clamp(1.0, f64::from(u16::MAX)) as u16,
+            1000,
+        )
+    };
     write_atomic(path, |file| {
-        let mut enc = png::Encoder::new(BufWriter::new(file), first.width, first.height);
+        let mut enc = png::Encoder::new(BufWriter::new(file), width, height);
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         let n = u32::try_from(frames.len()).map_err(std::io::Error::other)?;
         enc.set_animated(n, 0).map_err(std::io::Error::other)?;
-        enc.set_frame_delay(delay_ms, 1000)
+        enc.set_frame_delay(num, den)
             .map_err(std::io::Error::other)?;
         let mut w = enc.write_header().map_err(std::io::Error::other)?;
         for f in frames {
-            w.write_image_data(&f.to_rgb8())
-                .map_err(std::io::Error::other)?;
+            w.write_image_data(f).map_err(std::io::Error::other)?;
         }
         w.finish().map_err(std::io::Error::other)
     })
+}
+
+/// An [`Error::Io`] for invalid input to a writer of `path`.
+fn invalid_input(path: &Path, message: String) -> Error {
+    Error::Io {
+        path: path.to_path_buf(),
+        source: std::io::Error::new(std::io::ErrorKind::InvalidInput, message),
+    }
 }
 
 fn temp_path(path: &Path) -> PathBuf {

@@ -186,6 +186,7 @@ fn the_animated_png_holds_every_frame_at_the_rate() {
     std::fs::create_dir_all(&dir).expect("temp folder");
     let path = dir.join("anim.apng");
     beam_trace::image::write_apng(&frames, 12.5, &path).expect("writes");
+    // A whole rate is exact (1/12 s), another to the thousandth (1/12.5 s = 80 ms).
     let decoder = png::Decoder::new(std::io::BufReader::new(
         std::fs::File::open(&path).expect("opens"),
     ));
@@ -199,6 +200,15 @@ fn the_animated_png_holds_every_frame_at_the_rate() {
         assert_eq!((fc.delay_num, fc.delay_den), (80, 1000), "frame {k}");
         assert_eq!(&buf[..3], &frame.to_rgb8()[..3], "frame {k}");
     }
+    // A whole rate is exact.
+    beam_trace::image::write_apng(&frames, 12.0, &path).expect("writes");
+    let reader = png::Decoder::new(std::io::BufReader::new(
+        std::fs::File::open(&path).expect("opens"),
+    ))
+    .read_info()
+    .expect("a PNG");
+    let fc = reader.info().frame_control.expect("frame control");
+    assert_eq!((fc.delay_num, fc.delay_den), (1, 12));
     // Frames of different sizes, no frame or no rate are refused, naming the file.
     let mixed = [Image::new(4, 3, [0.0; 3]), Image::new(3, 4, [0.0; 3])];
     let e = beam_trace::image::write_apng(&mixed, 12.0, &path).unwrap_err();
@@ -206,4 +216,48 @@ fn the_animated_png_holds_every_frame_at_the_rate() {
     assert!(beam_trace::image::write_apng(&[], 12.0, &path).is_err());
     assert!(beam_trace::image::write_apng(&frames, 0.0, &path).is_err());
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn formulas_undefined_at_some_times_and_parameters_named_like_keys_are_read() {
+    // `1/(2t − 1)` has no value at t = 1/2, between frames; a parameter called `op` (a key
+    // of CSG tables elsewhere) is still a parameter.
+    let text = r#"
+[animation]
+frames = [1, 2]
+[camera]
+eye = [0.0, 0.0, 4.0]
+look_at = [0.0, 0.0, 0.0]
+width = 8
+height = 6
+[[surfaces]]
+formula = "x^2 + y^2 + z^2 - op"
+params = { op = "0.25 + 1/(2*t - 1)" }
+bounds = [[-2, -2, -2], [2, 2, 2]]
+"#;
+    let a = Animation::from_toml(text, "anim.toml", None)
+        .expect("reads")
+        .expect("animated");
+    assert_eq!(a.time_values(), 1);
+    for t in a.frames() {
+        a.scene(t).unwrap_or_else(|e| panic!("frame {t}: {e}"));
+    }
+    // A typo leaves a string where a number is needed: the error names the field.
+    let e = Scene::from_toml(
+        &text.replace("0.25 + 1/(2*t - 1)", "0.25 + sinn(t)"),
+        "anim.toml",
+        None,
+    )
+    .map(|_| ())
+    .unwrap_err()
+    .to_string();
+    assert!(e.contains("params.op"), "{e}");
+    // Frame ranges beyond ±1e9 (or the integer range) are refused, not overflowed.
+    for frames in ["[-9223372036854775808, 0]", "[0, 2000000000]"] {
+        let bad = text.replace("[1, 2]", frames);
+        let e = Animation::from_toml(&bad, "anim.toml", None)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("animation.frames"), "{e}");
+    }
 }

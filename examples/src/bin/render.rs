@@ -333,9 +333,31 @@ fn sibling(path: &Path, suffix: &str, ext: &str) -> PathBuf {
 
 /// Renders every frame of `animation`: numbered PNG files and an animated PNG.
 fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
+    for (given, name) in [
+        (args.stats.is_some(), "--stats"),
+        (args.classification.is_some(), "--classification"),
+        (args.cost_map.is_some(), "--cost-map"),
+        (args.shadow_classes.is_some(), "--shadow-classes"),
+        (args.shadow_fraction.is_some(), "--shadow-fraction"),
+    ] {
+        if given {
+            return Err(format!(
+                "{name} writes the outputs of one image; an animation writes its frames \
+                 (render a frame alone from a static copy of the file for it)"
+            ));
+        }
+    }
     let frames = animation.frames();
     let count = frames.end() - frames.start() + 1;
-    let frame_file = |t: i64| sibling(&args.out, &format!("-{t:04}"), "png");
+    // Numbered by t: `-0007`, `-m0003` for t = −3 (names sort by t from −9999 to 9999).
+    let frame_file = |t: i64| {
+        let number = if t < 0 {
+            format!("-m{:04}", t.unsigned_abs())
+        } else {
+            format!("-{t:04}")
+        };
+        sibling(&args.out, &number, "png")
+    };
     let apng = sibling(&args.out, "", "apng");
     for p in [frame_file(*frames.start()), apng.clone()] {
         check_writable(&p).map_err(|e| format!("cannot write output: {e}"))?;
@@ -349,13 +371,37 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         animation.time_values(),
         rayon::current_num_threads()
     );
+    // Every frame's scene is checked before any is rendered: a formula of `t` without a
+    // value, or frames of different sizes, are reported before the work starts.
+    let mut size = None;
+    for t in frames.clone() {
+        let scene = apply(args, animation.scene(t).map_err(|e| e.to_string())?)?;
+        let s = (scene.camera.width(), scene.camera.height());
+        match size {
+            None => size = Some(s),
+            Some(first) if first != s => {
+                return Err(format!(
+                    "frame t = {t} is {} × {} pixels, frame t = {} is {} × {}: the frames of \
+                     an animation must have one size",
+                    s.0,
+                    s.1,
+                    frames.start(),
+                    first.0,
+                    first.1
+                ));
+            }
+            _ => {}
+        }
+    }
+    let (width, height) = size.unwrap_or((0, 0));
     let backend = backend(args)?;
     let bar = Bar {
         bar: Mutex::new(None),
         quiet: args.quiet,
     };
     let start = std::time::Instant::now();
-    let mut images = Vec::new();
+    // Kept as 8-bit RGB for the animated file: a quarter of the memory of the images.
+    let mut images: Vec<Vec<u8>> = Vec::new();
     let mut slowest = (0.0f64, *frames.start());
     for t in frames {
         let scene = apply(args, animation.scene(t).map_err(|e| e.to_string())?)?;
@@ -383,9 +429,10 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         if !args.quiet {
             println!("{}", out.stats);
         }
-        images.push(out.image);
+        images.push(out.image.to_rgb8());
     }
-    beam_trace::image::write_apng(&images, animation.rate(), &apng).map_err(|e| e.to_string())?;
+    beam_trace::image::write_apng_rgb8(width, height, &images, animation.rate(), &apng)
+        .map_err(|e| e.to_string())?;
     let total = start.elapsed().as_secs_f64();
     println!(
         "{count} frame(s) in {total:.3} s ({:.3} s per frame, the slowest t = {} in {:.3} s); \

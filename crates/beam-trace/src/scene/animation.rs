@@ -22,7 +22,8 @@
 //!
 //! A string in place of a number is a formula of `t` alone, in the syntax of surface
 //! formulas; a string that is not one (a name, a formula of `x`, `y`, `z`, a method name)
-//! stays a string. Frame `t` is the file with every such string replaced by its value at
+//! stays a string, and a string that is not valid formula syntax stays a string too (where
+//! the file needs a number, the error then says a string was found). Frame `t` is the file with every such string replaced by its value at
 //! `t` (rounded to nearest in `f64`), and `t` bound in the surface formulas: exactly the
 //! scene a static file with those numbers describes, so a frame renders as that file does.
 //! [`Scene::from_toml`] on an animated file builds its first frame.
@@ -30,6 +31,7 @@
 use std::ops::{Range, RangeInclusive};
 use std::path::{Path, PathBuf};
 
+use implicit_expr::tape::Opcode;
 use implicit_expr::{Context, Evaluator, Tape};
 use serde::Deserialize;
 use toml::de::{DeTable, DeValue};
@@ -121,7 +123,8 @@ impl Animation {
             return Ok(None);
         };
         let [first, last] = raw.frames;
-        if first > last || first.abs() > 1_000_000_000 || last.abs() > 1_000_000_000 {
+        const LIMIT: std::ops::RangeInclusive<i64> = -1_000_000_000..=1_000_000_000;
+        if first > last || !LIMIT.contains(&first) || !LIMIT.contains(&last) {
             return Err(doc.err(
                 "animation.frames",
                 format!(
@@ -138,6 +141,7 @@ impl Animation {
         }
         let mut values = Vec::new();
         collect(tree.get_ref(), "", &mut values);
+        values.sort_by_key(|v| v.span.start);
         let animation = Animation {
             text: text.to_string(),
             file: file.to_string(),
@@ -210,7 +214,10 @@ impl Animation {
             out.push_str(&self.text[at..v.span.start]);
             // Whole values as integers, which the integer fields (`width`, …) need and the
             // float fields accept; others in the shortest form that reads back exactly.
-            if value.fract() == 0.0 && value.abs() < 9.0e15 {
+            if value.fract() == 0.0
+                && value.abs() < 9.0e15
+                && !(value == 0.0 && value.is_sign_negative())
+            {
                 out.push_str(&format!("{}", value as i64));
             } else {
                 out.push_str(&format!("{value:?}"));
@@ -222,21 +229,21 @@ impl Animation {
     }
 }
 
-/// Whether a string of the file (at `path`, whose last key is `key`) is a formula of `t`
-/// alone: its compiled tape, `None` otherwise.
-fn time_formula(key: &str, text: &str) -> Option<Tape> {
-    if STRING_KEYS.contains(&key) {
+/// Whether a string of the file at `path` is a formula of `t` alone: its compiled tape,
+/// `None` otherwise (a name, a formula of `x`, `y` or `z` such as a light's `normal = "y"`,
+/// a method name). Strings under the keys of [`STRING_KEYS`] are never formulas of `t`,
+/// except the values of a surface's `params`, whose keys are parameter names.
+fn time_formula(path: &str, text: &str) -> Option<Tape> {
+    let in_params = path.rsplit('.').nth(1) == Some("params");
+    if !in_params && STRING_KEYS.contains(&last_key(path)) {
         return None;
     }
     let mut ctx = Context::new();
     let root = implicit_expr::parse::parse(&mut ctx, text, &[TIME]).ok()?;
     let tape = Tape::new(&ctx, &[root]).ok()?;
-    // A formula of `x`, `y` or `z` (a light's `normal = "y"`, say) is not a number: its
-    // value with those unknown is not finite.
-    let v = Evaluator::<f64>::new(&tape)
-        .eval(&[f64::NAN, f64::NAN, f64::NAN, 0.5])
-        .ok()?;
-    v.is_finite().then_some(tape)
+    // A formula of `t` alone reads no variable slot but `t`'s (slot 3).
+    let reads_xyz = tape.instrs().iter().any(|i| i.op == Opcode::Var && i.a < 3);
+    (!reads_xyz).then_some(tape)
 }
 
 /// The last key of a field path (`lights[0].position[1]` → `position`).
@@ -250,7 +257,7 @@ fn collect(table: &DeTable<'_>, path: &str, out: &mut Vec<TimeValue>) {
     fn value(v: &toml::Spanned<DeValue<'_>>, path: &str, out: &mut Vec<TimeValue>) {
         match v.get_ref() {
             DeValue::String(s) => {
-                if let Some(tape) = time_formula(last_key(path), s) {
+                if let Some(tape) = time_formula(path, s) {
                     out.push(TimeValue {
                         span: v.span(),
                         path: path.to_string(),
@@ -278,5 +285,4 @@ fn collect(table: &DeTable<'_>, path: &str, out: &mut Vec<TimeValue>) {
         }
         value(v, &p, out);
     }
-    out.sort_by_key(|v| v.span.start);
 }
