@@ -219,6 +219,36 @@ proptest! {
     }
 }
 
+/// The exact `π·k/2` lies inside every enclosure `r` of it (checked at 400 bits).
+fn holds_half_pi_times(r: DdInterval, k: i32) {
+    let mut down = Float::with_val(PREC, rug::float::Constant::Pi);
+    down *= k;
+    down /= 2;
+    let (lo, hi) = r.bounds().expect("not empty");
+    let exact = down.to_rational().unwrap();
+    // π is irrational: the 400-bit value is within 2^-398 of it, far inside any gap tested.
+    let slack = Rational::from_f64(2f64.powi(-390)).unwrap();
+    assert!(
+        q(lo) <= Rational::from(&exact - &slack) && Rational::from(&exact + &slack) <= q(hi),
+        "{r} misses {k}·π/2"
+    );
+}
+
+#[test]
+fn exact_ends_of_the_inverse_functions_hold_the_irrational_values() {
+    let p = |x: f64| DdInterval::point(x);
+    holds_half_pi_times(p(1.0).asin(), 1);
+    holds_half_pi_times(p(-1.0).asin(), -1);
+    holds_half_pi_times(-p(-1.0).asin(), 1);
+    holds_half_pi_times(p(-1.0).acos(), 2);
+    holds_half_pi_times(p(0.0).acos(), 1);
+    holds_half_pi_times(DdInterval::ENTIRE.atan(), 1);
+    holds_half_pi_times(DdInterval::ENTIRE.atan(), -1);
+    holds_half_pi_times(p(1e300).atan(), 1);
+    // ln 10 through log10: log10(10) = 1 exactly, inside.
+    assert!(p(10.0).log10().contains(1.0));
+}
+
 #[test]
 fn extremes_and_special_cases() {
     let iv = |a: f64, b: f64| DdInterval::from_interval(Interval::new(a, b).unwrap());

@@ -56,10 +56,12 @@ const LN10_ERROR: f64 = 1e-32;
 /// [`HALF_PI`] and beyond).
 const HALF_PI_ERROR: f64 = 2e-33;
 
-/// An enclosure of `c[0] + c[1] ± error`.
+/// An enclosure of `c[0] + c[1] ± error`: the trailing part moved outward by at least one
+/// unit in its last place (an `error` below half of that unit would otherwise round away,
+/// leaving a point where the constant is irrational).
 fn constant(c: [f64; 2], error: f64) -> Option<DdInterval> {
-    let lo = Dd::from_sum(c[0], c[1] - error)?;
-    let hi = Dd::from_sum(c[0], c[1] + error)?;
+    let lo = Dd::from_sum(c[0], (c[1] - error).next_down())?;
+    let hi = Dd::from_sum(c[0], (c[1] + error).next_up())?;
     DdInterval::new(lo, hi).ok()
 }
 
