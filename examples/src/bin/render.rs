@@ -29,7 +29,7 @@ use beam_trace::scene::{AaMode, Animation, PrimaryMode};
 use beam_trace::shadow::ShadowSpec;
 use beam_trace::{Precision, Progress, Scene, render_on};
 use clap::Parser;
-use indicatif::{ProgressBar, ProgressStyle};
+use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 
 /// Reliable interval ray tracing of implicit surfaces.
 #[derive(Parser, Debug)]
@@ -117,6 +117,8 @@ struct Args {
 struct Bar {
     bar: Mutex<Option<ProgressBar>>,
     quiet: bool,
+    /// Where the pass bars go, below a frame bar (animations); `None`: on their own.
+    multi: Option<MultiProgress>,
 }
 
 impl Progress for Bar {
@@ -131,6 +133,10 @@ impl Progress for Bar {
                 .progress_chars("=> "),
         );
         b.set_prefix(pass.to_string());
+        let b = match &self.multi {
+            Some(m) => m.add(b),
+            None => b,
+        };
         *self.bar.lock().expect("progress lock") = Some(b);
     }
     fn advance(&self, n: u64) {
@@ -270,6 +276,7 @@ fn run(args: Args) -> Result<(), String> {
     let bar = Bar {
         bar: Mutex::new(None),
         quiet: args.quiet,
+        multi: None,
     };
     let backend = backend(&args)?;
     let plan = beam_trace::Plan::for_scene(&scene);
@@ -395,9 +402,26 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
     }
     let (width, height) = size.unwrap_or((0, 0));
     let backend = backend(args)?;
+    // A bar of the frames, with each frame's pass bars below it.
+    let multi = MultiProgress::new();
+    let frames_bar = if args.quiet {
+        ProgressBar::hidden()
+    } else {
+        let b = multi.add(ProgressBar::new(count as u64));
+        b.set_style(
+            ProgressStyle::with_template(
+                "{prefix:>13} [{bar:40}] {pos}/{len} {elapsed} (eta {eta})",
+            )
+            .expect("valid template")
+            .progress_chars("=> "),
+        );
+        b.set_prefix("frames");
+        b
+    };
     let bar = Bar {
         bar: Mutex::new(None),
         quiet: args.quiet,
+        multi: Some(multi.clone()),
     };
     let start = std::time::Instant::now();
     // Kept as 8-bit RGB for the animated file: a quarter of the memory of the images.
@@ -421,16 +445,21 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         }
         let file = frame_file(t);
         out.image.write_png(&file).map_err(|e| e.to_string())?;
-        println!(
+        let line = format!(
             "frame t = {t} ({}/{count}): {seconds:.3} s, wrote {}",
             images.len() + 1,
             file.display()
         );
-        if !args.quiet {
-            println!("{}", out.stats);
+        if args.quiet {
+            println!("{line}");
+        } else {
+            // Printed above the bars, which stay at the bottom.
+            multi.suspend(|| println!("{line}\n{}", out.stats));
         }
+        frames_bar.inc(1);
         images.push(out.image.to_rgb8());
     }
+    frames_bar.finish_and_clear();
     beam_trace::image::write_apng_rgb8(width, height, &images, animation.rate(), &apng)
         .map_err(|e| e.to_string())?;
     let total = start.elapsed().as_secs_f64();
