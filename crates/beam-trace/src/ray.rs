@@ -246,6 +246,16 @@ impl Precision {
         }
     }
 
+    /// The unit roundoff of the interval bounds' format: `2^-24` in `f32`, `2^-53` in `f64`
+    /// and for double-double (whose operations outside `+ − × /` and the elementary
+    /// functions round as `f64` does).
+    pub fn unit_roundoff(self) -> f64 {
+        match self {
+            Precision::F32 => f64::from(f32::EPSILON) / 2.0,
+            Precision::F64 | Precision::Dd => f64::EPSILON / 2.0,
+        }
+    }
+
     /// The next higher precision a query escalates to (`f32 → f64 → dd`), `None` after the
     /// highest.
     pub fn escalated(self) -> Option<Precision> {
@@ -408,14 +418,7 @@ impl BeamEval {
             return natural;
         }
         let tape = self.interval_dd.scope().clone();
-        let centred = self
-            .centred
-            .get_or_insert_with(|| Box::new(Centred::new(&tape)));
-        let beam = Beam {
-            origin: self.origin,
-            dir: self.dir,
-        };
-        match centred.enclose(&tape, &beam.points(t)) {
+        match self.centred_form(&tape, t) {
             Some(c) => {
                 // Both enclose g's values over the beam (which has some: natural is not
                 // empty), so they meet; keep natural should rounding say otherwise.
@@ -423,6 +426,28 @@ impl BeamEval {
                 if both.is_empty() { natural } else { both }
             }
             None => natural,
+        }
+    }
+
+    /// The centred form ([`Centred::enclose`]) of `tape`, a restriction of `g` valid on the
+    /// beam over `t`, over the box of the beam's points for `t`.
+    fn centred_form(&mut self, tape: &Tape, t: Interval<f64>) -> Option<DdInterval> {
+        let points = Beam {
+            origin: self.origin,
+            dir: self.dir,
+        }
+        .points(t);
+        self.centred
+            .get_or_insert_with(|| Box::new(Centred::new(tape)))
+            .enclose(tape, &points)
+    }
+
+    /// Sets the interval evaluator's ray or beam and then the restriction `scope` (which
+    /// must hold for it), as [`RayFn::set_scope`].
+    fn set_interval_ray_within(&mut self, origin: IBox, dir: IBox, scope: Option<&Tape>) {
+        self.set_interval_ray(origin, dir);
+        if let Some(scope) = scope {
+            self.set_scope(scope);
         }
     }
 }
@@ -541,14 +566,12 @@ impl RayFn for BeamEval {
         // On the central ray, with the current restriction: the rounding of `g` at `a`,
         // against the magnitude of `g` there and at the end of the range.
         let central = beam.central_ray();
-        self.set_interval_ray(point_box(central.origin), point_box(central.dir));
-        if let Some(scope) = &scope {
-            self.set_scope(scope);
-        }
-        let unit = match self.precision {
-            Precision::F32 => f64::from(f32::EPSILON) / 2.0,
-            Precision::F64 | Precision::Dd => f64::EPSILON / 2.0,
-        };
+        self.set_interval_ray_within(
+            point_box(central.origin),
+            point_box(central.dir),
+            scope.as_ref(),
+        );
+        let unit = self.precision.unit_roundoff();
         let lost = |rounding: f64, scale: f64| {
             rounding > 0.0 && scale.is_finite() && rounding >= LOSSY_ULPS * unit * scale
         };
@@ -562,10 +585,7 @@ impl RayFn for BeamEval {
         };
         let dominates =
             lossy && crate::root::rounding_dominates(self, piece.inf(), end, epsilon, counters);
-        self.set_interval_ray(origin, dir);
-        if let Some(scope) = &scope {
-            self.set_scope(scope);
-        }
+        self.set_interval_ray_within(origin, dir, scope.as_ref());
         if !lossy || dominates || !self.is_beam() {
             return dominates;
         }
@@ -576,13 +596,8 @@ impl RayFn for BeamEval {
         };
         counters.g_evals += 2;
         counters.dg_evals += 1;
-        let centred = self
-            .centred
-            .get_or_insert_with(|| Box::new(Centred::new(&tape)));
-        match centred.enclose(&tape, &beam.points(piece)) {
-            Some(c) => c.to_interval().wid() <= ESCALATE_NARROWER * now.wid(),
-            None => false,
-        }
+        self.centred_form(&tape, piece)
+            .is_some_and(|c| c.to_interval().wid() <= ESCALATE_NARROWER * now.wid())
     }
 
     fn unrestrict(&mut self) {

@@ -273,6 +273,24 @@ impl GpuQueries<'_> {
                 .kernel
                 .classify(self.gpu, &queries, &settings)
                 .map_err(backend)?;
+            for (&i, b) in picked.iter().zip(&answers) {
+                let c = RootCounters {
+                    g_evals: u64::from(b.steps),
+                    ..RootCounters::default()
+                };
+                let a = if group == 0 {
+                    Answer::Segment(Occlusion {
+                        visibility: visibility(b.class),
+                        at: match b.class {
+                            GpuClass::Miss => None,
+                            GpuClass::Hit { t } | GpuClass::Undecided { t } => Some(t.mid()),
+                        },
+                    })
+                } else {
+                    Answer::Beam(box_class(b.class))
+                };
+                out[i] = Some((a, c));
+            }
             // Undecided shadow beams where a higher precision may decide them: on the CPU.
             let (at, open): (Vec<usize>, Vec<OpenBeam>) = picked
                 .iter()
@@ -306,37 +324,16 @@ impl GpuQueries<'_> {
                     _ => None,
                 })
                 .unzip();
-            let mut again: Vec<Option<(Option<BoxClass>, RootCounters)>> = vec![None; picked.len()];
-            for (k, redo) in at
+            for (k, (class, extra)) in at
                 .into_iter()
                 .zip(escalate_open_beams(self.scene, self.plan, &open))
             {
-                again[k] = Some(redo);
-            }
-            for ((&i, b), redo) in picked.iter().zip(answers).zip(again) {
-                let mut c = RootCounters {
-                    g_evals: u64::from(b.steps),
-                    ..RootCounters::default()
-                };
-                if let Some((class, extra)) = redo {
+                if let Some((answer, c)) = out[picked[k]].as_mut() {
                     c.add(&extra);
                     if let Some(class) = class {
-                        out[i] = Some((Answer::Beam(class), c));
-                        continue;
+                        *answer = Answer::Beam(class);
                     }
                 }
-                let a = if group == 0 {
-                    Answer::Segment(Occlusion {
-                        visibility: visibility(b.class),
-                        at: match b.class {
-                            GpuClass::Miss => None,
-                            GpuClass::Hit { t } | GpuClass::Undecided { t } => Some(t.mid()),
-                        },
-                    })
-                } else {
-                    Answer::Beam(box_class(b.class))
-                };
-                out[i] = Some((a, c));
             }
         }
         Ok(out.into_iter().flatten().collect())

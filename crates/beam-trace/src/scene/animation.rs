@@ -110,17 +110,20 @@ impl Animation {
         file: &str,
         base_dir: Option<&Path>,
     ) -> Result<Option<Animation>, Error> {
-        let mut doc = Doc {
-            file,
-            text,
-            tree: None,
-        };
-        let tree = DeTable::parse(text).map_err(|e| doc.syntax_error(&e))?;
-        doc.tree = Some(tree.clone());
+        let doc = Doc::parse(file, text)?;
+        if !doc.has_key("animation") {
+            return Ok(None);
+        }
+        Animation::from_doc(&doc, base_dir).map(Some)
+    }
+
+    /// The animation of a parsed document that has an `[animation]` table.
+    pub(super) fn from_doc(doc: &Doc<'_>, base_dir: Option<&Path>) -> Result<Animation, Error> {
+        let tree = doc.tree.as_ref().expect("a parsed document");
         let only = AnimationOnly::deserialize(toml::Deserializer::from(tree.clone()))
             .map_err(|e| doc.serde_error(&e))?;
         let Some(raw) = only.animation else {
-            return Ok(None);
+            return Err(doc.err("animation", "expected an [animation] table"));
         };
         let [first, last] = raw.frames;
         const LIMIT: std::ops::RangeInclusive<i64> = -1_000_000_000..=1_000_000_000;
@@ -143,8 +146,8 @@ impl Animation {
         collect(tree.get_ref(), "", &mut values);
         values.sort_by_key(|v| v.span.start);
         let animation = Animation {
-            text: text.to_string(),
-            file: file.to_string(),
+            text: doc.text.to_string(),
+            file: doc.file.to_string(),
             base: base_dir.map(Path::to_path_buf),
             frames: first..=last,
             rate,
@@ -152,7 +155,7 @@ impl Animation {
         };
         // Every formula of `t` must give a number at the first frame.
         animation.frame_text(first)?;
-        Ok(Some(animation))
+        Ok(animation)
     }
 
     /// Reads an animated scene file (see [`Animation::from_toml`]).

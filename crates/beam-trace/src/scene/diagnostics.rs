@@ -139,6 +139,24 @@ pub(super) fn polish(msg: &str) -> String {
 }
 
 impl<'a> Doc<'a> {
+    /// The document of `text`, parsed into its syntax tree (with spans).
+    pub(super) fn parse(file: &'a str, text: &'a str) -> Result<Self, Error> {
+        let mut doc = Doc {
+            file,
+            text,
+            tree: None,
+        };
+        doc.tree = Some(DeTable::parse(text).map_err(|e| doc.syntax_error(&e))?);
+        Ok(doc)
+    }
+
+    /// Whether the document's top level has the table or key `key`.
+    pub(super) fn has_key(&self, key: &str) -> bool {
+        self.tree
+            .as_ref()
+            .is_some_and(|t| table_entry(t.get_ref(), key).is_some())
+    }
+
     /// A document without text (a scene built in code).
     pub(super) fn detached(file: &'a str) -> Self {
         Doc {

@@ -18,7 +18,6 @@ use std::path::Path;
 use glam::DVec3;
 use implicit_expr::Context;
 use serde::Deserialize;
-use toml::de::DeTable;
 
 use super::animation::Animation;
 use super::camera::camera;
@@ -349,10 +348,12 @@ impl Scene {
     /// [`FromStr`]: std::str::FromStr
     /// [`RootMethod`]: crate::root::RootMethod
     pub fn from_toml(text: &str, file: &str, base_dir: Option<&Path>) -> Result<Scene, Error> {
-        match Animation::from_toml(text, file, base_dir)? {
-            Some(a) => a.scene(*a.frames().start()),
-            None => Scene::from_toml_at(text, file, base_dir, None),
+        let doc = Doc::parse(file, text)?;
+        if doc.has_key("animation") {
+            let a = Animation::from_doc(&doc, base_dir)?;
+            return a.scene(*a.frames().start());
         }
+        Scene::from_doc(&doc, base_dir, None)
     }
 
     /// [`Scene::from_toml`] of a static file, with the frame time `t` bound in the surface
@@ -363,16 +364,15 @@ impl Scene {
         base_dir: Option<&Path>,
         time: Option<f64>,
     ) -> Result<Scene, Error> {
-        let mut doc = Doc {
-            file,
-            text,
-            tree: None,
-        };
-        let tree = DeTable::parse(text).map_err(|e| doc.syntax_error(&e))?;
-        doc.tree = Some(tree.clone());
+        Scene::from_doc(&Doc::parse(file, text)?, base_dir, time)
+    }
+
+    /// The scene of a parsed static document (see [`Scene::from_toml_at`]).
+    fn from_doc(doc: &Doc<'_>, base_dir: Option<&Path>, time: Option<f64>) -> Result<Scene, Error> {
+        let tree = doc.tree.clone().expect("a parsed document");
         let raw = RawScene::deserialize(toml::Deserializer::from(tree))
             .map_err(|e| doc.serde_error(&e))?;
-        build(&doc, &raw, base_dir, time).map(|(s, _)| s)
+        build(doc, &raw, base_dir, time).map(|(s, _)| s)
     }
 
     /// Reads the scene file at `path`; relative `.vm` paths are resolved against its folder.
