@@ -22,6 +22,7 @@
 use implicit_expr::Tape;
 use interval_core::Interval;
 
+use crate::free_ranges::covered;
 use crate::ibox::{IBox, ipoint};
 use crate::ray::{Beam, RayFn};
 use crate::root::RootCounters;
@@ -182,6 +183,7 @@ pub fn rejection_search(
         settings,
         false,
         Inherited::default(),
+        None,
         counters,
     )
     .0
@@ -204,6 +206,7 @@ pub fn evaluate_box(
         settings,
         true,
         Inherited::default(),
+        None,
         counters,
     )
     .0
@@ -221,27 +224,40 @@ pub struct Inherited<'a> {
     /// length again. The pieces are cut at other points than bisection's; every proof is
     /// the same kind.
     pub near: Option<Interval<f64>>,
+    /// Pieces of this beam's parameter range proven root-free by the search of a block of
+    /// frames whose geometry encloses this one's, in this search's precision (sorted by
+    /// lower end; see [`crate::free_ranges`]): a piece inside one of them is rejected
+    /// without evaluating `g`, with the outcome the evaluation would have had.
+    pub free: &'a [Interval<f64>],
 }
 
 /// [`evaluate_box`] for a beam lying inside a classified beam, starting from what it
 /// `inherited` from it. Also returns a restriction for the beams and rays inside this one:
 /// of a Hit, `g` restricted to the beam over `T_final`; of an Undecided beam, the
 /// restriction of the range its undecided piece lies in; `None` for a Miss.
+///
+/// With `record`, the pieces the search (in its first precision) proves root-free by a
+/// rejection test are appended to it: what a block of frames hands its frames as
+/// [`Inherited::free`].
 pub fn evaluate_box_within(
     g: &mut dyn RayFn,
     ranges: &[Interval<f64>],
     inherited: Inherited<'_>,
     extent: Option<&Extent<'_>>,
     settings: &BeamSettings,
+    record: Option<&mut Vec<Interval<f64>>>,
     counters: &mut RootCounters,
 ) -> (BoxClass, Option<BeamScope>) {
-    escalating_search(g, ranges, extent, settings, true, inherited, counters)
+    escalating_search(
+        g, ranges, extent, settings, true, inherited, record, counters,
+    )
 }
 
 /// [`search`], and where it ends undecided because rounding keeps `g` open (see
 /// [`BeamSettings::escalate`]), the search again in the next precision from the start of
 /// the undecided piece (every ray is proven root-free before it), over the rest of its
 /// range and the ranges after it. Counted in `escalated` and `escalated_resolved`.
+#[allow(clippy::too_many_arguments)]
 fn escalating_search(
     g: &mut dyn RayFn,
     ranges: &[Interval<f64>],
@@ -249,6 +265,7 @@ fn escalating_search(
     settings: &BeamSettings,
     inclusion: bool,
     inherited: Inherited<'_>,
+    record: Option<&mut Vec<Interval<f64>>>,
     counters: &mut RootCounters,
 ) -> (BoxClass, Option<BeamScope>) {
     let mut enclosure = Interval::EMPTY;
@@ -259,6 +276,7 @@ fn escalating_search(
         settings,
         inclusion,
         inherited,
+        record,
         &mut enclosure,
         counters,
     );
@@ -288,6 +306,7 @@ fn escalating_search(
             settings,
             inclusion,
             Inherited::default(),
+            None,
             &mut enclosure,
             counters,
         );
@@ -348,12 +367,14 @@ fn search(
     settings: &BeamSettings,
     inclusion: bool,
     inherited: Inherited<'_>,
+    mut record: Option<&mut Vec<Interval<f64>>>,
     enclosure: &mut Interval<f64>,
     counters: &mut RootCounters,
 ) -> (BoxClass, Option<BeamScope>) {
     let Inherited {
         scope: inherited,
         near,
+        free,
     } = inherited;
     let inside = |t: f64| extent.is_none_or(|e| e.holds(t));
     // Each piece carries the range it came from (its end: how far a look-ahead may go)
@@ -423,11 +444,20 @@ fn search(
             g.restrict(t);
             scope = g.scope().map(|tape| BeamScope { tape, t });
         }
+        if covered(free, t) {
+            // The block proved it: this evaluation would reject the piece.
+            counters.block_proven += 1;
+            continue;
+        }
         let (gt, continuous) = g.g_checked(t);
         counters.g_evals += 1;
-        if !may_vanish(gt)
-            || (!continuous && no_root_on_either_side(&mut Eval::new(g, counters), t))
-        {
+        if !may_vanish(gt) {
+            if let Some(r) = record.as_deref_mut() {
+                r.push(t);
+            }
+            continue;
+        }
+        if !continuous && no_root_on_either_side(&mut Eval::new(g, counters), t) {
             continue;
         }
         if inclusion

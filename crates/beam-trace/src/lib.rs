@@ -73,6 +73,7 @@ pub mod camera;
 pub mod centred;
 pub mod error;
 pub mod float_map;
+pub mod free_ranges;
 pub mod grid;
 pub mod ibox;
 pub mod image;

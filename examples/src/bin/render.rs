@@ -19,11 +19,13 @@
 //! frame's per-pass table is printed, and a summary at the end. The other outputs
 //! (`--classification`, `--stats`, …) are for single images.
 
+use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Mutex;
 
 use beam_trace::image::{check_writable, write_atomic};
+use beam_trace::render::{BlockReport, BlockSettings, Frames, render_blocks};
 use beam_trace::root::RootMethod;
 use beam_trace::scene::{AaMode, Animation, PrimaryMode};
 use beam_trace::shadow::ShadowSpec;
@@ -94,6 +96,12 @@ struct Args {
     /// Do not run root searches that rounding keeps open again in a higher precision.
     #[arg(long)]
     no_escalate: bool,
+    /// Frames per block of an animation (thesis 6.4): the screen boxes are classified once
+    /// per block over its frames' common n-surface, and each frame skips the tests those
+    /// proofs decide; every frame stays bit for bit the frame rendered alone. 1 renders
+    /// every frame alone; default: the file's `[animation] block`, else 1.
+    #[arg(long)]
+    block: Option<usize>,
     /// Regular grid resolution (0: no grid).
     #[arg(long)]
     grid: Option<u32>,
@@ -424,40 +432,59 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         multi: Some(multi.clone()),
     };
     let start = std::time::Instant::now();
-    // Kept as 8-bit RGB for the animated file: a quarter of the memory of the images.
-    let mut images: Vec<Vec<u8>> = Vec::new();
-    let mut slowest = (0.0f64, *frames.start());
-    for t in frames {
-        let scene = apply(args, animation.scene(t).map_err(|e| e.to_string())?)?;
-        if images.is_empty() {
-            let plan = beam_trace::Plan::for_scene(&scene);
-            print!("{plan}");
-            print!(
-                "{}",
-                beam_trace::Routing::new(backend.as_ref(), &scene, &plan)
-            );
-        }
-        let frame_start = std::time::Instant::now();
-        let out = render_on(&scene, backend.as_ref(), &bar).map_err(|e| e.to_string())?;
-        let seconds = frame_start.elapsed().as_secs_f64();
-        if seconds > slowest.0 {
-            slowest = (seconds, t);
-        }
-        let file = frame_file(t);
-        out.image.write_png(&file).map_err(|e| e.to_string())?;
-        let line = format!(
-            "frame t = {t} ({}/{count}): {seconds:.3} s, wrote {}",
-            images.len() + 1,
-            file.display()
+    let blocks = BlockSettings {
+        size: args.block.unwrap_or(animation.block()).max(1),
+        ..BlockSettings::default()
+    };
+    if blocks.size > 1 {
+        println!(
+            "blocks: up to {} frame(s), split where the frames differ in form or the \
+             n-surface leaves more than {:.1}x the pixels of its first frame open",
+            blocks.size, blocks.max_growth
         );
+    }
+    // Printed above the bars, which stay at the bottom.
+    let say = |text: String| {
         if args.quiet {
-            println!("{line}");
+            println!("{text}");
         } else {
-            // Printed above the bars, which stay at the bottom.
-            multi.suspend(|| println!("{line}\n{}", out.stats));
+            multi.suspend(|| println!("{text}"));
         }
-        frames_bar.inc(1);
-        images.push(out.image.to_rgb8());
+    };
+    // Kept as 8-bit RGB for the animated file: a quarter of the memory of the images.
+    let times: Vec<i64> = frames.collect();
+    let mut sink = FrameSink {
+        args,
+        animation,
+        times: &times,
+        file: &frame_file,
+        say: &say,
+        bar: &frames_bar,
+        images: Vec::new(),
+        slowest: (0.0, times[0]),
+        started: std::time::Instant::now(),
+    };
+    let first = sink.scene(0).map_err(|e| e.to_string())?;
+    let plan = beam_trace::Plan::for_scene(&first);
+    print!("{plan}");
+    print!(
+        "{}",
+        beam_trace::Routing::new(backend.as_ref(), &first, &plan)
+    );
+    drop(first);
+    let reports = render_blocks(times.len(), &mut sink, blocks, backend.as_ref(), &bar)
+        .map_err(|e| e.to_string())?;
+    let (images, slowest) = (sink.images, sink.slowest);
+    if blocks.size > 1 {
+        let (saved, cost) = reports
+            .iter()
+            .fold((0, 0), |(s, c), r| (s + r.saved, c + r.cost));
+        let formed = reports.iter().filter(|r| !r.passes.is_empty()).count();
+        println!(
+            "blocks: {formed} formed, {} split; their passes made {cost} interval evaluations \
+             and spared the frames {saved} rejection tests",
+            reports.iter().filter(|r| r.split.is_some()).count()
+        );
     }
     frames_bar.finish_and_clear();
     beam_trace::image::write_apng_rgb8(width, height, &images, animation.rate(), &apng)
@@ -472,6 +499,94 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         apng.display()
     );
     Ok(())
+}
+
+/// The frames of an animation for [`render_blocks`]: each frame's scene, and its output
+/// written as it comes.
+struct FrameSink<'a> {
+    args: &'a Args,
+    animation: &'a Animation,
+    times: &'a [i64],
+    file: &'a dyn Fn(i64) -> PathBuf,
+    say: &'a dyn Fn(String),
+    bar: &'a ProgressBar,
+    images: Vec<Vec<u8>>,
+    slowest: (f64, i64),
+    started: std::time::Instant,
+}
+
+impl Frames for FrameSink<'_> {
+    fn scene(&mut self, k: usize) -> Result<Scene, beam_trace::Error> {
+        let scene = self.animation.scene(self.times[k])?;
+        apply(self.args, scene).map_err(|message| beam_trace::Error::Setting {
+            name: "command line".into(),
+            message,
+        })
+    }
+
+    fn done(&mut self, k: usize, out: beam_trace::RenderOutput) -> Result<(), beam_trace::Error> {
+        let t = self.times[k];
+        // A frame's time includes its share of its block's pass (counted in its first frame).
+        let seconds = self.started.elapsed().as_secs_f64();
+        if seconds > self.slowest.0 {
+            self.slowest = (seconds, t);
+        }
+        let file = (self.file)(t);
+        out.image.write_png(&file)?;
+        (self.say)(format!(
+            "frame t = {t} ({}/{}): {seconds:.3} s, wrote {}\n{}",
+            self.images.len() + 1,
+            self.times.len(),
+            file.display(),
+            out.stats
+        ));
+        self.bar.inc(1);
+        self.images.push(out.image.to_rgb8());
+        self.started = std::time::Instant::now();
+        Ok(())
+    }
+
+    fn block(&mut self, report: &BlockReport) {
+        (self.say)(block_line(report, self.times));
+    }
+}
+
+/// What a block did: its frames, its own passes, and whether it was split.
+fn block_line(r: &BlockReport, times: &[i64]) -> String {
+    let t = |k: usize| times[k.min(times.len() - 1)];
+    let mut line = format!(
+        "block t = {} ..= {}: ",
+        t(r.first),
+        t(r.first + r.frames - 1)
+    );
+    if r.passes.is_empty() {
+        line.push_str("no common n-surface");
+    } else {
+        let _ = write!(
+            line,
+            "{:.3} s, {} piece(s) of {} beam(s) proven root-free, n-surface {:.2}x its first \
+             frame's open pixels",
+            r.time.as_secs_f64(),
+            r.proven.0,
+            r.proven.1,
+            r.growth
+        );
+        for p in &r.passes {
+            let counters: Vec<String> =
+                p.counters.iter().map(|(n, v)| format!("{n}={v}")).collect();
+            let _ = write!(
+                line,
+                "\n  {:<13} {:>8.1} ms  {}",
+                p.name,
+                p.time.as_secs_f64() * 1e3,
+                counters.join(" ")
+            );
+        }
+    }
+    if let Some(why) = &r.split {
+        let _ = write!(line, "\n  split: {why}");
+    }
+    line
 }
 
 /// The file of area light `light`'s map `what` under `prefix`.

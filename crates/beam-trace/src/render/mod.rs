@@ -10,6 +10,7 @@
 //! Each answer depends on its query alone and counters are sums over queries, so images
 //! and counters do not depend on the thread count, nor on how a pass cuts its batches.
 
+mod block;
 mod hard_shadows;
 mod images;
 mod pixel_beams;
@@ -18,6 +19,7 @@ mod primary;
 mod shading;
 mod soft_shadows;
 
+pub use block::{BlockReport, BlockSettings, Frames, render_blocks};
 pub use images::{box_class_color, classification_image, cost_image, shadow_class_image};
 
 use std::time::Instant;

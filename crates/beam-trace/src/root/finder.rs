@@ -108,6 +108,9 @@ pub struct RootCounters {
     pub escalated: u64,
     /// Escalated searches that ended proven (a root proven or no root).
     pub escalated_resolved: u64,
+    /// Rejection tests not evaluated because a block of frames proved them
+    /// ([`crate::free_ranges`]).
+    pub block_proven: u64,
 }
 
 impl RootCounters {
@@ -119,6 +122,7 @@ impl RootCounters {
         self.bisections += other.bisections;
         self.escalated += other.escalated;
         self.escalated_resolved += other.escalated_resolved;
+        self.block_proven += other.block_proven;
     }
 }
 

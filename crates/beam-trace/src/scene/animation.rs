@@ -5,6 +5,7 @@
 //! [animation]
 //! frames = [0, 99]       # t = 0, 1, …, 99 (inclusive)
 //! rate = 25              # frames per second of the animated file
+//! block = 5              # frames per block (optional, default 1: every frame alone)
 //!
 //! [[surfaces]]
 //! catalog = "orthocircle"
@@ -66,6 +67,7 @@ const STRING_KEYS: [&str; 13] = [
 struct RawAnimation {
     frames: [i64; 2],
     rate: Option<f64>,
+    block: Option<u32>,
 }
 
 /// Only the `[animation]` table of a file (the rest is read per frame).
@@ -93,6 +95,7 @@ pub struct Animation {
     base: Option<PathBuf>,
     frames: RangeInclusive<i64>,
     rate: f64,
+    block: usize,
     values: Vec<TimeValue>,
 }
 
@@ -142,6 +145,16 @@ impl Animation {
                 format!("frames per second must be positive, got {rate}"),
             ));
         }
+        let block = match raw.block {
+            Some(0) => {
+                return Err(doc.err(
+                    "animation.block",
+                    "frames per block must be at least 1 (1 renders every frame alone)",
+                ));
+            }
+            Some(n) => n as usize,
+            None => 1,
+        };
         let mut values = Vec::new();
         collect(tree.get_ref(), "", &mut values);
         values.sort_by_key(|v| v.span.start);
@@ -151,6 +164,7 @@ impl Animation {
             base: base_dir.map(Path::to_path_buf),
             frames: first..=last,
             rate,
+            block,
             values,
         };
         // Every formula of `t` must give a number at the first frame.
@@ -179,6 +193,12 @@ impl Animation {
     /// Frames per second.
     pub fn rate(&self) -> f64 {
         self.rate
+    }
+
+    /// Frames per block ([`crate::render::render_blocks`]): `[animation] block`, 1 when
+    /// absent (every frame alone).
+    pub fn block(&self) -> usize {
+        self.block
     }
 
     /// The number of fields written as formulas of `t`.

@@ -182,6 +182,7 @@ fn build(
             lights,
             geometry,
             settings,
+            proofs: None,
         },
         auto_light,
     ))

@@ -182,6 +182,18 @@ impl Geometry {
         for leaf in &mut leaves {
             leaf.node = absent_where_undefined(&mut ctx, leaf.node, &bounds);
         }
+        Self::from_parts(ctx, leaves, objects, bounds)
+    }
+
+    /// The geometry of leaves whose functions are final (made absent where undefined, as
+    /// [`Geometry::new`] makes them) and of `objects` over them (checked), searched inside
+    /// `bounds`.
+    pub(crate) fn from_parts(
+        mut ctx: Context,
+        leaves: Vec<Leaf>,
+        objects: Vec<Csg>,
+        bounds: IBox,
+    ) -> Result<Self, Error> {
         let nodes: Vec<NodeId> = leaves.iter().map(|l| l.node).collect();
         let object_roots: Vec<NodeId> = objects.iter().map(|o| o.build(&mut ctx, &nodes)).collect();
         let mut root = object_roots[0];

@@ -9,6 +9,7 @@
 //! the scene function the union of the top-level objects.
 
 pub mod animation;
+pub mod block;
 mod camera;
 mod csg;
 mod diagnostics;
@@ -23,6 +24,7 @@ mod surface;
 mod transform;
 
 pub use animation::Animation;
+pub use block::BlockMismatch;
 pub use file::DEFAULT_SCENE;
 pub use geometry::{Csg, Geometry, Leaf};
 pub use material::Material;

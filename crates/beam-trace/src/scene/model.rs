@@ -1,9 +1,12 @@
 //! What a scene is: its lights, render settings and the [`Scene`] itself.
 
+use std::sync::Arc;
+
 use glam::DVec3;
 
 use super::geometry::Geometry;
 use crate::camera::Camera;
+use crate::free_ranges::BlockProofs;
 use crate::ray::Precision;
 use crate::root::{RootMethod, RootSettings};
 use crate::shadow::{Patch, ShadowSpec};
@@ -269,4 +272,8 @@ pub struct Scene {
     pub geometry: Geometry,
     /// Render settings.
     pub settings: RenderSettings,
+    /// Proofs shared with a block of animation frames: recorded while the block's scene is
+    /// classified, reused by each frame's searches ([`crate::free_ranges`]). `None` for a
+    /// scene rendered on its own; never changes the image.
+    pub proofs: Option<Arc<BlockProofs>>,
 }

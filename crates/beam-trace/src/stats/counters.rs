@@ -4,9 +4,10 @@
 
 use crate::root::RootCounters;
 
-/// The root-search counters by name, in the order they are reported.
-pub fn search_counters(c: &RootCounters) -> [(&'static str, u64); 7] {
-    [
+/// The root-search counters by name, in the order they are reported; `block_proven` only
+/// where a block of frames handed proofs to the pass (it is 0 everywhere else).
+pub fn search_counters(c: &RootCounters) -> Vec<(&'static str, u64)> {
+    let mut v = vec![
         ("g_evals", c.g_evals),
         ("dg_evals", c.dg_evals),
         ("point_evals", c.point_evals),
@@ -14,7 +15,11 @@ pub fn search_counters(c: &RootCounters) -> [(&'static str, u64); 7] {
         ("escalated", c.escalated),
         ("escalated_resolved", c.escalated_resolved),
         ("escalated_open", c.escalated - c.escalated_resolved),
-    ]
+    ];
+    if c.block_proven > 0 {
+        v.push(("block_proven", c.block_proven));
+    }
+    v
 }
 
 /// Counters a pass reports: named, in a fixed order.

@@ -13,6 +13,7 @@ use crate::backend::query::{BeamQuery, Classified};
 use crate::beam::{
     BeamScope, BoxClass, Extent, Inherited, child_window, evaluate_box_within, forward,
 };
+use crate::free_ranges::{BeamKey, BlockProofs};
 use crate::grid::{Grid, GridEval};
 use crate::plan::Plan;
 use crate::ray::{Beam, BeamEval, Ray};
@@ -190,9 +191,21 @@ impl CpuQueries<'_> {
             Some(BoxClass::Undecided { t }) => Some(*t),
             _ => None,
         };
+        // A frame of a block searches with the block's proofs of this beam; the block's
+        // own pass records them.
+        let key = self.scene.proofs.as_ref().map(|_| BeamKey::of(beam));
+        let free = match (self.scene.proofs.as_deref(), &key) {
+            (Some(BlockProofs::Reuse(f)), Some(k)) => f.of(k),
+            _ => &[],
+        };
+        let mut record = match self.scene.proofs.as_deref() {
+            Some(BlockProofs::Record(_)) => Some(Vec::new()),
+            _ => None,
+        };
         let inherited = Inherited {
             scope: query.scope.as_ref(),
             near,
+            free,
         };
         let (class, scope) = evaluate_box_within(
             &mut ev.geo.beam,
@@ -200,8 +213,15 @@ impl CpuQueries<'_> {
             inherited,
             Some(&extent),
             &self.plan.beam,
+            record.as_mut(),
             c,
         );
+        if let (Some(BlockProofs::Record(m)), Some(k), Some(r)) =
+            (self.scene.proofs.as_deref(), key, record)
+            && let Ok(mut proofs) = m.lock()
+        {
+            proofs.add(k, &r);
+        }
         Classified { class, scope }
     }
 
