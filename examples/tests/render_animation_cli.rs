@@ -82,3 +82,39 @@ fn a_formula_of_t_without_a_value_is_an_error_naming_field_and_frame() {
     assert!(!scratch("bad-0003.png").exists());
     assert!(!scratch("bad.apng").exists());
 }
+
+#[test]
+fn blocks_of_frames_write_the_frames_rendered_alone() {
+    // Translated by 0.1(t − 4): frame 4 is not translated at all, which changes its graph,
+    // so the block of three splits and forms a block of two.
+    let scene = scratch("blocks.toml");
+    std::fs::write(&scene, SCENE.replace("RADIUS", "2*t")).unwrap();
+    let (alone, blocks) = (scratch("alone.png"), scratch("blocks.png"));
+    for (out, extra) in [(&alone, None), (&blocks, Some("3"))] {
+        let mut args = vec![
+            scene.to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ];
+        if let Some(n) = extra {
+            args.extend(["--block", n]);
+        }
+        let run = render(&args);
+        let stdout = String::from_utf8_lossy(&run.stdout);
+        assert!(
+            run.status.success(),
+            "{stdout}{}",
+            String::from_utf8_lossy(&run.stderr)
+        );
+        if extra.is_some() {
+            assert!(stdout.contains("block t = 3 ..= 5"), "{stdout}");
+            assert!(stdout.contains("changes form"), "{stdout}");
+        }
+    }
+    for t in 3..=5 {
+        let a = std::fs::read(scratch(&format!("alone-{t:04}.png"))).unwrap();
+        let b = std::fs::read(scratch(&format!("blocks-{t:04}.png"))).unwrap();
+        assert_eq!(a, b, "frame {t} differs");
+    }
+}

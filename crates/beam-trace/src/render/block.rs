@@ -146,10 +146,15 @@ pub trait Frames {
     fn block(&mut self, _report: &BlockReport) {}
 }
 
-/// Renders the `count` frames of `frames` in blocks (see the [module
-/// documentation](self)), handing each frame's output to [`Frames::done`] in order as soon
-/// as it is rendered; returns what each block did. Only one block's scenes are held at a
-/// time.
+/// Renders the `count` frames of `frames` in blocks of up to `settings.size` frames (thesis
+/// 6.4), handing each frame's output to [`Frames::done`] in order as soon as it is
+/// rendered; returns what each block did. Only one block's scenes are held at a time.
+///
+/// Each block's screen boxes are classified once over [`Scene::block_of`] its frames, and
+/// each frame skips the rejection tests those proofs decide ([`crate::free_ranges`]):
+/// every frame is bit for bit the frame rendered alone. Blocks split where the frames
+/// differ in form, where the n-surface grows past `settings.max_growth`, and (adaptive)
+/// where a block's proofs spared less than its passes cost.
 ///
 /// # Errors
 ///
@@ -172,8 +177,9 @@ pub fn render_blocks(
             .map(|k| frames.scene(k))
             .collect::<Result<Vec<_>, _>>()?;
         let before = reports.len();
+        let n = scenes.len();
         let mut run = Run {
-            scenes: &scenes,
+            scenes,
             offset: first,
             settings,
             backend,
@@ -181,7 +187,7 @@ pub fn render_blocks(
             frames,
             reports: &mut reports,
         };
-        run.block(0..scenes.len())?;
+        run.block(0..n)?;
         if settings.adaptive {
             let done = &reports[before..];
             let (saved, cost) = done
@@ -206,7 +212,7 @@ pub fn render_blocks(
 
 /// The blocks of one run of scenes.
 struct Run<'a, 'f> {
-    scenes: &'a [Scene],
+    scenes: Vec<Scene>,
     offset: usize,
     settings: BlockSettings,
     backend: &'a dyn Backend,
@@ -228,17 +234,10 @@ impl Run<'_, '_> {
         k: usize,
         proofs: Option<&Arc<BlockProofs>>,
     ) -> Result<(u64, usize), Error> {
-        let scene = &self.scenes[k];
-        let out = match proofs {
-            None => render_on(scene, self.backend, self.progress)?,
-            Some(p) => {
-                let with = Scene {
-                    proofs: Some(p.clone()),
-                    ..scene.clone()
-                };
-                render_on(&with, self.backend, self.progress)?
-            }
-        };
+        let scene = &mut self.scenes[k];
+        scene.proofs = proofs.cloned();
+        let out = render_on(scene, self.backend, self.progress)?;
+        scene.proofs = None;
         let saved = out
             .stats
             .passes
