@@ -101,6 +101,11 @@ pub struct BeamScope {
     pub tape: Tape,
     /// The parameters it holds for.
     pub t: Interval<f64>,
+    /// Whether it was pruned in a higher precision than the plan's (by an escalated
+    /// search, or inside a scope that was): its evaluation in the plan's precision is then
+    /// not the plain interval extension of the whole function, which the proofs of a block
+    /// of frames rely on ([`Inherited::free`]).
+    pub escalated: bool,
 }
 
 /// `[0, +∞]`: rays start at their origin.
@@ -269,6 +274,15 @@ fn escalating_search(
     counters: &mut RootCounters,
 ) -> (BoxClass, Option<BeamScope>) {
     let mut enclosure = Interval::EMPTY;
+    // A scope made from an escalated one is escalated too.
+    let tainted = inherited.scope.is_some_and(|s| s.escalated);
+    let mark = |(class, scope): (BoxClass, Option<BeamScope>), escalated: bool| {
+        let scope = scope.map(|s| BeamScope {
+            escalated: s.escalated || escalated,
+            ..s
+        });
+        (class, scope)
+    };
     let found = search(
         g,
         ranges,
@@ -281,7 +295,7 @@ fn escalating_search(
         counters,
     );
     if !settings.escalate {
-        return found;
+        return mark(found, tainted);
     }
     let mut restore = None;
     let mut again = found;
@@ -314,10 +328,11 @@ fn escalating_search(
             counters.escalated_resolved += 1;
         }
     }
+    let escalated = restore.is_some();
     if let Some(previous) = restore {
         g.restore(previous);
     }
-    again
+    mark(again, tainted || escalated)
 }
 
 /// The end of the range of `ranges` (increasing) that holds the start of `t`; should none
@@ -417,7 +432,11 @@ fn search(
                     }
                     _ => start,
                 };
-                range_scope = tape.map(|tape| BeamScope { tape, t: range });
+                range_scope = tape.map(|tape| BeamScope {
+                    tape,
+                    t: range,
+                    escalated: false,
+                });
                 range_scope.clone()
             }
             // Back to the range's restriction (a piece searched before this one may have
@@ -435,6 +454,12 @@ fn search(
                 Some(s)
             }
         };
+        if covered(free, t) {
+            // The block proved it: this piece's own evaluation would reject it (nothing
+            // is searched inside it, so it needs no restriction of its own).
+            counters.block_proven += 1;
+            continue;
+        }
         if let Some(s) = &scope
             && t.wid() <= RESTRICT_AGAIN * s.t.wid()
             && s.tape.len() > RESTRICT_MIN_LEN
@@ -442,12 +467,11 @@ fn search(
             // Deep enough below the last restriction: prune again, for this piece and
             // everything searched inside it.
             g.restrict(t);
-            scope = g.scope().map(|tape| BeamScope { tape, t });
-        }
-        if covered(free, t) {
-            // The block proved it: this evaluation would reject the piece.
-            counters.block_proven += 1;
-            continue;
+            scope = g.scope().map(|tape| BeamScope {
+                tape,
+                t,
+                escalated: false,
+            });
         }
         let (gt, continuous) = g.g_checked(t);
         counters.g_evals += 1;
@@ -517,7 +541,11 @@ fn hit(
 ) -> (BoxClass, Option<BeamScope>) {
     let t_final = t_final(g, t, settings, counters);
     g.restrict(t_final);
-    let scope = g.scope().map(|tape| BeamScope { tape, t: t_final });
+    let scope = g.scope().map(|tape| BeamScope {
+        tape,
+        t: t_final,
+        escalated: false,
+    });
     (BoxClass::Hit { t_final }, scope)
 }
 

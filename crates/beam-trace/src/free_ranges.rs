@@ -24,6 +24,9 @@ use interval_core::Interval;
 
 use crate::ray::Beam;
 
+/// Most pieces kept per beam (bounds the memory of a block's proofs).
+pub const MAX_PIECES: usize = 64;
+
 /// The bits of a beam's origin and direction boxes: equal keys, equal beams.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub struct BeamKey([u64; 12]);
@@ -48,13 +51,19 @@ pub struct FreeRanges {
 }
 
 impl FreeRanges {
-    /// Adds the pieces proven root-free for `beam`.
+    /// Adds the pieces proven root-free for `beam`; of a beam with more than
+    /// [`MAX_PIECES`], the widest are kept (a piece not kept costs the frames an
+    /// evaluation, never a wrong answer).
     pub fn add(&mut self, beam: BeamKey, pieces: &[Interval<f64>]) {
         if pieces.is_empty() {
             return;
         }
         let v = self.pieces.entry(beam).or_default();
         v.extend_from_slice(pieces);
+        if v.len() > MAX_PIECES {
+            v.sort_by(|a, b| b.wid().total_cmp(&a.wid()));
+            v.truncate(MAX_PIECES);
+        }
         v.sort_by(|a, b| a.inf().total_cmp(&b.inf()));
     }
 
@@ -97,9 +106,14 @@ pub fn covered(pieces: &[Interval<f64>], q: Interval<f64>) -> bool {
         .any(|p| q.sup() <= p.sup())
 }
 
-/// What a render does with block proofs.
+/// What a render does with block proofs. Opaque: only the block renderer
+/// ([`render_blocks`](crate::blocks::render_blocks)) makes them, for the frames its block
+/// encloses (proofs handed to any other scene could skip tests that do not reject).
 #[derive(Debug)]
-pub enum BlockProofs {
+pub struct BlockProofs(Role);
+
+#[derive(Debug)]
+enum Role {
     /// Record the pieces its beam searches prove root-free (the block's own pass).
     Record(Mutex<FreeRanges>),
     /// Skip the rejection tests these proofs decide (a frame of the block).
@@ -108,15 +122,42 @@ pub enum BlockProofs {
 
 impl BlockProofs {
     /// A recorder, empty.
-    pub fn recorder() -> Self {
-        BlockProofs::Record(Mutex::new(FreeRanges::default()))
+    pub(crate) fn recorder() -> Self {
+        BlockProofs(Role::Record(Mutex::new(FreeRanges::default())))
     }
 
-    /// The recorded proofs (empty for [`BlockProofs::Reuse`]).
-    pub fn into_recorded(self) -> FreeRanges {
-        match self {
-            BlockProofs::Record(m) => m.into_inner().unwrap_or_else(|p| p.into_inner()),
-            BlockProofs::Reuse(_) => FreeRanges::default(),
+    /// Proofs for the frames of the block that recorded them.
+    pub(crate) fn reuse(proven: FreeRanges) -> Self {
+        BlockProofs(Role::Reuse(proven))
+    }
+
+    /// The recorded proofs (empty for proofs being reused).
+    pub(crate) fn into_recorded(self) -> FreeRanges {
+        match self.0 {
+            Role::Record(m) => m.into_inner().unwrap_or_else(|p| p.into_inner()),
+            Role::Reuse(_) => FreeRanges::default(),
+        }
+    }
+
+    /// The proven pieces of `beam`, when these proofs are reused (empty otherwise).
+    pub(crate) fn free(&self, beam: &BeamKey) -> &[Interval<f64>] {
+        match &self.0 {
+            Role::Reuse(f) => f.of(beam),
+            Role::Record(_) => &[],
+        }
+    }
+
+    /// Whether these proofs record.
+    pub(crate) fn records(&self) -> bool {
+        matches!(self.0, Role::Record(_))
+    }
+
+    /// Records `pieces` proven root-free for `beam` (nothing when reusing).
+    pub(crate) fn record(&self, beam: BeamKey, pieces: &[Interval<f64>]) {
+        if let Role::Record(m) = &self.0
+            && let Ok(mut proofs) = m.lock()
+        {
+            proofs.add(beam, pieces);
         }
     }
 }

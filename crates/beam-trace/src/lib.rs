@@ -69,6 +69,7 @@
 pub mod aa;
 pub mod backend;
 pub mod beam;
+pub mod blocks;
 pub mod camera;
 pub mod centred;
 pub mod error;

@@ -3,7 +3,7 @@
 //! where the frames change form or the n-surface grows.
 
 use beam_trace::backend::cpu::Cpu;
-use beam_trace::render::{BlockReport, BlockSettings, Frames, render_blocks};
+use beam_trace::blocks::{BlockReport, BlockSettings, Frames, render_blocks};
 use beam_trace::scene::Animation;
 use beam_trace::{Error, Geometry, IBox, NoProgress, RenderOutput, Scene, render_on};
 use implicit_expr::Evaluator;

@@ -28,7 +28,7 @@ use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
 use beam_trace::backend::cpu::Cpu;
-use beam_trace::render::{BlockReport, BlockSettings, Frames, render_blocks};
+use beam_trace::blocks::{BlockReport, BlockSettings, Frames, render_blocks};
 use beam_trace::scene::Animation;
 use beam_trace::{Error, NoProgress, Pass, RenderOutput, Scene};
 use clap::Parser;

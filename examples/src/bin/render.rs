@@ -24,8 +24,8 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Mutex;
 
+use beam_trace::blocks::{BlockReport, BlockSettings, Frames, render_blocks};
 use beam_trace::image::{check_writable, write_atomic};
-use beam_trace::render::{BlockReport, BlockSettings, Frames, render_blocks};
 use beam_trace::root::RootMethod;
 use beam_trace::scene::{AaMode, Animation, PrimaryMode};
 use beam_trace::shadow::ShadowSpec;
@@ -452,16 +452,17 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         }
     };
     // Kept as 8-bit RGB for the animated file: a quarter of the memory of the images.
-    let times: Vec<i64> = frames.collect();
+    let first_t = *frames.start();
     let mut sink = FrameSink {
         args,
         animation,
-        times: &times,
+        first: first_t,
+        count: count as usize,
         file: &frame_file,
         say: &say,
         bar: &frames_bar,
         images: Vec::new(),
-        slowest: (0.0, times[0]),
+        slowest: (0.0, first_t),
         started: std::time::Instant::now(),
     };
     let first = sink.scene(0).map_err(|e| e.to_string())?;
@@ -472,7 +473,7 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         beam_trace::Routing::new(backend.as_ref(), &first, &plan)
     );
     drop(first);
-    let reports = render_blocks(times.len(), &mut sink, blocks, backend.as_ref(), &bar)
+    let reports = render_blocks(count as usize, &mut sink, blocks, backend.as_ref(), &bar)
         .map_err(|e| e.to_string())?;
     let (images, slowest) = (sink.images, sink.slowest);
     if blocks.size > 1 {
@@ -506,7 +507,9 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
 struct FrameSink<'a> {
     args: &'a Args,
     animation: &'a Animation,
-    times: &'a [i64],
+    /// `t` of the first frame; frame `k` is `first + k`.
+    first: i64,
+    count: usize,
     file: &'a dyn Fn(i64) -> PathBuf,
     say: &'a dyn Fn(String),
     bar: &'a ProgressBar,
@@ -517,7 +520,7 @@ struct FrameSink<'a> {
 
 impl Frames for FrameSink<'_> {
     fn scene(&mut self, k: usize) -> Result<Scene, beam_trace::Error> {
-        let scene = self.animation.scene(self.times[k])?;
+        let scene = self.animation.scene(self.first + k as i64)?;
         apply(self.args, scene).map_err(|message| beam_trace::Error::Setting {
             name: "command line".into(),
             message,
@@ -525,7 +528,7 @@ impl Frames for FrameSink<'_> {
     }
 
     fn done(&mut self, k: usize, out: beam_trace::RenderOutput) -> Result<(), beam_trace::Error> {
-        let t = self.times[k];
+        let t = self.first + k as i64;
         // A frame's time includes its share of its block's pass (counted in its first frame).
         let seconds = self.started.elapsed().as_secs_f64();
         if seconds > self.slowest.0 {
@@ -536,7 +539,7 @@ impl Frames for FrameSink<'_> {
         (self.say)(format!(
             "frame t = {t} ({}/{}): {seconds:.3} s, wrote {}\n{}",
             self.images.len() + 1,
-            self.times.len(),
+            self.count,
             file.display(),
             out.stats
         ));
@@ -547,13 +550,13 @@ impl Frames for FrameSink<'_> {
     }
 
     fn block(&mut self, report: &BlockReport) {
-        (self.say)(block_line(report, self.times));
+        (self.say)(block_line(report, self.first));
     }
 }
 
 /// What a block did: its frames, its own passes, and whether it was split.
-fn block_line(r: &BlockReport, times: &[i64]) -> String {
-    let t = |k: usize| times[k.min(times.len() - 1)];
+fn block_line(r: &BlockReport, first: i64) -> String {
+    let t = |k: usize| first + k as i64;
     let mut line = format!(
         "block t = {} ..= {}: ",
         t(r.first),

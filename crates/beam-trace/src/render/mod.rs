@@ -10,7 +10,6 @@
 //! Each answer depends on its query alone and counters are sums over queries, so images
 //! and counters do not depend on the thread count, nor on how a pass cuts its batches.
 
-mod block;
 mod hard_shadows;
 mod images;
 mod pixel_beams;
@@ -19,7 +18,6 @@ mod primary;
 mod shading;
 mod soft_shadows;
 
-pub use block::{BlockReport, BlockSettings, Frames, render_blocks};
 pub use images::{box_class_color, classification_image, cost_image, shadow_class_image};
 
 use std::time::Instant;
@@ -261,6 +259,28 @@ pub fn render_on<'a>(
         },
         plan,
     })
+}
+
+/// The grid and screen-box passes alone, on the CPU, with `plan`: their statistics and
+/// each pixel's box class (what a block of animation frames proves once for its frames,
+/// [`crate::blocks`]). Nothing when the plan has no screen boxes.
+///
+/// # Errors
+///
+/// Never on the CPU; the error type is the pipeline's.
+pub(crate) fn screen_box_pass(
+    scene: &Scene,
+    plan: &Plan,
+    progress: &dyn Progress,
+) -> Result<(Vec<PassStats>, Vec<Option<BoxClass>>), Error> {
+    if !plan.runs(Pass::ScreenBoxes) {
+        return Ok((Vec::new(), Vec::new()));
+    }
+    let routing = Routing::new(&Cpu, scene, plan);
+    let (queries, mut passes) = routing.prepare(&Cpu, scene, plan)?;
+    let (classes, _, stats) = primary::screen_boxes(&queries, scene, plan, progress)?;
+    passes.push(stats);
+    Ok((passes, classes.iter().map(|c| c.map(|c| c.0)).collect()))
 }
 
 /// Rows of pixels a pass hands the backend per batch: batches big enough to keep every

@@ -195,7 +195,7 @@ impl Animation {
         self.rate
     }
 
-    /// Frames per block ([`crate::render::render_blocks`]): `[animation] block`, 1 when
+    /// Frames per block ([`crate::blocks::render_blocks`]): `[animation] block`, 1 when
     /// absent (every frame alone).
     pub fn block(&self) -> usize {
         self.block

@@ -153,25 +153,36 @@ impl Merge<'_> {
                 continue;
             }
             let arg = |k: usize| self.built[&args[k]];
-            let n = match nodes[0] {
-                Node::Var(v) => self.out.var(v).ok()?,
-                Node::Const(_) => {
-                    let c = hull(&nodes)?;
-                    self.out.constant_enclosed(c)
-                }
-                Node::Unary(op, _) => {
-                    let a = arg(0);
-                    self.out.unary(op, a)
-                }
+            // The node the frames' nodes stand for, built through the context's simplifying
+            // constructors; it must come out in exactly that form. A simplification (two
+            // arguments that became one node, `a − a`, `a·a`, `min(a, a)`, folded constants)
+            // would make it something other than the operation on the wider arguments:
+            // then the frames have no block.
+            let wanted = match nodes[0] {
+                Node::Var(v) => Node::Var(v),
+                Node::Const(_) => Node::Const(hull(&nodes)?),
+                Node::Unary(op, _) => Node::Unary(op, arg(0)),
                 Node::Binary(op, _, _) => {
+                    // In the order the context keeps a commutative operation's arguments.
                     let (a, b) = (arg(0), arg(1));
-                    self.out.binary(op, a, b)
+                    if op.is_commutative() && b < a {
+                        Node::Binary(op, b, a)
+                    } else {
+                        Node::Binary(op, a, b)
+                    }
                 }
-                Node::Pown(_, k) => {
-                    let a = arg(0);
-                    self.out.pown(a, k)
-                }
+                Node::Pown(_, k) => Node::Pown(arg(0), k),
             };
+            let n = match wanted {
+                Node::Var(v) => self.out.var(v).ok()?,
+                Node::Const(c) => self.out.constant_enclosed(c),
+                Node::Unary(op, a) => self.out.unary(op, a),
+                Node::Binary(op, a, b) => self.out.binary(op, a, b),
+                Node::Pown(a, k) => self.out.pown(a, k),
+            };
+            if *self.out.get(n) != wanted {
+                return None;
+            }
             self.built.insert(key, n);
         }
         self.built.get(&roots).copied()

@@ -274,6 +274,8 @@ pub struct Scene {
     pub settings: RenderSettings,
     /// Proofs shared with a block of animation frames: recorded while the block's scene is
     /// classified, reused by each frame's searches ([`crate::free_ranges`]). `None` for a
-    /// scene rendered on its own; never changes the image.
+    /// scene rendered on its own; never changes the image. Set only by
+    /// [`render_blocks`](crate::blocks::render_blocks), for scenes the block encloses
+    /// ([`BlockProofs`] cannot be made elsewhere).
     pub proofs: Option<Arc<BlockProofs>>,
 }

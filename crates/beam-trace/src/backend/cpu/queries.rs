@@ -13,10 +13,10 @@ use crate::backend::query::{BeamQuery, Classified};
 use crate::beam::{
     BeamScope, BoxClass, Extent, Inherited, child_window, evaluate_box_within, forward,
 };
-use crate::free_ranges::{BeamKey, BlockProofs};
+use crate::free_ranges::BeamKey;
 use crate::grid::{Grid, GridEval};
 use crate::plan::Plan;
-use crate::ray::{Beam, BeamEval, Ray};
+use crate::ray::{Beam, BeamEval, Precision, Ray};
 use crate::root::{Escalating, RayFn, RootCounters, RootFinder, RootResult};
 use crate::sample::Hit;
 use crate::scene::Scene;
@@ -193,15 +193,18 @@ impl CpuQueries<'_> {
         };
         // A frame of a block searches with the block's proofs of this beam; the block's
         // own pass records them.
-        let key = self.scene.proofs.as_ref().map(|_| BeamKey::of(beam));
-        let free = match (self.scene.proofs.as_deref(), &key) {
-            (Some(BlockProofs::Reuse(f)), Some(k)) => f.of(k),
+        let proofs = self.scene.proofs.as_deref();
+        let key = proofs.map(|_| BeamKey::of(beam));
+        // Not below a scope pruned in a higher precision, nor in double-double (whose
+        // centred form is not evaluated operation by operation): there the frame's own
+        // evaluation need not lie inside the block's.
+        let plain = query.scope.as_ref().is_none_or(|s| !s.escalated)
+            && self.plan.precision != Precision::Dd;
+        let free = match (proofs, &key) {
+            (Some(p), Some(k)) if plain => p.free(k),
             _ => &[],
         };
-        let mut record = match self.scene.proofs.as_deref() {
-            Some(BlockProofs::Record(_)) => Some(Vec::new()),
-            _ => None,
-        };
+        let mut record = proofs.filter(|p| p.records()).map(|_| Vec::new());
         let inherited = Inherited {
             scope: query.scope.as_ref(),
             near,
@@ -216,11 +219,8 @@ impl CpuQueries<'_> {
             record.as_mut(),
             c,
         );
-        if let (Some(BlockProofs::Record(m)), Some(k), Some(r)) =
-            (self.scene.proofs.as_deref(), key, record)
-            && let Ok(mut proofs) = m.lock()
-        {
-            proofs.add(k, &r);
+        if let (Some(p), Some(k), Some(r)) = (proofs, key, record) {
+            p.record(k, &r);
         }
         Classified { class, scope }
     }

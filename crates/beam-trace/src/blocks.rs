@@ -20,14 +20,14 @@ use std::ops::Range;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use super::{RenderOutput, primary, render_on};
-use crate::backend::cpu::Cpu;
-use crate::backend::{Backend, Routing};
+use crate::backend::Backend;
 use crate::beam::BoxClass;
 use crate::error::Error;
 use crate::free_ranges::{BlockProofs, FreeRanges};
-use crate::plan::{Pass, Plan};
+use crate::plan::Plan;
 use crate::progress::Progress;
+use crate::ray::Precision;
+use crate::render::{RenderOutput, render_on, screen_box_pass};
 use crate::scene::Scene;
 use crate::stats::PassStats;
 
@@ -102,20 +102,17 @@ fn prove(
     // Only rejections in the plan's precision are recorded: an escalated search would
     // prove nothing the frames can use.
     plan.beam.escalate = false;
-    if !plan.runs(Pass::ScreenBoxes) {
+    if plan.precision == Precision::Dd {
+        // Double-double beams are narrowed by a centred form, which is not evaluated
+        // operation by operation: the frames could not rely on its proofs.
         return Ok((FreeRanges::default(), Vec::new(), 0));
     }
-    let routing = Routing::new(&Cpu, &scene, &plan);
-    let (queries, mut passes) = routing.prepare(&Cpu, &scene, &plan)?;
-    let (classes, _, stats) = primary::screen_boxes(&queries, &scene, &plan, progress)?;
-    passes.push(stats);
-    drop(queries);
+    let (passes, classes) = screen_box_pass(&scene, &plan, progress)?;
     drop(scene);
-    let open = classes.iter().map(|c| c.map(|c| c.0)).collect::<Vec<_>>();
     let recorded = Arc::try_unwrap(recorder)
         .map(BlockProofs::into_recorded)
         .unwrap_or_default();
-    Ok((recorded, passes, open_pixels(&open)))
+    Ok((recorded, passes, open_pixels(&classes)))
 }
 
 /// Interval evaluations counted by passes.
@@ -193,13 +190,15 @@ pub fn render_blocks(
             let (saved, cost) = done
                 .iter()
                 .fold((0, 0), |(s, c), r| (s + r.saved, c + r.cost));
+            let formed = done.iter().any(|r| !r.passes.is_empty());
             if size == 1 {
                 // After `max` frames alone, try a block again.
                 alone += 1;
                 if alone >= max && max > 1 {
                     (size, alone) = (2, 0);
                 }
-            } else if saved < cost {
+            } else if !formed || saved < cost {
+                // No block could be formed, or its proofs spared less than it cost.
                 size = (size / 2).max(1);
             } else {
                 size = (size * 2).min(max);
@@ -282,7 +281,7 @@ impl Run<'_, '_> {
         report.cost = evaluations(&passes);
         report.passes = passes;
         report.proven = (proven.len(), proven.beams());
-        let proofs = Arc::new(BlockProofs::Reuse(proven));
+        let proofs = Arc::new(BlockProofs::reuse(proven));
         let (saved, first_open) = self.frame(a, Some(&proofs))?;
         report.saved = saved;
         report.growth = open as f64 / first_open.max(1) as f64;
