@@ -5,6 +5,7 @@
 use beam_trace::backend::cpu::Cpu;
 use beam_trace::blocks::{BlockReport, BlockSettings, Frames, render_blocks};
 use beam_trace::scene::Animation;
+use beam_trace::stats::PassStats;
 use beam_trace::{Error, Geometry, IBox, NoProgress, RenderOutput, Scene, render_on};
 use implicit_expr::Evaluator;
 use interval_core::Interval;
@@ -136,8 +137,8 @@ fn fixed(size: usize) -> BlockSettings {
 }
 
 /// Renders the frames alone and in blocks of `size`; every image, classification and
-/// coverage must be equal; returns the blocks' reports.
-fn assert_blocks_match_frames(text: &str, size: usize) -> Vec<BlockReport> {
+/// coverage must be equal; returns the blocks' reports and the frames' outputs.
+fn assert_blocks_match_frames(text: &str, size: usize) -> (Vec<BlockReport>, Vec<RenderOutput>) {
     let scenes = frames_of(text);
     let kept = render_in_blocks(&scenes, fixed(size));
     assert_eq!(kept.outputs.len(), scenes.len());
@@ -163,12 +164,12 @@ fn assert_blocks_match_frames(text: &str, size: usize) -> Vec<BlockReport> {
         "no block was formed: {:?}",
         kept.reports
     );
-    kept.reports
+    (kept.reports, kept.outputs)
 }
 
 #[test]
 fn a_rotating_surface_renders_in_blocks_as_frame_by_frame() {
-    let reports = assert_blocks_match_frames(&rotating("[0, 5]"), 3);
+    let (reports, _) = assert_blocks_match_frames(&rotating("[0, 5]"), 3);
     // The proofs were used: some rejection test was skipped.
     assert!(
         reports.iter().map(|r| r.saved).sum::<u64>() > 0,
@@ -183,7 +184,7 @@ fn a_morph_between_catalog_surfaces_renders_in_blocks_as_frame_by_frame() {
 
 #[test]
 fn a_moving_light_renders_in_blocks_as_frame_by_frame() {
-    let reports = assert_blocks_match_frames(&moving_light("[0, 3]"), 4);
+    let (reports, _) = assert_blocks_match_frames(&moving_light("[0, 3]"), 4);
     // Nothing but the light moves: the block's geometry is each frame's, the n-surface
     // does not grow.
     let r = reports
@@ -191,6 +192,34 @@ fn a_moving_light_renders_in_blocks_as_frame_by_frame() {
         .find(|r| !r.passes.is_empty())
         .expect("a block");
     assert!((r.growth - 1.0).abs() < 1e-12, "{r:?}");
+}
+
+#[test]
+fn frames_whose_searches_escalate_render_in_blocks_as_frame_by_frame() {
+    // A sphere written with terms of 1e11 that cancel (rounding keeps f64 searches open,
+    // they escalate to double-double), with a moving hole cut out of it.
+    let text = animated(
+        "[0, 3]",
+        r#"
+[[surfaces]]
+formula = "max((x + 1e11)^2 - 2e11*x - 1e22 + y^2 + z^2 - 1, 0.3 - (x - 0.2 - 0.05*t)^2 - (y - 0.1)^2 - (z - 0.9)^2)"
+bounds = [[-1.25, -1.25, -1.25], [1.25, 1.25, 1.25]]
+"#,
+        "[2, 4, 3]",
+    );
+    let (reports, outputs) = assert_blocks_match_frames(&text, 4);
+    let escalated =
+        |passes: &[PassStats]| -> u64 { passes.iter().map(|p| p.counter("escalated")).sum() };
+    // The frames escalate; the block's own pass does not (it records only plain proofs).
+    assert!(
+        outputs
+            .iter()
+            .map(|o| escalated(&o.stats.passes))
+            .sum::<u64>()
+            > 0
+    );
+    let block: u64 = reports.iter().map(|r| escalated(&r.passes)).sum();
+    assert_eq!(block, 0, "{reports:?}");
 }
 
 #[test]
