@@ -7,14 +7,17 @@
 //! the block; each frame then runs its own passes and skips the rejection tests those
 //! proofs decide ([`crate::free_ranges`]). Everything else, the root searches, normals,
 //! shadows with that frame's lights and shading, runs per frame, as alone: every frame is
-//! bit for bit the frame rendered on its own.
+//! bit for bit the frame rendered on its own (given operations whose rounded enclosures
+//! are inclusion isotone; skipping stays sound without it).
 //!
 //! **Fallback.** Frames whose graphs differ in more than constants, or whose camera or
 //! settings differ, have no common block: the block is halved and each half tried again,
 //! down to single frames. A block whose n-surface grows too much (more than
 //! [`BlockSettings::max_growth`] times the pixels its first frame's screen boxes leave
 //! open, that is Hit or Undecided) proves too little to be worth its pass: after its first
-//! frame, the rest is rendered in two halves, each with a block of its own.
+//! frame, the rest is rendered in two halves, each with a block of its own. With adaptive
+//! sizes ([`BlockSettings::adaptive`]) the next block is halved after one whose proofs
+//! spared less than its passes cost, and doubled after one that paid.
 
 use std::ops::Range;
 use std::sync::Arc;
