@@ -24,6 +24,7 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use crate::backend::Backend;
+use crate::backend::cpu::Cpu;
 use crate::beam::BoxClass;
 use crate::error::Error;
 use crate::free_ranges::{BlockProofs, FreeRanges};
@@ -147,7 +148,8 @@ pub trait Frames {
 }
 
 /// Renders the `count` frames of `frames` in blocks of up to `settings.size` frames (thesis
-/// 6.4), handing each frame's output to [`Frames::done`] in order as soon as it is
+/// 6.4; on a backend other than the CPU, whose beams do not read the proofs, every frame
+/// alone), handing each frame's output to [`Frames::done`] in order as soon as it is
 /// rendered; returns what each block did. Only one block's scenes are held at a time.
 ///
 /// Each block's screen boxes are classified once over [`Scene::block_of`] its frames, and
@@ -167,7 +169,13 @@ pub fn render_blocks(
     progress: &dyn Progress,
 ) -> Result<Vec<BlockReport>, Error> {
     let mut reports = Vec::new();
-    let max = settings.size.max(1);
+    // Only the CPU's beam searches read the proofs: on another backend a block's pass
+    // would be spent for nothing, and every frame is rendered alone.
+    let max = if backend.name() == Cpu.name() {
+        settings.size.max(1)
+    } else {
+        1
+    };
     let mut size = max;
     let mut alone = 0;
     let mut first = 0;

@@ -436,7 +436,13 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         size: args.block.unwrap_or(animation.block()).max(1),
         ..BlockSettings::default()
     };
-    if blocks.size > 1 {
+    if blocks.size > 1 && backend.name() != "cpu" {
+        println!(
+            "blocks: the {} backend's beams do not read a block's proofs: every frame is \
+             rendered alone",
+            backend.name()
+        );
+    } else if blocks.size > 1 {
         println!(
             "blocks: up to {} frame(s), split where the frames differ in form or the \
              n-surface leaves more than {:.1}x the pixels of its first frame open",
