@@ -297,7 +297,17 @@ fn subdivide(
                 }
                 BoxClass::Hit { .. } => {
                     c.splits_variation += 1;
-                    next.extend(p.quadrants(*class, scopes[j].clone()));
+                    // Every ray of a quadrant is a ray of this beam: each quadrant is a Hit
+                    // in the same `T_final`. Below the depth limit its own search narrows
+                    // that section for the next judgement; at the limit nothing is judged,
+                    // and the quadrant is shaded in this beam's section without one.
+                    let at_limit = p.depth + 1 >= max_depth;
+                    next.extend(p.quadrants(*class, scopes[j].clone()).map(|mut q| {
+                        if at_limit {
+                            q.known = Some(*class);
+                        }
+                        q
+                    }));
                 }
                 BoxClass::Undecided { t } if !open(j) => {
                     // At the limit: the central ray may miss while some ray of the beam
