@@ -132,6 +132,8 @@ struct Run<'a> {
     times: Vec<i64>,
     hashes: Vec<u64>,
     grid: Duration,
+    /// Non-empty grid cells of each frame.
+    cells: Vec<u64>,
     reports: Vec<BlockReport>,
 }
 
@@ -141,7 +143,9 @@ impl Frames for Run<'_> {
     }
 
     fn done(&mut self, _k: usize, out: RenderOutput) -> Result<(), Error> {
-        self.grid += out.stats.of(Pass::Grid).map_or(Duration::ZERO, |p| p.time);
+        let grid = out.stats.of(Pass::Grid);
+        self.grid += grid.map_or(Duration::ZERO, |p| p.time);
+        self.cells.push(grid.map_or(0, |p| p.counter("non_empty")));
         let mut h: u64 = 0xcbf2_9ce4_8422_2325;
         for x in out.image.pixels.iter().flatten() {
             for b in x.to_bits().to_le_bytes() {
@@ -157,6 +161,11 @@ impl Frames for Run<'_> {
     }
 }
 
+/// A block's own grid pass.
+fn grid_of(r: &BlockReport) -> Option<&beam_trace::stats::PassStats> {
+    r.passes.iter().find(|p| p.name == Pass::Grid.name())
+}
+
 /// One row: an animation rendered with one block size.
 struct Row {
     name: String,
@@ -166,6 +175,10 @@ struct Row {
     blocks: usize,
     splits: usize,
     pass_time: Duration,
+    /// Time of the blocks' grids.
+    block_grid: Duration,
+    /// Mean over the blocks of their grid's non-empty cells over their first frame's.
+    cell_growth: Option<f64>,
     cost: u64,
     saved: u64,
     differing: usize,
@@ -182,6 +195,7 @@ fn render(
         times: animation.frames().collect(),
         hashes: Vec::new(),
         grid: Duration::ZERO,
+        cells: Vec::new(),
         reports: Vec::new(),
     };
     let settings = BlockSettings {
@@ -198,6 +212,14 @@ fn render(
         .iter()
         .filter(|r| !r.passes.is_empty())
         .collect();
+    let ratios: Vec<f64> = formed
+        .iter()
+        .filter_map(|r| {
+            let block = grid_of(r)?.counter("non_empty") as f64;
+            let frame = *run.cells.get(r.first)? as f64;
+            (frame > 0.0).then_some(block / frame)
+        })
+        .collect();
     let row = Row {
         name: name.to_string(),
         size,
@@ -206,6 +228,11 @@ fn render(
         blocks: formed.len(),
         splits: run.reports.iter().filter(|r| r.split.is_some()).count(),
         pass_time: formed.iter().map(|r| r.time).sum(),
+        block_grid: formed
+            .iter()
+            .filter_map(|r| grid_of(r).map(|p| p.time))
+            .sum(),
+        cell_growth: (!ratios.is_empty()).then(|| ratios.iter().sum::<f64>() / ratios.len() as f64),
         cost: formed.iter().map(|r| r.cost).sum(),
         saved: run.reports.iter().map(|r| r.saved).sum(),
         differing: 0,
@@ -250,13 +277,14 @@ fn run(args: Args) -> Result<(), String> {
     let _ = writeln!(
         table,
         "| animation | n | blocks | splits | total s | ms per frame | grid ms per frame | \
-         block passes s | saving 1 − new/old | (old − new)/new | rejection tests spared | \
+         grid ms per block | non-empty cells, block / frame | block passes s | \
+         saving 1 − new/old | (old − new)/new | rejection tests spared | \
          block pass evaluations | frames differing from n = {} |",
         args.sizes[0]
     );
     let _ = writeln!(
         table,
-        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
+        "|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|"
     );
     for name in names {
         let text = scene_file(name, args.frames, args.width, args.height);
@@ -294,8 +322,20 @@ fn run(args: Args) -> Result<(), String> {
                     format!("{:+.1} %", 100.0 * (o - n) / n),
                 ),
             };
+            let (block_grid, cells) = if row.blocks == 0 {
+                ("—".to_string(), "—".to_string())
+            } else {
+                (
+                    format!(
+                        "{:.2}",
+                        1e3 * row.block_grid.as_secs_f64() / row.blocks as f64
+                    ),
+                    row.cell_growth.map_or("—".into(), |g| format!("{g:.2}")),
+                )
+            };
             let line = format!(
-                "| {} | {} | {} | {} | {:.2} | {:.1} | {:.2} | {:.2} | {a} | {b} | {} | {} | {} |",
+                "| {} | {} | {} | {} | {:.2} | {:.1} | {:.2} | {block_grid} | {cells} | {:.2} | \
+                 {a} | {b} | {} | {} | {} |",
                 row.name,
                 row.size,
                 row.blocks,
