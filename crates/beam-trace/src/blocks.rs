@@ -83,6 +83,19 @@ pub struct BlockReport {
     pub time: Duration,
 }
 
+impl BlockReport {
+    /// Whether the block was formed (its own passes ran), rather than split at once.
+    pub fn formed(&self) -> bool {
+        !self.passes.is_empty()
+    }
+}
+
+/// Whether `backend` reads a block's proofs: only the CPU's beam searches do, so on
+/// another backend a block's passes would be spent for nothing.
+pub fn reads_proofs(backend: &dyn Backend) -> bool {
+    backend.name() == Cpu.name()
+}
+
 /// Pixels left open (Hit or Undecided) by screen-box classes.
 fn open_pixels(classes: &[Option<BoxClass>]) -> usize {
     classes
@@ -94,14 +107,11 @@ fn open_pixels(classes: &[Option<BoxClass>]) -> usize {
 /// The grid and screen-box passes of a block's scene on the CPU, recording the pieces they
 /// prove root-free; also the pixels they leave open.
 fn prove(
-    block: &Scene,
+    mut scene: Scene,
     progress: &dyn Progress,
 ) -> Result<(FreeRanges, Vec<PassStats>, usize), Error> {
     let recorder = Arc::new(BlockProofs::recorder());
-    let scene = Scene {
-        proofs: Some(recorder.clone()),
-        ..block.clone()
-    };
+    scene.proofs = Some(recorder.clone());
     let mut plan = Plan::for_scene(&scene);
     // Only rejections in the plan's precision are recorded: an escalated search would
     // prove nothing the frames can use.
@@ -169,9 +179,7 @@ pub fn render_blocks(
     progress: &dyn Progress,
 ) -> Result<Vec<BlockReport>, Error> {
     let mut reports = Vec::new();
-    // Only the CPU's beam searches read the proofs: on another backend a block's pass
-    // would be spent for nothing, and every frame is rendered alone.
-    let max = if backend.name() == Cpu.name() {
+    let max = if reads_proofs(backend) {
         settings.size.max(1)
     } else {
         1
@@ -201,7 +209,7 @@ pub fn render_blocks(
             let (saved, cost) = done
                 .iter()
                 .fold((0, 0), |(s, c), r| (s + r.saved, c + r.cost));
-            let formed = done.iter().any(|r| !r.passes.is_empty());
+            let formed = done.iter().any(BlockReport::formed);
             if size == 1 {
                 // After `max` frames alone, try a block again.
                 alone += 1;
@@ -287,7 +295,7 @@ impl Run<'_, '_> {
             }
         };
         let t0 = Instant::now();
-        let (proven, passes, open) = prove(&block, self.progress)?;
+        let (proven, passes, open) = prove(block, self.progress)?;
         report.time = t0.elapsed();
         report.cost = evaluations(&passes);
         report.passes = passes;

@@ -24,3 +24,8 @@ pub fn ival(lo: f64, hi: f64) -> Interval<f64> {
 pub fn point_box(p: DVec3) -> IBox {
     [ipoint(p.x), ipoint(p.y), ipoint(p.z)]
 }
+
+/// The smallest box holding `a` and `b`.
+pub fn hull(a: &IBox, b: &IBox) -> IBox {
+    std::array::from_fn(|k| a[k].convex_hull(b[k]))
+}

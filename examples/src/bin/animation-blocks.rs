@@ -207,11 +207,7 @@ fn render(
     let start = Instant::now();
     render_blocks(count, &mut run, settings, &Cpu, &NoProgress).map_err(|e| e.to_string())?;
     let time = start.elapsed();
-    let formed: Vec<&BlockReport> = run
-        .reports
-        .iter()
-        .filter(|r| !r.passes.is_empty())
-        .collect();
+    let formed: Vec<&BlockReport> = run.reports.iter().filter(|r| r.formed()).collect();
     let ratios: Vec<f64> = formed
         .iter()
         .filter_map(|r| {

@@ -24,7 +24,7 @@ use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 use std::sync::Mutex;
 
-use beam_trace::blocks::{BlockReport, BlockSettings, Frames, render_blocks};
+use beam_trace::blocks::{BlockReport, BlockSettings, Frames, reads_proofs, render_blocks};
 use beam_trace::image::{check_writable, write_atomic};
 use beam_trace::root::RootMethod;
 use beam_trace::scene::{AaMode, Animation, PrimaryMode};
@@ -389,11 +389,16 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
     // Every frame's scene is checked before any is rendered: a formula of `t` without a
     // value, or frames of different sizes, are reported before the work starts.
     let mut size = None;
+    // The first frame's scene, kept for the plan printed before the frames.
+    let mut first_scene = None;
     for t in frames.clone() {
         let scene = apply(args, animation.scene(t).map_err(|e| e.to_string())?)?;
         let s = (scene.camera.width(), scene.camera.height());
         match size {
-            None => size = Some(s),
+            None => {
+                size = Some(s);
+                first_scene = Some(scene);
+            }
             Some(first) if first != s => {
                 return Err(format!(
                     "frame t = {t} is {} × {} pixels, frame t = {} is {} × {}: the frames of \
@@ -436,7 +441,7 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         size: args.block.unwrap_or(animation.block()).max(1),
         ..BlockSettings::default()
     };
-    if blocks.size > 1 && backend.name() != "cpu" {
+    if blocks.size > 1 && !reads_proofs(backend.as_ref()) {
         println!(
             "blocks: the {} backend's beams do not read a block's proofs: every frame is \
              rendered alone",
@@ -457,7 +462,6 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
             multi.suspend(|| println!("{text}"));
         }
     };
-    // Kept as 8-bit RGB for the animated file: a quarter of the memory of the images.
     let first_t = *frames.start();
     let mut sink = FrameSink {
         args,
@@ -467,18 +471,19 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         file: &frame_file,
         say: &say,
         bar: &frames_bar,
+        // Kept as 8-bit RGB for the animated file: a quarter of the memory of the images.
         images: Vec::new(),
         slowest: (0.0, first_t),
         started: std::time::Instant::now(),
     };
-    let first = sink.scene(0).map_err(|e| e.to_string())?;
-    let plan = beam_trace::Plan::for_scene(&first);
-    print!("{plan}");
-    print!(
-        "{}",
-        beam_trace::Routing::new(backend.as_ref(), &first, &plan)
-    );
-    drop(first);
+    if let Some(first) = first_scene {
+        let plan = beam_trace::Plan::for_scene(&first);
+        print!("{plan}");
+        print!(
+            "{}",
+            beam_trace::Routing::new(backend.as_ref(), &first, &plan)
+        );
+    }
     let reports = render_blocks(count as usize, &mut sink, blocks, backend.as_ref(), &bar)
         .map_err(|e| e.to_string())?;
     let (images, slowest) = (sink.images, sink.slowest);
@@ -486,7 +491,7 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         let (saved, cost) = reports
             .iter()
             .fold((0, 0), |(s, c), r| (s + r.saved, c + r.cost));
-        let formed = reports.iter().filter(|r| !r.passes.is_empty()).count();
+        let formed = reports.iter().filter(|r| r.formed()).count();
         println!(
             "blocks: {formed} formed, {} split; their passes made {cost} interval evaluations \
              and spared the frames {saved} rejection tests",
@@ -568,7 +573,7 @@ fn block_line(r: &BlockReport, first: i64) -> String {
         t(r.first),
         t(r.first + r.frames - 1)
     );
-    if r.passes.is_empty() {
+    if !r.formed() {
         line.push_str("no common n-surface");
     } else {
         let _ = write!(

@@ -30,7 +30,7 @@ use std::sync::OnceLock;
 use implicit_expr::{RayFunction, Tape};
 use rayon::prelude::*;
 
-use crate::ibox::IBox;
+use crate::ibox::{IBox, hull};
 
 use super::box_eval::{BoxEval, with_thread_eval};
 use super::cells::{EMPTY, cell as cell_of, index};
@@ -227,8 +227,7 @@ impl SceneTapes {
                 let hi: [u32; 3] =
                     std::array::from_fn(|a| ((b[a] + 1) * SCENE_BLOCK).min(self.n[a]) - 1);
                 let (l, h) = (class_box(lo), class_box(hi));
-                let hull: IBox = std::array::from_fn(|a| l[a].convex_hull(h[a]));
-                with_thread_eval(|e| e.pruned(&self.full, &hull))
+                with_thread_eval(|e| e.pruned(&self.full, &hull(&l, &h)))
             });
             with_thread_eval(|e| e.pruned(block, &class_box(cell)))
         })

@@ -29,7 +29,7 @@ use implicit_expr::{Constant, Context, Node, NodeId};
 
 use super::geometry::{Geometry, Leaf};
 use super::model::Scene;
-use crate::ibox::IBox;
+use crate::ibox::hull;
 
 /// Why frames cannot share a block.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -112,7 +112,7 @@ fn arguments(nodes: &[Node]) -> Option<Vec<Vec<NodeId>>> {
 }
 
 /// The hull of constants, its point value the first frame's.
-fn hull(nodes: &[Node]) -> Option<Constant> {
+fn constant_hull(nodes: &[Node]) -> Option<Constant> {
     let cs: Vec<Constant> = nodes
         .iter()
         .map(|n| match n {
@@ -160,7 +160,7 @@ impl Merge<'_> {
             // then the frames have no block.
             let wanted = match nodes[0] {
                 Node::Var(v) => Node::Var(v),
-                Node::Const(_) => Node::Const(hull(&nodes)?),
+                Node::Const(_) => Node::Const(constant_hull(&nodes)?),
                 Node::Unary(op, _) => Node::Unary(op, arg(0)),
                 Node::Binary(op, _, _) => {
                     // In the order the context keeps a commutative operation's arguments.
@@ -187,10 +187,6 @@ impl Merge<'_> {
         }
         self.built.get(&roots).copied()
     }
-}
-
-fn hull_box(a: &IBox, b: &IBox) -> IBox {
-    std::array::from_fn(|k| a[k].convex_hull(b[k]))
 }
 
 /// The geometry of a block: see the [module documentation](self).
@@ -220,7 +216,7 @@ fn block_geometry(frames: &[&Geometry]) -> Result<Geometry, BlockMismatch> {
         })?;
         let bounds = frames[1..]
             .iter()
-            .fold(leaf.bounds, |b, g| hull_box(&b, &g.leaves()[i].bounds));
+            .fold(leaf.bounds, |b, g| hull(&b, &g.leaves()[i].bounds));
         leaves.push(Leaf {
             node,
             bounds,
@@ -229,7 +225,7 @@ fn block_geometry(frames: &[&Geometry]) -> Result<Geometry, BlockMismatch> {
     }
     let bounds = frames[1..]
         .iter()
-        .fold(first.bounds(), |b, g| hull_box(&b, &g.bounds()));
+        .fold(first.bounds(), |b, g| hull(&b, &g.bounds()));
     Geometry::from_parts(merge.out, leaves, first.objects().to_vec(), bounds)
         .map_err(|e| BlockMismatch::Build(e.to_string()))
 }

@@ -6,7 +6,7 @@ use interval_core::Interval;
 
 use super::material::Material;
 use crate::error::Error;
-use crate::ibox::IBox;
+use crate::ibox::{IBox, hull};
 use crate::ray::BeamEval;
 
 /// A leaf surface `f(x, y, z) = 0` (parameters bound, transform applied), with the solid
@@ -172,12 +172,11 @@ impl Geometry {
                 leaves.len()
             )));
         }
-        let mut bounds = search_box(&leaves[used[0]]);
-        for &i in &used[1..] {
-            for (b, l) in bounds.iter_mut().zip(search_box(&leaves[i])) {
-                *b = b.convex_hull(l);
-            }
-        }
+        let bounds = used[1..]
+            .iter()
+            .fold(search_box(&leaves[used[0]]), |b, &i| {
+                hull(&b, &search_box(&leaves[i]))
+            });
         let mut leaves = leaves;
         for leaf in &mut leaves {
             leaf.node = absent_where_undefined(&mut ctx, leaf.node, &bounds);
