@@ -68,9 +68,9 @@ impl Backend for GpuBackend {
         }
         match kind {
             QueryKind::Beams | QueryKind::Roots | QueryKind::Segments => Support::Yes,
-            QueryKind::HitPoints => {
-                no("shading points are placed by point bisection of g, not in a kernel")
-            }
+            QueryKind::HitPoints => no(
+                "shading points are placed by regula falsi on point values of g, not in a kernel",
+            ),
             QueryKind::Normals => no("the kernels evaluate no gradients"),
             QueryKind::ShadingVariation => no("the kernels evaluate no gradient enclosures"),
             QueryKind::SoftShadows => match plan.shadow_method {

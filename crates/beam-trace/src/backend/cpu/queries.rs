@@ -317,8 +317,10 @@ impl CpuQueries<'_> {
 }
 
 /// The parameter of the shading point of a hit with enclosure `t`: the end on the origin's
-/// side of a floating-point sign change of `g` inside `t`, narrowed by bisection on point
-/// values; the midpoint where `g` shows no sign change (a tangent, a possible root).
+/// side of a floating-point sign change of `g` inside `t`, the bracket narrowed to adjacent
+/// floats by the Illinois variant of regula falsi on point values (a bisection step where two
+/// steps did not halve it); the midpoint where `g` shows no sign change (a tangent, a
+/// possible root). For shading only: the proof is `t`.
 fn shading_parameter(
     eval: &mut BeamEval,
     ray: &Ray,
@@ -330,8 +332,7 @@ fn shading_parameter(
         return t.mid();
     }
     eval.set_ray(ray);
-    let ga = eval.g_point(a);
-    let gb = eval.g_point(b);
+    let (mut ga, mut gb) = (eval.g_point(a), eval.g_point(b));
     c.point_evals += 2;
     if ga == 0.0 {
         return a;
@@ -339,21 +340,50 @@ fn shading_parameter(
     if ga.is_nan() || gb.is_nan() || (ga > 0.0) == (gb > 0.0) && gb != 0.0 {
         return t.mid();
     }
-    for _ in 0..64 {
-        let m = 0.5 * (a + b);
-        if m <= a || m >= b {
+    let origin_side = ga > 0.0;
+    // Which end the last step kept (Illinois halves the kept end's value when it is kept
+    // twice, so that both ends move), and the bracket's width two steps ago.
+    let mut kept_a = None;
+    let mut width = b - a;
+    for step in 0..MAX_SHADING_STEPS {
+        let mid = 0.5 * (a + b);
+        if mid <= a || mid >= b {
             break;
         }
+        if step % 2 == 0 {
+            width = b - a;
+        }
+        let secant = (a * gb - b * ga) / (gb - ga);
+        let bisect = step % 2 == 1 && b - a > 0.5 * width;
+        let m = if !bisect && secant > a && secant < b {
+            secant
+        } else {
+            mid
+        };
         let gm = eval.g_point(m);
         c.point_evals += 1;
         if gm.is_nan() {
             break;
         }
-        if gm != 0.0 && (gm > 0.0) == (ga > 0.0) {
+        if gm != 0.0 && (gm > 0.0) == origin_side {
             a = m;
+            ga = gm;
+            if kept_a == Some(false) {
+                gb *= 0.5;
+            }
+            kept_a = Some(false);
         } else {
             b = m;
+            gb = gm;
+            if kept_a == Some(true) {
+                ga *= 0.5;
+            }
+            kept_a = Some(true);
         }
     }
     a
 }
+
+/// Most steps of [`shading_parameter`]: a bisection at least every other step reaches
+/// adjacent floats from any bracket in fewer.
+const MAX_SHADING_STEPS: u32 = 256;
