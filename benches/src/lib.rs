@@ -12,12 +12,14 @@
 //! committed models of `data/models/` ([`models`]), written by seeded generators: [`csg2d`]
 //! (a large `min`/`max`-heavy 2D expression), [`text2d`] (2D text with the operation mix of
 //! `prospero.vm`) and [`csg3d`] (3D CSG models: a city, a molecule), over the `.vm` writer of
-//! [`vmgen`].
+//! [`vmgen`]; [`octree`] is fidget's subdivision of 3D tiles with our intervals, which
+//! `render3d_compare` times beside both renderers.
 
 pub mod csg2d;
 pub mod csg3d;
 pub mod expr;
 pub mod models;
+pub mod octree;
 pub mod text2d;
 pub mod vmgen;
 

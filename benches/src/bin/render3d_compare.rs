@@ -43,6 +43,18 @@
 //! 0.3 % of the pixels of `csg3d-660` at 512 differ, all on the models' edges; none differ
 //! for the default). Silhouettes may also differ where fidget's voxels (`2 / size` apart in
 //! depth) step over a part thinner than a voxel, and where a ray grazes the surface.
+//!
+//! # The octree bound
+//!
+//! A third column times [`benches::octree::first_hits`] on the same model and pool: fidget's
+//! own algorithm (3D tiles of 64, halved front to back, each tile's tape pruned for the
+//! tiles inside it) with our outward-rounded intervals, which proves for each pixel's column
+//! in which voxel the surface may begin and that none is in front of it, but finds no root.
+//! It shows what the subdivision costs with our evaluator, apart from the renderer's beams
+//! and root proofs. Its silhouette must hold fidget's (a voxel whose centre fidget finds
+//! inside keeps every tile around it from being skipped); the table counts the pixels where
+//! fidget's does not lie inside it (0 unless fidget's `f32` rounding puts a centre inside
+//! that is not) and the pixels only it covers (its conservative rim).
 
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
@@ -50,6 +62,7 @@ use std::time::Duration;
 
 use beam_trace::{Image, NoProgress, RenderOutput, Scene};
 use benches::models::MODELS;
+use benches::octree::{FirstHits, first_hits};
 use benches::vmgen::op_count;
 use fidget::eval::Function;
 use fidget::jit::JitFunction;
@@ -252,6 +265,17 @@ fn ours_render(
     Ok(((hits, out), elapsed))
 }
 
+/// The octree bound of `tape` at `size` on `pool` ([`first_hits`]).
+fn octree_bound(
+    tape: &implicit_expr::Tape,
+    size: u32,
+    pool: &rayon::ThreadPool,
+) -> Result<(FirstHits, Duration), String> {
+    let t = std::time::Instant::now();
+    let bound = pool.install(|| first_hits(tape, size as usize))?;
+    Ok((bound, t.elapsed()))
+}
+
 /// The silhouettes compared: white where both hit, red where only `ours` does, blue where
 /// only `theirs` does, black where neither does.
 fn comparison_image(size: u32, ours: &[bool], theirs: &[bool]) -> Image {
@@ -321,7 +345,12 @@ fn run() -> Result<(), String> {
         let vm = Shape::<VmFunction>::new(&ctx, root).map_err(|e| format!("{name}: {e}"))?;
         let jit = Shape::<JitFunction>::new(&ctx, root).map_err(|e| format!("{name}: {e}"))?;
         scene(&abs, 1, &o).map_err(|e| format!("{name}: {e}"))?;
-        models.push((name, abs, op_count(&text), vm, jit));
+        let mut ours_ctx = implicit_expr::Context::new();
+        let ours_root = implicit_expr::vm::import_vm(&mut ours_ctx, &text)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        let tape = implicit_expr::Tape::new(&ours_ctx, &[ours_root])
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        models.push((name, abs, op_count(&text), vm, jit, tape));
     }
     let d = o.distance;
     println!(
@@ -339,10 +368,10 @@ fn run() -> Result<(), String> {
         o.runs
     );
     println!(
-        "| model | ops | size | fidget VM s | fidget JIT s | ours s | ours / JIT | silhouette: ours vs JIT | VM vs JIT px | ours per pass (s) |"
+        "| model | ops | size | fidget VM s | fidget JIT s | ours s | ours / JIT | silhouette: ours vs JIT | VM vs JIT px | octree bound s | octree / JIT | JIT outside the bound px | bound only px | ours per pass (s) |"
     );
-    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---|");
-    for (name, abs, ops, vm, jit) in &models {
+    println!("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|");
+    for (name, abs, ops, vm, jit, tape) in &models {
         for &size in &o.sizes {
             let scene = scene(abs, size, &o).map_err(|e| format!("{name}: {e}"))?;
             let (vm_hits, vm_best, vm_med) =
@@ -351,10 +380,27 @@ fn run() -> Result<(), String> {
                 time(o.runs, || fidget_render(jit, size, &fidget_pool))?;
             let ((our_hits, out), our_best, our_med) =
                 time(o.runs, || ours_render(&scene, &ours_pool))?;
+            let octree = time(o.runs, || octree_bound(tape, size, &ours_pool));
+            let octree_cells = match &octree {
+                Ok((bound, best, med)) => {
+                    let covered = bound.covered();
+                    let outside = jit_hits.iter().zip(&covered).filter(|&(&j, &b)| j && !b);
+                    let only = jit_hits.iter().zip(&covered).filter(|&(&j, &b)| !j && b);
+                    format!(
+                        "{:.3} ({:.3}) | {:.2} | {} | {}",
+                        best.as_secs_f64(),
+                        med.as_secs_f64(),
+                        best.as_secs_f64() / jit_best.as_secs_f64(),
+                        outside.count(),
+                        only.count()
+                    )
+                }
+                Err(e) => format!("n/a ({e}) | | | "),
+            };
             let n = (size as usize).pow(2);
             let diff = differing(&our_hits, &jit_hits);
             println!(
-                "| {name} | {ops} | {size} | {:.3} ({:.3}) | {:.3} ({:.3}) | {:.3} ({:.3}) | {:.2} | {:.3} % ({diff} px) | {} | {} |",
+                "| {name} | {ops} | {size} | {:.3} ({:.3}) | {:.3} ({:.3}) | {:.3} ({:.3}) | {:.2} | {:.3} % ({diff} px) | {} | {octree_cells} | {} |",
                 vm_best.as_secs_f64(),
                 vm_med.as_secs_f64(),
                 jit_best.as_secs_f64(),
