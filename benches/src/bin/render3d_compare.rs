@@ -72,7 +72,8 @@ use fidget::shape::Shape;
 use fidget::vm::VmFunction;
 
 const USAGE: &str = "usage: render3d_compare [--sizes 512,1024] [--threads 2] [--runs 3] \
-[--distance 100000] [--precision f64|f32] [--stats] [--images DIR] [MODEL.vm ...]";
+[--distance 100000] [--precision f64|f32] [--primary screen-rays|octree] [--stats] [--images DIR] \
+[MODEL.vm ...]";
 
 struct Options {
     sizes: Vec<u32>,
@@ -80,6 +81,7 @@ struct Options {
     runs: usize,
     distance: f64,
     precision: String,
+    primary: String,
     stats: bool,
     images: Option<PathBuf>,
     files: Vec<PathBuf>,
@@ -93,6 +95,7 @@ fn parse_args() -> Result<Option<Options>, String> {
         runs: 3,
         distance: 100_000.0,
         precision: "f64".into(),
+        primary: "screen-rays".into(),
         stats: false,
         images: None,
         files: Vec::new(),
@@ -124,6 +127,13 @@ fn parse_args() -> Result<Option<Options>, String> {
                     return Err(format!("--precision {v}: f64 or f32"));
                 }
                 o.precision = v;
+            }
+            "--primary" => {
+                let v = value("--primary")?;
+                if v != "screen-rays" && v != "octree" {
+                    return Err(format!("--primary {v}: screen-rays or octree"));
+                }
+                o.primary = v;
             }
             "--stats" => o.stats = true,
             "--images" => o.images = Some(PathBuf::from(value("--images")?)),
@@ -242,10 +252,11 @@ fn scene(path: &Path, size: u32, o: &Options) -> Result<Scene, String> {
          clip = true\n\
          material = {{ color = [1.0, 1.0, 1.0] }}\n\
          [render]\n\
-         primary = \"screen-rays\"\n\
+         primary = \"{}\"\n\
          rays_per_undecided = 1\n\
          precision = \"{}\"\n",
         toml_string(&path.to_string_lossy()),
+        o.primary,
         o.precision
     );
     Scene::from_toml(&text, "render3d_compare", None).map_err(|e| e.to_string())

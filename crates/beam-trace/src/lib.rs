@@ -75,6 +75,7 @@ pub mod centred;
 pub mod error;
 pub mod float_map;
 pub mod free_ranges;
+pub mod frustum;
 pub mod grid;
 pub mod ibox;
 pub mod image;

@@ -35,6 +35,12 @@ pub enum Primary {
         /// Rays per pixel (a square number).
         rays_per_pixel: u32,
     },
+    /// The frustum octree ([`crate::frustum`]): each pixel's first cell where a surface may
+    /// be, then `rays_per_undecided` stratified rays per covered pixel searched from there.
+    Octree {
+        /// Rays per pixel whose column of cells holds a surface.
+        rays_per_undecided: u32,
+    },
     /// Interval anti-aliasing (thesis 5.5.2) on the screen box structure: the beam of an
     /// Undecided pixel, or of a Hit pixel whose shading may vary by more than `threshold`,
     /// is split in four down to `max_depth` (the pixel-beams pass).
@@ -57,7 +63,7 @@ impl Primary {
                 max_depth,
                 threshold,
             } => Some((max_depth, Some(threshold))),
-            Primary::ScreenRays { .. } | Primary::PerPixel { .. } => None,
+            Primary::ScreenRays { .. } | Primary::PerPixel { .. } | Primary::Octree { .. } => None,
         }
     }
 }
@@ -167,6 +173,9 @@ impl Plan {
                 PrimaryMode::ScreenRays => Primary::ScreenRays {
                     rays_per_undecided: s.rays_per_undecided,
                 },
+                PrimaryMode::Octree => Primary::Octree {
+                    rays_per_undecided: s.rays_per_undecided,
+                },
                 PrimaryMode::PerPixel => Primary::PerPixel {
                     rays_per_pixel: s.rays_per_pixel,
                 },
@@ -231,10 +240,16 @@ impl Plan {
                 "regular grid, {} cells on the longest side",
                 self.grid.unwrap_or(0)
             ),
-            Pass::ScreenBoxes => {
-                "beams over screen boxes: rejection + inclusion tests (Miss / Hit / Undecided)"
-                    .to_string()
-            }
+            Pass::ScreenBoxes => match self.primary {
+                Primary::Octree { .. } => "frustum octree: cells of pixels x parameter ranges, \
+                    nearest first, rejection tests on tapes pruned per cell; each pixel's first \
+                    cell (Miss / Undecided)"
+                    .to_string(),
+                _ => {
+                    "beams over screen boxes: rejection + inclusion tests (Miss / Hit / Undecided)"
+                        .to_string()
+                }
+            },
             Pass::PrimaryRays => match self.primary {
                 Primary::ScreenRays { rays_per_undecided } => format!(
                     "1 ray per pixel in Hit boxes (search in T_final), {rays_per_undecided} per pixel in Undecided ones; root finder {}, epsilon {:e}",
@@ -242,6 +257,10 @@ impl Plan {
                 ),
                 Primary::PerPixel { rays_per_pixel } => format!(
                     "{rays_per_pixel} ray(s) per pixel; root finder {}, epsilon {:e}",
+                    self.root_finder, self.root.epsilon
+                ),
+                Primary::Octree { rays_per_undecided } => format!(
+                    "{rays_per_undecided} ray(s) per pixel whose column of cells may hold a surface, from its first cell; root finder {}, epsilon {:e}",
                     self.root_finder, self.root.epsilon
                 ),
                 Primary::ScreenBoxes { .. } | Primary::Iaa { .. } => String::new(),

@@ -7,9 +7,10 @@
 //!   them with the reason, and the output is again the CPU's.
 
 use beam_trace::backend::{
-    Answers, Backend, BeamQuery, Classified, HitQuery, Prepared, Queries, QueryKind, RayQuery,
-    SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
+    Answers, Backend, BeamQuery, CellQuery, Classified, HitQuery, Prepared, Queries, QueryKind,
+    RayQuery, SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
+use beam_trace::frustum::FirstCell;
 use beam_trace::root::RootResult;
 use beam_trace::shadow::hard::Visibility;
 use beam_trace::shadow::{ShadowQuery, ShadowSpec, ShadowWork};
@@ -77,6 +78,9 @@ impl PieceQueries<'_> {
 impl Queries for PieceQueries<'_> {
     fn beams(&self, q: &[BeamQuery]) -> Result<Answers<Classified>, Error> {
         self.pieces(q, |c| self.inner.beams(c))
+    }
+    fn first_cells(&self, q: &[CellQuery]) -> Result<Answers<Vec<Option<FirstCell>>>, Error> {
+        self.pieces(q, |c| self.inner.first_cells(c))
     }
     fn roots(&self, q: &[RayQuery]) -> Result<Answers<RootResult>, Error> {
         self.pieces(q, |c| self.inner.roots(c))
@@ -161,6 +165,7 @@ fn scenes() -> Vec<Scene> {
         scene("shadow_method = \"beam:3\""),
         scene("shadow_method = \"beam-quadtree:4\"\naa = \"iaa\"\niaa_depth = 2"),
         scene("shadow_method = \"minkowski:stochastic:8\"\nprimary = \"per-pixel\""),
+        scene("primary = \"octree\"\nrays_per_undecided = 4"),
     ]
 }
 

@@ -10,11 +10,12 @@
 use std::time::Instant;
 
 use beam_trace::backend::{
-    Answers, Backend, BeamQuery, Classified, HitQuery, Prepared, Queries, QueryKind, RayQuery,
-    SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
+    Answers, Backend, BeamQuery, CellQuery, Classified, HitQuery, Prepared, Queries, QueryKind,
+    RayQuery, SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use beam_trace::beam::BoxClass;
 use beam_trace::beam::child_window;
+use beam_trace::frustum::FirstCell;
 use beam_trace::ray::{Beam, IBox, Ray, point_box};
 use beam_trace::root::{Proof, RootCounters, RootResult};
 use beam_trace::sample::{Hit, SHADOW_OFFSET};
@@ -72,6 +73,7 @@ impl Backend for GpuBackend {
                 "shading points are placed by regula falsi on point values of g, not in a kernel",
             ),
             QueryKind::Normals => no("the kernels evaluate no gradients"),
+            QueryKind::Cells => no("the frustum octree searches depth first, tile by tile"),
             QueryKind::ShadingVariation => no("the kernels evaluate no gradient enclosures"),
             QueryKind::SoftShadows => match plan.shadow_method {
                 ShadowSpec::Stochastic { cache: true, .. } => {
@@ -430,6 +432,10 @@ impl Queries for GpuQueries<'_> {
 
     fn shading_variation(&self, _: &[VariationQuery]) -> Result<Answers<f64>, Error> {
         unsupported("shading-variation")
+    }
+
+    fn first_cells(&self, _: &[CellQuery]) -> Result<Answers<Vec<Option<FirstCell>>>, Error> {
+        unsupported("first-cell")
     }
 
     fn normals(&self, _: &[DVec3]) -> Result<Answers<Option<DVec3>>, Error> {

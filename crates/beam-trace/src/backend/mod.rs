@@ -25,8 +25,8 @@ mod routing;
 mod traits;
 
 pub use query::{
-    Answers, BeamQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch,
-    ShadeLight, ShadeSample, SoftAnswers, Support, VariationQuery,
+    Answers, BeamQuery, CellQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery,
+    ShadeBatch, ShadeLight, ShadeSample, SoftAnswers, Support, VariationQuery,
 };
 pub use routing::Routing;
 pub use traits::{Backend, Prepared, Queries};

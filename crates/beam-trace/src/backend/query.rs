@@ -9,6 +9,7 @@ use crate::beam::{BeamScope, BoxClass};
 use crate::ray::{Beam, Ray};
 use crate::root::RootCounters;
 use crate::scene::Material;
+use crate::screen::PixelRect;
 use crate::shadow::{LightVisibility, ShadowWork};
 
 /// The kinds of query a pass asks.
@@ -17,6 +18,9 @@ pub enum QueryKind {
     /// Classify primary beams (rejection and inclusion tests):
     /// [`Queries::beams`](super::Queries::beams).
     Beams,
+    /// Each pixel's first cell of the frustum octree:
+    /// [`Queries::first_cells`](super::Queries::first_cells).
+    Cells,
     /// First roots on rays inside windows: [`Queries::roots`](super::Queries::roots).
     Roots,
     /// Shading points of hits: [`Queries::hit_points`](super::Queries::hit_points).
@@ -37,8 +41,9 @@ pub enum QueryKind {
 
 impl QueryKind {
     /// Every kind.
-    pub const ALL: [QueryKind; 8] = [
+    pub const ALL: [QueryKind; 9] = [
         QueryKind::Beams,
+        QueryKind::Cells,
         QueryKind::Roots,
         QueryKind::HitPoints,
         QueryKind::ShadingVariation,
@@ -52,6 +57,7 @@ impl QueryKind {
     pub fn name(self) -> &'static str {
         match self {
             QueryKind::Beams => "beams",
+            QueryKind::Cells => "cells",
             QueryKind::Roots => "roots",
             QueryKind::HitPoints => "hit-points",
             QueryKind::ShadingVariation => "shading-variation",
@@ -133,6 +139,14 @@ pub struct HitQuery {
     pub t: Interval<f64>,
     /// The scope of a classified beam the ray lies in, as [`RayQuery::scope`].
     pub scope: Option<BeamScope>,
+}
+
+/// A tile of the image whose pixels' first cells of the frustum octree are wanted (see
+/// [`crate::frustum`]).
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub struct CellQuery {
+    /// The tile.
+    pub tile: PixelRect,
 }
 
 /// A hit region whose shading variation is wanted: the beam and its proven section

@@ -7,12 +7,13 @@ use glam::DVec3;
 
 use super::cpu::Cpu;
 use super::query::{
-    Answers, BeamQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch,
-    SoftAnswers, Support, VariationQuery,
+    Answers, BeamQuery, CellQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery,
+    ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use super::traits::{Backend, Prepared, Queries};
 use crate::error::Error;
-use crate::plan::{Pass, Plan};
+use crate::frustum::FirstCell;
+use crate::plan::{Pass, Plan, Primary};
 use crate::root::RootResult;
 use crate::sample::Hit;
 use crate::scene::Scene;
@@ -27,7 +28,10 @@ pub fn pass_queries(pass: Pass, plan: &Plan) -> &'static [QueryKind] {
     }
     match pass {
         Pass::Grid => &[],
-        Pass::ScreenBoxes => &[QueryKind::Beams],
+        Pass::ScreenBoxes => match plan.primary {
+            Primary::Octree { .. } => &[QueryKind::Cells],
+            _ => &[QueryKind::Beams],
+        },
         Pass::PrimaryRays => &[QueryKind::Roots, QueryKind::HitPoints],
         // Hit regions are judged by their shading only with anti-aliasing.
         Pass::PixelBeams => match plan.primary.pixel_beams() {
@@ -187,6 +191,9 @@ impl Routed<'_> {
 impl Queries for Routed<'_> {
     fn beams(&self, q: &[BeamQuery]) -> Result<Answers<Classified>, Error> {
         self.to(QueryKind::Beams).beams(q)
+    }
+    fn first_cells(&self, q: &[CellQuery]) -> Result<Answers<Vec<Option<FirstCell>>>, Error> {
+        self.to(QueryKind::Cells).first_cells(q)
     }
     fn roots(&self, q: &[RayQuery]) -> Result<Answers<RootResult>, Error> {
         self.to(QueryKind::Roots).roots(q)

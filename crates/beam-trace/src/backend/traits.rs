@@ -3,10 +3,11 @@
 use glam::DVec3;
 
 use super::query::{
-    Answers, BeamQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch,
-    SoftAnswers, Support, VariationQuery,
+    Answers, BeamQuery, CellQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery,
+    ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use crate::error::Error;
+use crate::frustum::FirstCell;
 use crate::plan::Plan;
 use crate::root::RootResult;
 use crate::sample::Hit;
@@ -25,6 +26,11 @@ pub trait Queries: Sync {
     /// where its parent left it open; [`BoxClass::Hit`](crate::beam::BoxClass::Hit) that every ray has its first root in
     /// `T_final`; else [`BoxClass::Undecided`](crate::beam::BoxClass::Undecided) with the first range not rejected.
     fn beams(&self, queries: &[BeamQuery]) -> Result<Answers<Classified>, Error>;
+
+    /// The first cell of the frustum octree of each pixel of each tile, row by row: where
+    /// the pixel's rays may first meet a surface, none before ([`crate::frustum`]); `None`
+    /// for a pixel none of whose rays meets one.
+    fn first_cells(&self, queries: &[CellQuery]) -> Result<Answers<Vec<Option<FirstCell>>>, Error>;
 
     /// The first root of each ray in its window.
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error>;

@@ -156,7 +156,7 @@ pub fn render_on<'a>(
     let npix = w as usize * h as usize;
 
     let (classes, scopes) = if plan.runs(Pass::ScreenBoxes) {
-        let (classes, scopes, stats) = primary::screen_boxes(q, scene, &plan, progress)?;
+        let (classes, scopes, stats) = primary::structure(q, scene, &plan, progress)?;
         passes.push(stats);
         (classes, scopes)
     } else {
@@ -181,6 +181,7 @@ pub fn render_on<'a>(
             (samples, cost)
         }
         Primary::ScreenRays { rays_per_undecided }
+        | Primary::Octree { rays_per_undecided }
         | Primary::PerPixel {
             rays_per_pixel: rays_per_undecided,
         } => {
@@ -278,7 +279,7 @@ pub(crate) fn screen_box_pass(
     }
     let routing = Routing::new(&Cpu, scene, plan);
     let (queries, mut passes) = routing.prepare(&Cpu, scene, plan)?;
-    let (classes, _, stats) = primary::screen_boxes(&queries, scene, plan, progress)?;
+    let (classes, _, stats) = primary::structure(&queries, scene, plan, progress)?;
     passes.push(stats);
     Ok((passes, classes.iter().map(|c| c.map(|c| c.0)).collect()))
 }

@@ -7,12 +7,12 @@ use rayon::prelude::*;
 
 use super::pixels::{self, Pixels, owners};
 use super::{PixelSamples, RowBatch, row_batches};
-use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery};
+use crate::backend::{BeamQuery, CellQuery, HitQuery, Queries, RayQuery};
 use crate::beam::{BeamScope, BoxClass};
 use crate::beam::{child_window, forward};
 use crate::camera::Camera;
 use crate::error::Error;
-use crate::plan::{Pass, Plan};
+use crate::plan::{Pass, Plan, Primary};
 use crate::progress::Progress;
 use crate::root::{Proof, RootResult};
 use crate::sample::{Area, Sample};
@@ -31,10 +31,74 @@ pub(super) type PixelClasses = Vec<Option<(BoxClass, bool)>>;
 /// the parts of the pixel; `None` elsewhere.
 pub(super) type PixelScopes = Vec<Option<BeamScope>>;
 
+/// The first primary pass of `plan`: the frustum octree's first cells for
+/// [`Primary::Octree`], else the screen box structure.
+pub(super) fn structure(
+    q: &dyn Queries,
+    scene: &Scene,
+    plan: &Plan,
+    progress: &dyn Progress,
+) -> Result<(PixelClasses, PixelScopes, PassStats), Error> {
+    match plan.primary {
+        Primary::Octree { .. } => octree(q, scene, progress),
+        _ => screen_boxes(q, scene, plan, progress),
+    }
+}
+
+/// Side of the tiles the frustum octree starts from (fidget's first 3D tile).
+const OCTREE_TILE: u32 = 64;
+
+/// The frustum octree pass ([`crate::frustum`]): the tiles of a band of rows in one batch,
+/// each pixel Undecided in its first cell (with the scope of that cell) or a Miss.
+fn octree(
+    q: &dyn Queries,
+    scene: &Scene,
+    progress: &dyn Progress,
+) -> Result<(PixelClasses, PixelScopes, PassStats), Error> {
+    let cam = &scene.camera;
+    let (w, h) = (cam.width(), cam.height());
+    let t0 = Instant::now();
+    progress.begin(Pass::ScreenBoxes.name(), u64::from(h));
+    let mut classes: PixelClasses = vec![None; w as usize * h as usize];
+    let mut scopes: PixelScopes = vec![None; w as usize * h as usize];
+    let mut c = ScreenBoxCounters::default();
+    let all = tiles(w, h, OCTREE_TILE);
+    for band in all.chunk_by(|a, b| a.y0 == b.y0) {
+        let queries: Vec<CellQuery> = band.iter().map(|&tile| CellQuery { tile }).collect();
+        let answers = q.first_cells(&queries)?;
+        c.search.add(&answers.search);
+        for (tile, firsts) in band.iter().zip(answers.values) {
+            for ((x, y), first) in tile.pixels().zip(firsts) {
+                let i = (y * w + x) as usize;
+                match first {
+                    Some(f) => {
+                        c.undecided_pixels += 1;
+                        classes[i] = Some((BoxClass::Undecided { t: f.t }, false));
+                        scopes[i] = f.scope;
+                    }
+                    None => {
+                        c.miss_pixels += 1;
+                        classes[i] = Some((BoxClass::Miss, false));
+                    }
+                }
+            }
+        }
+        progress.advance(u64::from(band[0].y1 - band[0].y0));
+    }
+    // Each cell is one evaluation: the cells searched.
+    c.beams = c.search.g_evals;
+    progress.end();
+    Ok((
+        classes,
+        scopes,
+        PassStats::of(Pass::ScreenBoxes, t0.elapsed(), &c),
+    ))
+}
+
 /// The screen box pass: tiles classified in one batch, the boxes to split in the next
 /// batch, down to single pixels (Undecided boxes and wide Hit boxes are split; a part
 /// searches only what its parent left open).
-pub(super) fn screen_boxes(
+fn screen_boxes(
     q: &dyn Queries,
     scene: &Scene,
     plan: &Plan,

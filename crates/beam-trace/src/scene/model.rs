@@ -162,6 +162,9 @@ pub enum PrimaryMode {
     ScreenRays,
     /// Classic interval ray casting: `rays_per_pixel` rays in every pixel.
     PerPixel,
+    /// The frustum octree ([`crate::frustum`]): each pixel's first cell where a surface may
+    /// be, then `rays_per_undecided` point rays per covered pixel from there.
+    Octree,
 }
 
 /// Largest regular grid resolution (cells along the longest side): at most 256³ ≈ 16.8

@@ -14,19 +14,20 @@ use crate::error::Error;
 impl FromStr for PrimaryMode {
     type Err = String;
 
-    /// `screen-boxes`, `screen-rays` or `per-pixel`.
+    /// `screen-boxes`, `screen-rays`, `per-pixel` or `octree`.
     fn from_str(s: &str) -> Result<Self, String> {
         match s {
             "screen-boxes" => Ok(PrimaryMode::ScreenBoxes),
             "screen-rays" => Ok(PrimaryMode::ScreenRays),
             "per-pixel" => Ok(PrimaryMode::PerPixel),
+            "octree" => Ok(PrimaryMode::Octree),
             _ => {
-                let names = ["screen-boxes", "screen-rays", "per-pixel"];
+                let names = ["screen-boxes", "screen-rays", "per-pixel", "octree"];
                 let hint = suggest::did_you_mean(s, names)
                     .map(|h| format!("; {h}"))
                     .unwrap_or_default();
                 Err(format!(
-                    "unknown primary mode '{s}'{hint} (one of: screen-boxes, screen-rays, per-pixel)"
+                    "unknown primary mode '{s}'{hint} (one of: screen-boxes, screen-rays, per-pixel, octree)"
                 ))
             }
         }

@@ -16,12 +16,13 @@ use interval_core::Interval;
 use rayon::prelude::*;
 
 use super::query::{
-    Answers, BeamQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery, ShadeBatch,
-    SoftAnswers, Support, VariationQuery,
+    Answers, BeamQuery, CellQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery,
+    ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use super::traits::{Backend, Prepared, Queries};
 use crate::aa::{LightSource, shading_variation};
 use crate::error::Error;
+use crate::frustum::FirstCell;
 use crate::grid::Grid;
 use crate::plan::{Pass, Plan};
 use crate::ray::Ray;
@@ -97,6 +98,11 @@ impl Backend for Cpu {
 impl Queries for CpuQueries<'_> {
     fn beams(&self, queries: &[BeamQuery]) -> Result<Answers<Classified>, Error> {
         Ok(self.map(queries, true, |ev, q, c| self.classify(ev, q, c)))
+    }
+
+    fn first_cells(&self, queries: &[CellQuery]) -> Result<Answers<Vec<Option<FirstCell>>>, Error> {
+        // A tile is much work: one per piece.
+        Ok(self.map_pieces(queries, 1, true, |ev, q, c| self.cells(ev, q, c)))
     }
 
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error> {

@@ -9,11 +9,12 @@ use interval_core::Interval;
 use rayon::prelude::*;
 
 use crate::backend::query::Answers;
-use crate::backend::query::{BeamQuery, Classified};
+use crate::backend::query::{BeamQuery, CellQuery, Classified};
 use crate::beam::{
     BeamScope, BoxClass, Extent, Inherited, child_window, evaluate_box_within, forward,
 };
 use crate::free_ranges::BeamKey;
+use crate::frustum::{FirstCell, first_cells};
 use crate::grid::{Grid, GridEval};
 use crate::plan::Plan;
 use crate::ray::{Beam, BeamEval, Precision, Ray};
@@ -106,8 +107,20 @@ impl CpuQueries<'_> {
     ) -> Answers<T> {
         /// Queries per piece of work: one set of counters and vectors per piece.
         const PIECE: usize = 256;
+        self.map_pieces(queries, PIECE, timed, f)
+    }
+
+    /// [`map`](Self::map) with `piece` queries per piece of work (fewer for queries that
+    /// are much work each).
+    pub(super) fn map_pieces<Q: Sync, T: Send>(
+        &self,
+        queries: &[Q],
+        piece: usize,
+        timed: bool,
+        f: impl Fn(&mut Evals, &Q, &mut RootCounters) -> T + Sync,
+    ) -> Answers<T> {
         let pieces: Vec<(Vec<T>, Vec<f32>, RootCounters)> = queries
-            .par_chunks(PIECE)
+            .par_chunks(piece.max(1))
             .map_init(
                 || self.evals(),
                 |ev, chunk| {
@@ -157,6 +170,30 @@ impl CpuQueries<'_> {
                 .into_iter()
                 .collect(),
         }
+    }
+
+    /// The first cell of each pixel of a tile ([`crate::frustum::first_cells`]), searched
+    /// where the tile's beam crosses the grid's non-empty cells (or the scene bounds).
+    pub(super) fn cells(
+        &self,
+        ev: &mut Evals,
+        query: &CellQuery,
+        c: &mut RootCounters,
+    ) -> Vec<Option<FirstCell>> {
+        let cam = &self.scene.camera;
+        let r = query.tile;
+        let beam = cam.beam(
+            f64::from(r.x0),
+            f64::from(r.y0),
+            f64::from(r.x1),
+            f64::from(r.y1),
+        );
+        let ranges = self.beam_ranges(&beam, forward());
+        let range = match (ranges.first(), ranges.last()) {
+            (Some(a), Some(b)) => Interval::new_unchecked(a.inf(), b.sup()),
+            _ => Interval::EMPTY,
+        };
+        first_cells(&mut ev.geo.beam, cam, r, range, self.plan.beam.epsilon, c).0
     }
 
     /// EvaluateBox of a beam against the whole scene function. A beam lying inside a

@@ -1,0 +1,164 @@
+//! Primary visibility by an octree over the view frustum: each pixel's first cell where the
+//! surface may be, the way a voxel renderer finds its depth image (fidget's 3D tiles), with
+//! every cell a beam over a parameter range.
+//!
+//! A cell is a rectangle of pixels `R` and a range `T` of the ray parameter; its enclosure is
+//! `g` over every ray of `R`'s beam for `t ∈ T`. Cells are searched depth first, the nearer
+//! half of `T` first, so that along every pixel's column of cells they come in increasing
+//! `t`; a cell whose pixels all have their first cell already is skipped. A cell is
+//!
+//! * **rejected** where its enclosure is positive (or empty: `g` undefined there): no ray
+//!   of `R` meets the surface in `T`;
+//! * **first** for the pixels of `R` that have no first cell yet where its enclosure is
+//!   negative (every ray is inside: the surface lies at its near face, which only a jump or
+//!   a hole in `g`'s domain allows after positive cells), or where it may vanish and it is a
+//!   leaf: one pixel wide, and `T` no longer than the pixel's cross-section at `T`'s far
+//!   end (nor `epsilon`);
+//! * else split: `T` in two where it is longer than the cross-section of `R`'s beam, else
+//!   `R` in four and `T` in two.
+//!
+//! What a pixel's first cell proves: every earlier cell of its column was rejected, so no
+//! ray of the pixel meets the surface before `T`: the pixel is
+//! [`BoxClass::Undecided`](crate::beam::BoxClass::Undecided) with `T`, and its rays search
+//! from there. A pixel without a first cell is a [`BoxClass::Miss`](crate::beam::BoxClass::Miss).
+//! Each cell that is split prunes `g` to its beam over `T` ([`RayFn::restrict`]) for the
+//! cells inside it, so the deep cells evaluate a few instructions of a long formula.
+//!
+//! Against the screen box structure ([`crate::beam::evaluate_box_within`]), a cell costs one
+//! evaluation (no inclusion test, no `T_final`), and space and screen are subdivided together
+//! instead of a whole box's beam being bisected along `T` first.
+
+use interval_core::Interval;
+
+use crate::beam::BeamScope;
+use crate::camera::Camera;
+use crate::ray::{BeamEval, RayFn};
+use crate::root::RootCounters;
+use crate::screen::PixelRect;
+
+/// Tapes this short are not pruned for the cells inside a cell (a pruning costs about two
+/// evaluations of the tape it prunes).
+const PRUNE_MIN_LEN: usize = 16;
+
+/// Where a pixel's surface may begin: the range `t` of its first cell (no ray of the pixel
+/// meets the surface before it), and the scene function pruned to a region holding the
+/// cell.
+#[derive(Clone, Debug, PartialEq)]
+pub struct FirstCell {
+    /// The parameter range of the cell.
+    pub t: Interval<f64>,
+    /// `g` pruned for a cell holding this one, for the pixel's rays over `t`.
+    pub scope: Option<BeamScope>,
+}
+
+/// The first cell of each pixel of `tile` (row by row), searched in the parameter range
+/// `range` (where the tile's beam lies in the scene bounds), with `g` the scene function of
+/// the camera's beams; leaves are no longer than `epsilon` or the pixel's cross-section.
+/// Counts each cell's evaluation in `counters.g_evals` and returns the number of cells.
+pub fn first_cells(
+    g: &mut BeamEval,
+    cam: &Camera,
+    tile: PixelRect,
+    range: Interval<f64>,
+    epsilon: f64,
+    counters: &mut RootCounters,
+) -> (Vec<Option<FirstCell>>, u64) {
+    let width = (tile.x1 - tile.x0) as usize;
+    let mut search = Search {
+        g,
+        cam,
+        tile,
+        width,
+        epsilon,
+        first: vec![None; tile.area() as usize],
+        cells: 0,
+        counters,
+    };
+    if !range.is_empty() {
+        search.visit(tile, range, None);
+    }
+    let cells = search.cells;
+    (search.first, cells)
+}
+
+/// One tile's search.
+struct Search<'a> {
+    g: &'a mut BeamEval,
+    cam: &'a Camera,
+    tile: PixelRect,
+    width: usize,
+    epsilon: f64,
+    first: Vec<Option<FirstCell>>,
+    cells: u64,
+    counters: &'a mut RootCounters,
+}
+
+impl Search<'_> {
+    fn index(&self, x: u32, y: u32) -> usize {
+        (y - self.tile.y0) as usize * self.width + (x - self.tile.x0) as usize
+    }
+
+    /// Searches the cell `r × t` with `scope`, a restriction of `g` to a cell holding it.
+    fn visit(&mut self, r: PixelRect, t: Interval<f64>, scope: Option<&BeamScope>) {
+        if r.pixels()
+            .all(|(x, y)| self.first[self.index(x, y)].is_some())
+        {
+            return;
+        }
+        let beam = self.cam.beam(
+            f64::from(r.x0),
+            f64::from(r.y0),
+            f64::from(r.x1),
+            f64::from(r.y1),
+        );
+        self.g.set_beam(&beam);
+        if let Some(s) = scope {
+            self.g.set_scope(&s.tape);
+        }
+        let gt = self.g.g(t);
+        self.counters.g_evals += 1;
+        self.cells += 1;
+        if gt.is_empty() || gt.inf() > 0.0 {
+            return;
+        }
+        // The cross-section of the beam at the far end of `t` (its origin is the eye).
+        let spread = beam.dir.iter().map(|d| d.wid()).fold(0.0, f64::max);
+        let across = spread * t.sup().abs();
+        let shallow = t.wid() <= self.epsilon.max(across);
+        if gt.sup() < 0.0 || (r.is_pixel() && shallow) {
+            let first = FirstCell {
+                t,
+                scope: scope.cloned().map(|s| BeamScope { t, ..s }),
+            };
+            for (x, y) in r.pixels() {
+                let i = self.index(x, y);
+                if self.first[i].is_none() {
+                    self.first[i] = Some(first.clone());
+                }
+            }
+            return;
+        }
+        // The cells inside this one search with `g` pruned to it.
+        let inner = match self.g.scope() {
+            Some(tape) if tape.len() > PRUNE_MIN_LEN => {
+                self.g.restrict(t);
+                self.g.scope().map(|tape| BeamScope {
+                    tape,
+                    t,
+                    escalated: false,
+                })
+            }
+            _ => scope.cloned(),
+        };
+        let (near, far) = t.bisect();
+        for half in [near, far] {
+            if shallow {
+                for q in r.split() {
+                    self.visit(q, half, inner.as_ref());
+                }
+            } else {
+                self.visit(r, half, inner.as_ref());
+            }
+        }
+    }
+}
