@@ -11,6 +11,7 @@ use interval_core::Interval;
 use crate::error::Error;
 use crate::ibox::{IBox, ipoint, ival, point_box};
 use crate::ray::{Beam, Ray};
+use crate::screen::PixelRect;
 
 /// A pinhole camera with its image size. Pixel coordinates are continuous: pixel `(i, j)`
 /// covers `[i, i+1] × [j, j+1]`, `x` to the right and `y` down.
@@ -139,11 +140,129 @@ impl Camera {
         }
     }
 
+    /// The beams of the pixel rectangles inside `area`, with the terms of each pixel edge
+    /// computed once ([`EdgeBeams`]).
+    pub fn edge_beams(&self, area: PixelRect) -> EdgeBeams {
+        let c = self.corner.to_array();
+        let du = self.du.to_array();
+        let dv = self.dv.to_array();
+        let columns = (area.x0..=area.x1)
+            .map(|x| std::array::from_fn(|i| ipoint(c[i]) + ipoint(f64::from(x)) * ipoint(du[i])))
+            .collect();
+        let rows = (area.y0..=area.y1)
+            .map(|y| std::array::from_fn(|i| ipoint(f64::from(y)) * ipoint(dv[i])))
+            .collect();
+        EdgeBeams {
+            origin: point_box(self.eye),
+            area,
+            columns,
+            rows,
+        }
+    }
+
     /// The beam of every ray through the screen area `[x0, x1] × [y0, y1]` (pixel units).
     pub fn beam(&self, x0: f64, y0: f64, x1: f64, y1: f64) -> Beam {
         Beam {
             origin: point_box(self.eye),
             dir: self.dirs(ival(x0, x1), ival(y0, y1)),
+        }
+    }
+}
+
+/// The beams of the pixel rectangles inside an area of the image, equal bit for bit to
+/// [`Camera::beam`] of the same rectangles: a beam's directions are `c + x·du + y·dv` over
+/// its rectangle, and in interval arithmetic (outward rounding is monotone) that is the
+/// hull of the left and right edges' `c + x·du` plus the hull of the top and bottom
+/// edges' `y·dv`, each computed once per edge of the area instead of once per beam.
+#[derive(Clone, Debug)]
+pub struct EdgeBeams {
+    origin: IBox,
+    area: PixelRect,
+    /// `c + x·du` for every column edge `x` of the area.
+    columns: Vec<IBox>,
+    /// `y·dv` for every row edge `y`.
+    rows: Vec<IBox>,
+}
+
+impl EdgeBeams {
+    /// The beam of the pixels of `r`, which must lie inside the area.
+    pub fn beam(&self, r: PixelRect) -> Beam {
+        let a = self.area;
+        debug_assert!(a.x0 <= r.x0 && r.x1 <= a.x1 && a.y0 <= r.y0 && r.y1 <= a.y1);
+        let (left, right) = (
+            &self.columns[(r.x0 - a.x0) as usize],
+            &self.columns[(r.x1 - a.x0) as usize],
+        );
+        let (top, bottom) = (
+            &self.rows[(r.y0 - a.y0) as usize],
+            &self.rows[(r.y1 - a.y0) as usize],
+        );
+        Beam {
+            origin: self.origin,
+            dir: std::array::from_fn(|i| {
+                left[i].convex_hull(right[i]) + top[i].convex_hull(bottom[i])
+            }),
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every rectangle of a few areas of two cameras: the edge beams are the camera's beams,
+    /// bit for bit.
+    #[test]
+    fn edge_beams_are_the_camera_beams() {
+        let cams = [
+            Camera::new(
+                DVec3::new(2.74, 2.19, 6.02),
+                DVec3::ZERO,
+                DVec3::Y,
+                40.0,
+                97,
+                61,
+            )
+            .unwrap(),
+            Camera::new(
+                DVec3::new(0.0, 0.0, 1e5),
+                DVec3::ZERO,
+                DVec3::Y,
+                0.001,
+                64,
+                64,
+            )
+            .unwrap(),
+        ];
+        for cam in &cams {
+            let area = PixelRect {
+                x0: 3,
+                y0: 5,
+                x1: 3 + 17.min(cam.width() - 3),
+                y1: 5 + 13.min(cam.height() - 5),
+            };
+            let edges = cam.edge_beams(area);
+            for y0 in area.y0..area.y1 {
+                for y1 in y0 + 1..=area.y1 {
+                    for x0 in area.x0..area.x1 {
+                        for x1 in x0 + 1..=area.x1 {
+                            let r = PixelRect { x0, y0, x1, y1 };
+                            let b = edges.beam(r);
+                            let want = cam.beam(
+                                f64::from(x0),
+                                f64::from(y0),
+                                f64::from(x1),
+                                f64::from(y1),
+                            );
+                            assert_eq!(b.origin, want.origin);
+                            for i in 0..3 {
+                                assert_eq!(b.dir[i].inf().to_bits(), want.dir[i].inf().to_bits());
+                                assert_eq!(b.dir[i].sup().to_bits(), want.dir[i].sup().to_bits());
+                            }
+                        }
+                    }
+                }
+            }
         }
     }
 }

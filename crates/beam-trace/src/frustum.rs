@@ -31,7 +31,7 @@
 use interval_core::Interval;
 
 use crate::beam::BeamScope;
-use crate::camera::Camera;
+use crate::camera::{Camera, EdgeBeams};
 use crate::ray::{BeamEval, RayFn};
 use crate::root::RootCounters;
 use crate::screen::PixelRect;
@@ -66,7 +66,7 @@ pub fn first_cells(
     let width = (tile.x1 - tile.x0) as usize;
     let mut search = Search {
         g,
-        cam,
+        beams: cam.edge_beams(tile),
         tile,
         width,
         epsilon,
@@ -84,7 +84,7 @@ pub fn first_cells(
 /// One tile's search.
 struct Search<'a> {
     g: &'a mut BeamEval,
-    cam: &'a Camera,
+    beams: EdgeBeams,
     tile: PixelRect,
     width: usize,
     epsilon: f64,
@@ -105,16 +105,8 @@ impl Search<'_> {
         {
             return;
         }
-        let beam = self.cam.beam(
-            f64::from(r.x0),
-            f64::from(r.y0),
-            f64::from(r.x1),
-            f64::from(r.y1),
-        );
-        self.g.set_beam(&beam);
-        if let Some(s) = scope {
-            self.g.set_scope(&s.tape);
-        }
+        let beam = self.beams.beam(r);
+        self.g.set_interval_beam(&beam, scope.map(|s| &s.tape));
         let gt = self.g.g(t);
         self.counters.g_evals += 1;
         self.cells += 1;

@@ -386,6 +386,29 @@ impl BeamEval {
         }
     }
 
+    /// Sets the beam of the interval evaluations alone, with `g` restricted to `scope` (a
+    /// tape [`RayFn::scope`] returned for a beam holding this one, asked only about
+    /// parameters it holds for), or the whole `g` without one. The point evaluations keep
+    /// the ray they had: for searches that evaluate intervals only (the frustum octree).
+    pub fn set_interval_beam(&mut self, beam: &Beam, scope: Option<&Tape>) {
+        let Some(scope) = scope else {
+            self.set_interval_ray(beam.origin, beam.dir);
+            return;
+        };
+        let (origin, dir) = (beam.origin, beam.dir);
+        self.origin = origin;
+        self.dir = dir;
+        match self.precision {
+            Precision::F64 => self.interval.set_ray_within(origin, dir, scope),
+            Precision::F32 => self
+                .interval32
+                .set_ray_within(box32(&origin), box32(&dir), scope),
+            Precision::Dd => self
+                .interval_dd
+                .set_ray_within(box_dd(&origin), box_dd(&dir), scope),
+        }
+    }
+
     /// Sets the beam the following evaluations are about.
     pub fn set_beam(&mut self, beam: &Beam) {
         self.set_interval_ray(beam.origin, beam.dir);

@@ -260,6 +260,16 @@ impl<N: Number> RayEvaluator<N> {
         self.vars[4..7].copy_from_slice(&dir);
     }
 
+    /// [`set_ray`](Self::set_ray) followed by [`set_scope`](Self::set_scope) with `scope`,
+    /// a tape that [`scope`](Self::scope) returned for a ray or beam holding this one (its
+    /// region holds this one's over the parameters it is asked about): without loading the
+    /// whole `g` in between.
+    pub fn set_ray_within(&mut self, origin: [N; 3], dir: [N; 3], scope: &Tape) {
+        self.g.set_tape(scope);
+        self.vars[0..3].copy_from_slice(&origin);
+        self.vars[4..7].copy_from_slice(&dir);
+    }
+
     /// `g(t)`.
     pub fn g(&mut self, t: N) -> N {
         self.vars[T.index()] = t;

@@ -185,8 +185,17 @@ pub fn render_on<'a>(
         | Primary::PerPixel {
             rays_per_pixel: rays_per_undecided,
         } => {
-            let (samples, cost, stats) =
-                primary::primary_rays(q, scene, (&classes, &scopes), rays_per_undecided, progress)?;
+            let start = match plan.primary {
+                Primary::Octree { .. } => primary::RayStart::FirstCell,
+                _ => primary::RayStart::BoxWindow,
+            };
+            let (samples, cost, stats) = primary::primary_rays(
+                q,
+                scene,
+                (&classes, &scopes),
+                (rays_per_undecided, start),
+                progress,
+            )?;
             passes.push(stats);
             passes.push(PassStats::skipped(Pass::PixelBeams.name()));
             (samples, cost)

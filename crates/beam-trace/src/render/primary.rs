@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use interval_core::Interval;
 use rayon::prelude::*;
 
 use super::pixels::{self, Pixels, owners};
@@ -182,14 +183,26 @@ fn pixel_offsets(n: u32) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// One ray of a pixel: its weight, the query, and whether its window is a Hit box's
-/// `T_final`, where a root is known to exist (then the ray's share of the pixel is proven
-/// covered).
+/// One ray of a pixel: its weight, the query, and the window searched (with the whole
+/// function) when the query's search ends without a root: the whole ray after a Hit box's
+/// `T_final` (where a root is known to exist, so a limit was reached), the rest of the ray
+/// after a first cell of the frustum octree.
 #[derive(Clone)]
 struct PixelRay {
     weight: f32,
     query: RayQuery,
-    in_t_final: bool,
+    fallback: Option<Interval<f64>>,
+}
+
+/// Where the rays of an Undecided pixel start.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(super) enum RayStart {
+    /// A little before the undecided range of the pixel's screen box
+    /// ([`child_window`]), with the whole function.
+    BoxWindow,
+    /// At the pixel's first cell of the frustum octree ([`crate::frustum`]): searched
+    /// first inside the cell with the cell's scope, then on from there.
+    FirstCell,
 }
 
 /// What is proven about the share of a pixel of box class `class` that one of its samples
@@ -217,7 +230,7 @@ fn ray_count(class: Option<(BoxClass, bool)>, stratified: usize) -> usize {
 /// `r`, searched from where the pixel's beam proved every ray root-free (see
 /// [`ray_count`]).
 fn pixel_ray(
-    cam: &Camera,
+    (cam, start): (&Camera, RayStart),
     i: usize,
     w: u32,
     (class, scope): (Option<(BoxClass, bool)>, &Option<BeamScope>),
@@ -233,18 +246,46 @@ fn pixel_ray(
                 window: t_final,
                 scope: scope.clone(),
             },
-            in_t_final: true,
+            fallback: Some(forward()),
         },
         class => {
             let (ox, oy) = offsets[r];
-            PixelRay {
-                weight: 1.0 / offsets.len() as f32,
-                query: RayQuery {
-                    ray: cam.ray(fx + ox, fy + oy),
-                    window: child_window(class.as_ref()),
-                    scope: None,
+            let ray = cam.ray(fx + ox, fy + oy);
+            let weight = 1.0 / offsets.len() as f32;
+            match (start, class) {
+                (RayStart::FirstCell, Some(BoxClass::Undecided { t })) => {
+                    // No ray of the pixel meets a surface before its first cell.
+                    let rest = Interval::new_unchecked(t.inf(), f64::INFINITY);
+                    match scope.as_ref().filter(|s| t.subset(s.t)) {
+                        Some(s) => PixelRay {
+                            weight,
+                            query: RayQuery {
+                                ray,
+                                window: t,
+                                scope: Some(s.clone()),
+                            },
+                            fallback: Some(rest),
+                        },
+                        None => PixelRay {
+                            weight,
+                            query: RayQuery {
+                                ray,
+                                window: rest,
+                                scope: None,
+                            },
+                            fallback: None,
+                        },
+                    }
+                }
+                _ => PixelRay {
+                    weight,
+                    query: RayQuery {
+                        ray,
+                        window: child_window(class.as_ref()),
+                        scope: None,
+                    },
+                    fallback: None,
                 },
-                in_t_final: false,
             }
         }
     }
@@ -259,7 +300,7 @@ pub(super) fn primary_rays(
     q: &dyn Queries,
     scene: &Scene,
     (classes, scopes): (&PixelClasses, &PixelScopes),
-    rays: u32,
+    (rays, start): (u32, RayStart),
     progress: &dyn Progress,
 ) -> Result<PixelSamples, Error> {
     let cam = &scene.camera;
@@ -287,7 +328,7 @@ pub(super) fn primary_rays(
                 let k = k as usize;
                 let r = j - first_ray[k];
                 let p = first + k;
-                pixel_ray(cam, p, w, (classes[p], &scopes[p]), &offsets, r)
+                pixel_ray((cam, start), p, w, (classes[p], &scopes[p]), &offsets, r)
             })
             .collect();
         let queries: Vec<RayQuery> = batch.par_iter().map(|r| r.query.clone()).collect();
@@ -296,22 +337,23 @@ pub(super) fn primary_rays(
         c.search.add(&first_try.search);
         let mut results = first_try.values;
         let mut ray_cost = first_try.cost;
-        // A limit inside T_final: search the whole ray.
-        let retry: Vec<usize> = (0..batch.len())
-            .filter(|&j| batch[j].in_t_final && !matches!(results[j], RootResult::Root { .. }))
+        // No root where one was expected first: search the fallback window.
+        let retry: Vec<(usize, Interval<f64>)> = (0..batch.len())
+            .filter(|&j| !matches!(results[j], RootResult::Root { .. }))
+            .filter_map(|j| batch[j].fallback.map(|w| (j, w)))
             .collect();
         if !retry.is_empty() {
             let queries: Vec<RayQuery> = retry
                 .iter()
-                .map(|&j| RayQuery {
+                .map(|&(j, window)| RayQuery {
                     ray: batch[j].query.ray,
-                    window: forward(),
+                    window,
                     scope: None,
                 })
                 .collect();
             let again = q.roots(&queries)?;
             c.search.add(&again.search);
-            for ((&j, r), t) in retry.iter().zip(again.values).zip(&again.cost) {
+            for ((&(j, _), r), t) in retry.iter().zip(again.values).zip(&again.cost) {
                 results[j] = r;
                 ray_cost[j] += t;
             }
