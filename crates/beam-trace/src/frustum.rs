@@ -20,7 +20,12 @@
 //! What a pixel's first cell proves: every earlier cell of its column was rejected, so no
 //! ray of the pixel meets the surface before `T`: the pixel is
 //! [`BoxClass::Undecided`](crate::beam::BoxClass::Undecided) with `T`, and its rays search
-//! from there. A pixel without a first cell is a [`BoxClass::Miss`](crate::beam::BoxClass::Miss).
+//! from there. Where the first cell is a leaf that passes the inclusion test
+//! ([`inclusion_test`]: `g` continuous over the pixel's beam and `T`, with opposite signs at
+//! `T`'s ends for every ray, both ends inside the scene bounds), every ray of the pixel has
+//! its first root in `T`: the pixel is a [`BoxClass::Hit`](crate::beam::BoxClass::Hit) with
+//! `T_final = T`. A pixel without a first cell is a
+//! [`BoxClass::Miss`](crate::beam::BoxClass::Miss).
 //! Each cell that is split prunes `g` to its beam over `T` ([`RayFn::restrict`]) for the
 //! cells inside it, so the deep cells evaluate a few instructions of a long formula.
 //!
@@ -30,34 +35,42 @@
 
 use interval_core::Interval;
 
-use crate::beam::BeamScope;
+use crate::beam::{BeamScope, Extent, inclusion_test};
 use crate::camera::{Camera, EdgeBeams};
+use crate::ibox::IBox;
 use crate::ray::{BeamEval, RayFn};
 use crate::root::RootCounters;
+use crate::root::search::{Eval, sign_change_ahead};
 use crate::screen::PixelRect;
+
+/// How far [`Search::included`] looks past a leaf: up to `2^LOOK_AHEAD` of its lengths.
+const LOOK_AHEAD: u32 = 4;
 
 /// Tapes this short are not pruned for the cells inside a cell (a pruning costs about two
 /// evaluations of the tape it prunes).
 const PRUNE_MIN_LEN: usize = 16;
 
 /// Where a pixel's surface may begin: the range `t` of its first cell (no ray of the pixel
-/// meets the surface before it), and the scene function pruned to a region holding the
-/// cell.
+/// meets the surface before it), whether every ray of the pixel meets it there, and the
+/// scene function pruned to a region holding the cell.
 #[derive(Clone, Debug, PartialEq)]
 pub struct FirstCell {
     /// The parameter range of the cell.
     pub t: Interval<f64>,
+    /// Every ray of the pixel has its first root in `t` (the inclusion test passed).
+    pub hit: bool,
     /// `g` pruned for a cell holding this one, for the pixel's rays over `t`.
     pub scope: Option<BeamScope>,
 }
 
 /// The first cell of each pixel of `tile` (row by row), searched in the parameter range
-/// `range` (where the tile's beam lies in the scene bounds), with `g` the scene function of
-/// the camera's beams; leaves are no longer than `epsilon` or the pixel's cross-section.
-/// Counts each cell's evaluation in `counters.g_evals` and returns the number of cells.
+/// `range` (where the tile's beam lies in the scene bounds `bounds`), with `g` the scene
+/// function of the camera's beams; leaves are no longer than `epsilon` or the pixel's
+/// cross-section. Counts each cell's evaluation (and the inclusion tests') in
+/// `counters.g_evals` and returns the number of cells.
 pub fn first_cells(
     g: &mut BeamEval,
-    cam: &Camera,
+    (cam, bounds): (&Camera, &IBox),
     tile: PixelRect,
     range: Interval<f64>,
     epsilon: f64,
@@ -67,6 +80,8 @@ pub fn first_cells(
     let mut search = Search {
         g,
         beams: cam.edge_beams(tile),
+        bounds,
+        range,
         tile,
         width,
         epsilon,
@@ -85,6 +100,8 @@ pub fn first_cells(
 struct Search<'a> {
     g: &'a mut BeamEval,
     beams: EdgeBeams,
+    bounds: &'a IBox,
+    range: Interval<f64>,
     tile: PixelRect,
     width: usize,
     epsilon: f64,
@@ -96,6 +113,25 @@ struct Search<'a> {
 impl Search<'_> {
     fn index(&self, x: u32, y: u32) -> usize {
         (y - self.tile.y0) as usize * self.width + (x - self.tile.x0) as usize
+    }
+
+    /// Where every ray of the beam set on `g` (restricted to a region holding its rays for
+    /// parameters up to `limit`) has its first root, given none before `t`: `t` itself when
+    /// the inclusion test passes there, else `[inf t, p]` for the first `p = sup t + w·2^k`
+    /// (`k ≤` [`LOOK_AHEAD`], `p ≤ limit`) where the sign has changed for every ray, with `g`
+    /// continuous up to it; both ends inside the scene bounds.
+    fn included(
+        &mut self,
+        t: Interval<f64>,
+        limit: f64,
+        extent: &Extent<'_>,
+    ) -> Option<Interval<f64>> {
+        if extent.holds(t.sup()) && inclusion_test(&mut *self.g, t, self.counters) {
+            return Some(t);
+        }
+        let mut ev = Eval::new(&mut *self.g, self.counters);
+        let start = ev.at(t.inf());
+        sign_change_ahead(&mut ev, t, start, limit, LOOK_AHEAD, &|p| extent.holds(p))
     }
 
     /// Searches the cell `r × t` with `scope`, a restriction of `g` to a cell holding it.
@@ -117,10 +153,24 @@ impl Search<'_> {
         let spread = beam.dir.iter().map(|d| d.wid()).fold(0.0, f64::max);
         let across = spread * t.sup().abs();
         let shallow = t.wid() <= self.epsilon.max(across);
-        if gt.sup() < 0.0 || (r.is_pixel() && shallow) {
+        let leaf = r.is_pixel() && shallow;
+        if gt.sup() < 0.0 || leaf {
+            let extent = Extent {
+                beam: &beam,
+                bounds: self.bounds,
+            };
+            // Where the tape holds: the scope's parameters, or all of the tile's range.
+            let limit = scope.map_or(self.range.sup(), |s| s.t.sup());
+            let included = if leaf && gt.inf() < 0.0 && extent.holds(t.inf()) {
+                self.included(t, limit, &extent)
+            } else {
+                None
+            };
+            let cell = included.unwrap_or(t);
             let first = FirstCell {
-                t,
-                scope: scope.cloned().map(|s| BeamScope { t, ..s }),
+                t: cell,
+                hit: included.is_some(),
+                scope: scope.cloned().map(|s| BeamScope { t: cell, ..s }),
             };
             for (x, y) in r.pixels() {
                 let i = self.index(x, y);
@@ -130,15 +180,19 @@ impl Search<'_> {
             }
             return;
         }
-        // The cells inside this one search with `g` pruned to it.
+        // The cells inside this one search with `g` pruned to it; where pruning decides
+        // nothing, the tape keeps the wider region it holds for.
         let inner = match self.g.scope() {
             Some(tape) if tape.len() > PRUNE_MIN_LEN => {
                 self.g.restrict(t);
-                self.g.scope().map(|tape| BeamScope {
-                    tape,
-                    t,
-                    escalated: false,
-                })
+                match self.g.scope() {
+                    Some(pruned) if !pruned.ptr_eq(&tape) => Some(BeamScope {
+                        tape: pruned,
+                        t,
+                        escalated: false,
+                    }),
+                    _ => scope.cloned(),
+                }
             }
             _ => scope.cloned(),
         };

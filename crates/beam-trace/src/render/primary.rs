@@ -72,6 +72,11 @@ fn octree(
             for ((x, y), first) in tile.pixels().zip(firsts) {
                 let i = (y * w + x) as usize;
                 match first {
+                    Some(f) if f.hit => {
+                        c.hit_pixels += 1;
+                        classes[i] = Some((BoxClass::Hit { t_final: f.t }, false));
+                        scopes[i] = f.scope;
+                    }
                     Some(f) => {
                         c.undecided_pixels += 1;
                         classes[i] = Some((BoxClass::Undecided { t: f.t }, false));

@@ -193,7 +193,16 @@ impl CpuQueries<'_> {
             (Some(a), Some(b)) => Interval::new_unchecked(a.inf(), b.sup()),
             _ => Interval::EMPTY,
         };
-        first_cells(&mut ev.geo.beam, cam, r, range, self.plan.beam.epsilon, c).0
+        let bounds = self.scene.geometry.bounds();
+        first_cells(
+            &mut ev.geo.beam,
+            (cam, &bounds),
+            r,
+            range,
+            self.plan.beam.epsilon,
+            c,
+        )
+        .0
     }
 
     /// EvaluateBox of a beam against the whole scene function. A beam lying inside a
