@@ -4,7 +4,7 @@
 //! ```text
 //! render [SCENE] [--out FILE.png] [--width W --height H] [--root-finder NAME]
 //!        [--epsilon E] [--aa none|iaa|iaa:D:T|ss:N] [--threads N] [--stats FILE.json]
-//!        [--primary screen-boxes|screen-rays|per-pixel] [--undecided-depth D]
+//!        [--primary screen-boxes|screen-rays|per-pixel|octree] [--undecided-depth D]
 //!        [--classification FILE.png] [--cost-map FILE.png]
 //!        [--shadows stochastic:N|beam:n|beam-all:n|beam-quadtree:n|
 //!                   minkowski:stochastic:N|minkowski:beam:n|certified:TOL[:BUDGET]]
@@ -60,7 +60,8 @@ struct Args {
     #[arg(long)]
     aa: Option<AaMode>,
     /// Primary visibility: screen-boxes (Undecided pixels resolved by their beams),
-    /// screen-rays (9 point rays per Undecided pixel, the thesis's) or per-pixel.
+    /// screen-rays (9 point rays per Undecided pixel, the thesis's), per-pixel, or octree
+    /// (each pixel's first cell of a frustum octree, then rays from there).
     #[arg(long)]
     primary: Option<PrimaryMode>,
     /// Largest subdivision depth of an Undecided pixel's beam in screen-boxes mode (0 to 8).

@@ -246,7 +246,7 @@ impl Scene {
     /// aa = "none"                       # none | iaa | iaa:D | iaa:D:T | ss:N (N × N rays per pixel, N ≤ 16)
     /// iaa_depth = 4
     /// iaa_threshold = 0.05
-    /// primary = "screen-boxes"          # screen-boxes | screen-rays | per-pixel
+    /// primary = "screen-boxes"          # screen-boxes | screen-rays | per-pixel | octree
     /// undecided_depth = 1               # screen-boxes: Undecided pixels' beams split to this depth
     /// rays_per_undecided = 9            # screen-rays: point rays per Undecided pixel
     /// rays_per_pixel = 1
