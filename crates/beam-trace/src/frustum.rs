@@ -88,9 +88,10 @@ pub fn first_cells(
         first: vec![None; tile.area() as usize],
         cells: 0,
         counters,
+        chain: Vec::new(),
     };
     if !range.is_empty() {
-        search.visit(tile, range, None);
+        search.visit(tile, range);
     }
     let cells = search.cells;
     (search.first, cells)
@@ -108,6 +109,9 @@ struct Search<'a> {
     first: Vec<Option<FirstCell>>,
     cells: u64,
     counters: &'a mut RootCounters,
+    /// The restrictions of `g` of the cells holding the one searched, outermost first
+    /// (each over its own cell, a part of the one before); empty: the whole `g`.
+    chain: Vec<BeamScope>,
 }
 
 impl Search<'_> {
@@ -115,34 +119,64 @@ impl Search<'_> {
         (y - self.tile.y0) as usize * self.width + (x - self.tile.x0) as usize
     }
 
-    /// Where every ray of the beam set on `g` (restricted to a region holding its rays for
-    /// parameters up to `limit`) has its first root, given none before `t`: `t` itself when
-    /// the inclusion test passes there, else `[inf t, p]` for the first `p = sup t + w·2^k`
-    /// (`k ≤` [`LOOK_AHEAD`], `p ≤ limit`) where the sign has changed for every ray, with `g`
-    /// continuous up to it; both ends inside the scene bounds.
+    /// Where every ray of the leaf's beam (set on `g` with the innermost restriction) has
+    /// its first root, given none before `t`, and the restriction that holds there: `t`
+    /// itself when the inclusion test passes, else `[inf t, p]` for the first
+    /// `p = sup t + w·2^k` (`k ≤` [`LOOK_AHEAD`]) where the sign has changed for every ray,
+    /// with `g` continuous up to it and both ends inside the scene bounds. A probe past the
+    /// region of a restriction is made with the next one out (the whole `g` only without
+    /// any), so the probes reach as far as the leaf's depth needs.
     fn included(
         &mut self,
+        beam: &crate::ray::Beam,
         t: Interval<f64>,
-        limit: f64,
         extent: &Extent<'_>,
-    ) -> Option<Interval<f64>> {
+    ) -> Option<(Interval<f64>, Option<BeamScope>)> {
+        let innermost = self.chain.last().cloned();
         if extent.holds(t.sup()) && inclusion_test(&mut *self.g, t, self.counters) {
-            return Some(t);
+            return Some((t, innermost));
         }
-        let mut ev = Eval::new(&mut *self.g, self.counters);
-        let start = ev.at(t.inf());
-        sign_change_ahead(&mut ev, t, start, limit, LOOK_AHEAD, &|p| extent.holds(p))
+        let start = Eval::new(&mut *self.g, self.counters).at(t.inf());
+        let furthest = t.sup() + t.wid() * f64::from(1u32 << LOOK_AHEAD);
+        let mut scopes: Vec<Option<BeamScope>> =
+            self.chain.iter().rev().cloned().map(Some).collect();
+        if scopes.is_empty() {
+            scopes.push(None);
+        }
+        let mut reached = t.sup();
+        for scope in scopes {
+            let limit = scope.as_ref().map_or(self.range.sup(), |s| s.t.sup());
+            if limit <= reached {
+                continue;
+            }
+            self.g
+                .set_interval_beam(beam, scope.as_ref().map(|s| &s.tape));
+            let mut ev = Eval::new(&mut *self.g, self.counters);
+            if let Some(found) =
+                sign_change_ahead(&mut ev, t, start, limit, LOOK_AHEAD, &|p| extent.holds(p))
+            {
+                return Some((found, scope));
+            }
+            if furthest <= limit {
+                // Every probe lay inside this region: a wider one would not change them.
+                return None;
+            }
+            reached = limit;
+        }
+        None
     }
 
-    /// Searches the cell `r × t` with `scope`, a restriction of `g` to a cell holding it.
-    fn visit(&mut self, r: PixelRect, t: Interval<f64>, scope: Option<&BeamScope>) {
+    /// Searches the cell `r × t` with the innermost restriction of the chain.
+    fn visit(&mut self, r: PixelRect, t: Interval<f64>) {
         if r.pixels()
             .all(|(x, y)| self.first[self.index(x, y)].is_some())
         {
             return;
         }
         let beam = self.beams.beam(r);
-        self.g.set_interval_beam(&beam, scope.map(|s| &s.tape));
+        let scope = self.chain.last().cloned();
+        self.g
+            .set_interval_beam(&beam, scope.as_ref().map(|s| &s.tape));
         let gt = self.g.g(t);
         self.counters.g_evals += 1;
         self.cells += 1;
@@ -159,18 +193,19 @@ impl Search<'_> {
                 beam: &beam,
                 bounds: self.bounds,
             };
-            // Where the tape holds: the scope's parameters, or all of the tile's range.
-            let limit = scope.map_or(self.range.sup(), |s| s.t.sup());
             let included = if leaf && gt.inf() < 0.0 && extent.holds(t.inf()) {
-                self.included(t, limit, &extent)
+                self.included(&beam, t, &extent)
             } else {
                 None
             };
-            let cell = included.unwrap_or(t);
+            let (cell, hit, scope) = match included {
+                Some((range, holds)) => (range, true, holds),
+                None => (t, false, scope),
+            };
             let first = FirstCell {
                 t: cell,
-                hit: included.is_some(),
-                scope: scope.cloned().map(|s| BeamScope { t: cell, ..s }),
+                hit,
+                scope: scope.map(|s| BeamScope { t: cell, ..s }),
             };
             for (x, y) in r.pixels() {
                 let i = self.index(x, y);
@@ -182,29 +217,32 @@ impl Search<'_> {
         }
         // The cells inside this one search with `g` pruned to it; where pruning decides
         // nothing, the tape keeps the wider region it holds for.
-        let inner = match self.g.scope() {
-            Some(tape) if tape.len() > PRUNE_MIN_LEN => {
-                self.g.restrict(t);
-                match self.g.scope() {
-                    Some(pruned) if !pruned.ptr_eq(&tape) => Some(BeamScope {
-                        tape: pruned,
-                        t,
-                        escalated: false,
-                    }),
-                    _ => scope.cloned(),
-                }
+        let mut pushed = false;
+        if let Some(tape) = self.g.scope()
+            && tape.len() > PRUNE_MIN_LEN
+        {
+            self.g.restrict(t);
+            if let Some(pruned) = self.g.scope().filter(|p| !p.ptr_eq(&tape)) {
+                self.chain.push(BeamScope {
+                    tape: pruned,
+                    t,
+                    escalated: false,
+                });
+                pushed = true;
             }
-            _ => scope.cloned(),
-        };
+        }
         let (near, far) = t.bisect();
         for half in [near, far] {
             if shallow {
                 for q in r.split() {
-                    self.visit(q, half, inner.as_ref());
+                    self.visit(q, half);
                 }
             } else {
-                self.visit(r, half, inner.as_ref());
+                self.visit(r, half);
             }
+        }
+        if pushed {
+            self.chain.pop();
         }
     }
 }
