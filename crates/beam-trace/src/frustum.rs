@@ -22,16 +22,20 @@
 //! [`BoxClass::Undecided`](crate::beam::BoxClass::Undecided) with `T`, and its rays search
 //! from there. Where the first cell is a leaf that passes the inclusion test
 //! ([`inclusion_test`]: `g` continuous over the pixel's beam and `T`, with opposite signs at
-//! `T`'s ends for every ray, both ends inside the scene bounds), every ray of the pixel has
-//! its first root in `T`: the pixel is a [`BoxClass::Hit`](crate::beam::BoxClass::Hit) with
-//! `T_final = T`. A pixel without a first cell is a
+//! `T`'s ends for every ray, both ends inside the scene bounds) on `T`, or on `[inf T, p]`
+//! for a probe `p` up to 16 lengths of `T` further, every ray of the pixel has its first
+//! root in that range: the pixel is a [`BoxClass::Hit`](crate::beam::BoxClass::Hit) with it
+//! as `T_final`. A pixel without a first cell is a
 //! [`BoxClass::Miss`](crate::beam::BoxClass::Miss).
 //! Each cell that is split prunes `g` to its beam over `T` ([`RayFn::restrict`]) for the
-//! cells inside it, so the deep cells evaluate a few instructions of a long formula.
+//! cells inside it, so the deep cells evaluate a few instructions of a long formula; the
+//! restrictions of the cells holding a leaf are kept, and a probe past the region of the
+//! leaf's own is evaluated with the next one out.
 //!
 //! Against the screen box structure ([`crate::beam::evaluate_box_within`]), a cell costs one
-//! evaluation (no inclusion test, no `T_final`), and space and screen are subdivided together
-//! instead of a whole box's beam being bisected along `T` first.
+//! evaluation (a leaf that may hold the surface a few more for its inclusion test; no
+//! bisection of a wide beam along `T`, no `T_final` refinement), and space and screen are
+//! subdivided together.
 
 use interval_core::Interval;
 
