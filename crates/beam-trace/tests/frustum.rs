@@ -1,61 +1,27 @@
 //! The frustum octree (`primary = "octree"`): what its first cells prove, and the images it
 //! gives against the screen box structure with the same rays.
 
+mod ball;
+
+use ball::Ball;
 use beam_trace::backend::{Backend, CellQuery, QueryKind};
 use beam_trace::beam::BoxClass;
 use beam_trace::screen::PixelRect;
-use beam_trace::{Cpu, NoProgress, Plan, Scene, render};
-use glam::DVec3;
-
-/// A ball of radius `r` around `centre` seen from `eye` at `size × size`, with `render`
-/// appended to the `[render]` table.
-fn ball(centre: [f64; 3], r: f64, eye: [f64; 3], size: u32, render: &str) -> Scene {
-    let [cx, cy, cz] = centre;
-    let text = format!(
-        r#"
-[camera]
-eye = [{:?}, {:?}, {:?}]
-look_at = [{cx:?}, {cy:?}, {cz:?}]
-fov = 35.0
-width = {size}
-height = {size}
-
-[[surfaces]]
-formula = "(x - {cx:?})^2 + (y - {cy:?})^2 + (z - {cz:?})^2 - {:?}"
-bounds = [[{:?}, {:?}, {:?}], [{:?}, {:?}, {:?}]]
-
-[render]
-{render}
-"#,
-        eye[0],
-        eye[1],
-        eye[2],
-        r * r,
-        cx - 1.5 * r,
-        cy - 1.5 * r,
-        cz - 1.5 * r,
-        cx + 1.5 * r,
-        cy + 1.5 * r,
-        cz + 1.5 * r,
-    );
-    Scene::from_toml(&text, "frustum.toml", None).unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// The first intersection parameter of `origin + t·dir` with the ball, if any.
-fn exact_t(origin: DVec3, dir: DVec3, centre: DVec3, r: f64) -> Option<f64> {
-    let oc = origin - centre;
-    let (a, b, c) = (dir.dot(dir), oc.dot(dir), oc.dot(oc) - r * r);
-    let disc = b * b - a * c;
-    (disc >= 0.0).then(|| (-b - disc.sqrt()) / a)
-}
+use beam_trace::{Cpu, NoProgress, Plan, render};
 
 /// For every pixel, a 5 x 5 grid of its rays: none meets the ball before the pixel's first
 /// cell, a pixel without one has no ray meeting the ball, and where the first cell is a
 /// proven hit every ray meets the ball inside it.
 #[test]
 fn no_ray_meets_the_surface_before_its_first_cell() {
-    let (centre, r) = ([0.2, -0.1, 0.3], 0.8);
-    let scene = ball(centre, r, [1.0, 2.0, 5.0], 48, "primary = \"octree\"");
+    let ball = Ball {
+        centre: [0.2, -0.1, 0.3],
+        r: 0.8,
+        eye: [1.0, 2.0, 5.0],
+        size: 48,
+        fov: 35.0,
+    };
+    let scene = ball.scene("[render]\nprimary = \"octree\"");
     let plan = Plan::for_scene(&scene);
     let prepared = Cpu
         .prepare(&scene, &plan, &[QueryKind::Cells])
@@ -80,7 +46,6 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
         .queries
         .first_cells(&queries)
         .unwrap_or_else(|e| panic!("{e}"));
-    let c = DVec3::from(centre);
     let mut covered = 0;
     for (tile, firsts) in tiles.iter().zip(&answers.values) {
         assert_eq!(firsts.len() as u64, tile.area());
@@ -88,7 +53,7 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
             for k in 0..25 {
                 let (fx, fy) = (f64::from(k % 5) / 4.0, f64::from(k / 5) / 4.0);
                 let ray = cam.ray(f64::from(x) + fx, f64::from(y) + fy);
-                let hit = exact_t(ray.origin, ray.dir, c, r);
+                let hit = ball.exact_t(ray.origin, ray.dir);
                 match (first, hit) {
                     (Some(f), Some(t)) => {
                         assert!(
@@ -138,8 +103,15 @@ fn octree_images_are_the_screen_boxes_images() {
         ([0.25, -0.5, 0.1], 0.01, [0.25, -0.5, 0.2]),
     ];
     for (centre, r, eye) in cases {
+        let ball = Ball {
+            centre,
+            r,
+            eye,
+            size: 40,
+            fov: 35.0,
+        };
         let light = "\n[[lights]]\ntype = \"point\"\nposition = [3.0, 4.0, 6.0]\n";
-        let with_light = |render: &str| ball(centre, r, eye, 40, &format!("{render}{light}"));
+        let with_light = |render: &str| ball.scene(&format!("[render]\n{render}{light}"));
         let octree = with_light("primary = \"octree\"\nrays_per_undecided = 1");
         let boxes = with_light("primary = \"screen-rays\"\nrays_per_undecided = 1");
         let a = render(&octree, &NoProgress).unwrap_or_else(|e| panic!("{e}"));

@@ -2,57 +2,27 @@
 //! floating-point sign change of `g`, inside the enclosure, and as close to the exact
 //! surface as the rounding of `g` lets a sign change be found.
 
+mod ball;
+
+use ball::Ball;
 use beam_trace::backend::{Backend, HitQuery, QueryKind, RayQuery};
 use beam_trace::root::RootResult;
-use beam_trace::{Cpu, Plan, Scene};
+use beam_trace::{Cpu, Plan};
 use glam::DVec3;
 use interval_core::Interval;
-
-/// A sphere of radius `r` around `centre`, seen by a 24 x 24 camera from `eye`.
-fn sphere(centre: [f64; 3], r: f64, eye: [f64; 3]) -> Scene {
-    let [cx, cy, cz] = centre;
-    let text = format!(
-        r#"
-[camera]
-eye = [{:?}, {:?}, {:?}]
-look_at = [{cx:?}, {cy:?}, {cz:?}]
-fov = 30.0
-width = 24
-height = 24
-
-[[surfaces]]
-formula = "(x - {cx:?})^2 + (y - {cy:?})^2 + (z - {cz:?})^2 - {:?}"
-bounds = [[{:?}, {:?}, {:?}], [{:?}, {:?}, {:?}]]
-"#,
-        eye[0],
-        eye[1],
-        eye[2],
-        r * r,
-        cx - 2.0 * r,
-        cy - 2.0 * r,
-        cz - 2.0 * r,
-        cx + 2.0 * r,
-        cy + 2.0 * r,
-        cz + 2.0 * r,
-    );
-    Scene::from_toml(&text, "hit_points.toml", None).unwrap_or_else(|e| panic!("{e}"))
-}
-
-/// The exact first intersection parameter of `origin + t·dir` with the sphere.
-fn exact_t(origin: DVec3, dir: DVec3, centre: DVec3, r: f64) -> Option<f64> {
-    let oc = origin - centre;
-    let a = dir.dot(dir);
-    let b = oc.dot(dir);
-    let c = oc.dot(oc) - r * r;
-    let disc = b * b - a * c;
-    (disc >= 0.0).then(|| (-b - disc.sqrt()) / a)
-}
 
 /// Roots of every pixel centre's ray, then their shading points: each lies inside its
 /// enclosure, outside the sphere (the eye's side) and within a small relative distance of
 /// the exact intersection.
 fn check(centre: [f64; 3], r: f64, eye: [f64; 3], tolerance: f64) {
-    let scene = sphere(centre, r, eye);
+    let ball = Ball {
+        centre,
+        r,
+        eye,
+        size: 24,
+        fov: 30.0,
+    };
+    let scene = ball.scene("");
     let plan = Plan::for_scene(&scene);
     let prepared = Cpu
         .prepare(&scene, &plan, &[QueryKind::Roots, QueryKind::HitPoints])
@@ -90,7 +60,9 @@ fn check(centre: [f64; 3], r: f64, eye: [f64; 3], tolerance: f64) {
     let c = DVec3::from(centre);
     for (&(k, t), hit) in hits.iter().zip(&points.values) {
         let ray = rays[k].ray;
-        let exact = exact_t(ray.origin, ray.dir, c, r).expect("a hit ray meets the sphere");
+        let exact = ball
+            .exact_t(ray.origin, ray.dir)
+            .expect("a hit ray meets the sphere");
         assert!(
             t.inf() <= exact && exact <= t.sup(),
             "{exact} in the enclosure {t:?}"
