@@ -49,8 +49,9 @@ pub(super) fn structure(
 /// Side of the tiles the frustum octree starts from (fidget's first 3D tile).
 const OCTREE_TILE: u32 = 64;
 
-/// The frustum octree pass ([`crate::frustum`]): the tiles of a band of rows in one batch,
-/// each pixel Undecided in its first cell (with the scope of that cell) or a Miss.
+/// The frustum octree pass ([`crate::frustum`]): the tiles of a band of rows in one batch;
+/// each pixel a Hit in the range its first cell proved (with that cell's scope), else
+/// Undecided in its first cell, or a Miss without one.
 fn octree(
     q: &dyn Queries,
     scene: &Scene,
@@ -91,7 +92,7 @@ fn octree(
         }
         progress.advance(u64::from(band[0].y1 - band[0].y0));
     }
-    // Each cell is one evaluation: the cells searched.
+    // The beams evaluated: the cells and the leaves' inclusion tests.
     c.beams = c.search.g_evals;
     progress.end();
     Ok((
