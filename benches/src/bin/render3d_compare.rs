@@ -12,7 +12,9 @@
 //! Options: `--sizes 512,1024` (square images), `--threads 2` (a rayon pool of that many
 //! threads for each renderer), `--runs 3` (the time reported is the best of that many
 //! renders; the median is printed beside it), `--distance 100000` (our eye's distance, see
-//! below), `--precision f64|f32` (our interval evaluations; fidget's are `f32`), `--stats`
+//! below), `--precision f64|f32` (our interval evaluations; fidget's are `f32`), `--primary
+//! screen-rays|octree` (our primary visibility: the screen box structure, the default, or
+//! the frustum octree of `beam_trace::frustum`; one ray per undecided pixel either way), `--stats`
 //! (print our render's statistics: the time and counters of each pass), `--images DIR`
 //! (write `DIR/MODEL-SIZE.png`, the silhouettes compared: white where both renderers hit,
 //! red where only ours does, blue where only fidget's JIT does, and our screen box
