@@ -39,10 +39,10 @@
 
 use interval_core::Interval;
 
-use crate::beam::{BeamScope, Extent, inclusion_test};
+use crate::beam::{BeamScope, BoxClass, Extent, inclusion_test};
 use crate::camera::{Camera, EdgeBeams};
 use crate::ibox::IBox;
-use crate::ray::{BeamEval, RayFn};
+use crate::ray::{Beam, BeamEval, RayFn};
 use crate::root::RootCounters;
 use crate::root::search::{Eval, sign_change_ahead};
 use crate::screen::PixelRect;
@@ -67,11 +67,23 @@ pub struct FirstCell {
     pub scope: Option<BeamScope>,
 }
 
+impl FirstCell {
+    /// The pixel's class: a Hit with `T_final = t` where every ray meets the surface in
+    /// `t`, else Undecided in `t`.
+    pub fn class(&self) -> BoxClass {
+        if self.hit {
+            BoxClass::Hit { t_final: self.t }
+        } else {
+            BoxClass::Undecided { t: self.t }
+        }
+    }
+}
+
 /// The first cell of each pixel of `tile` (row by row), searched in the parameter range
 /// `range` (where the tile's beam lies in the scene bounds `bounds`), with `g` the scene
 /// function of the camera's beams; leaves are no longer than `epsilon` or the pixel's
 /// cross-section. Counts each cell's evaluation (and the inclusion tests') in
-/// `counters.g_evals` and returns the number of cells.
+/// `counters.g_evals`.
 pub fn first_cells(
     g: &mut BeamEval,
     (cam, bounds): (&Camera, &IBox),
@@ -79,26 +91,22 @@ pub fn first_cells(
     range: Interval<f64>,
     epsilon: f64,
     counters: &mut RootCounters,
-) -> (Vec<Option<FirstCell>>, u64) {
-    let width = (tile.x1 - tile.x0) as usize;
+) -> Vec<Option<FirstCell>> {
     let mut search = Search {
         g,
         beams: cam.edge_beams(tile),
         bounds,
         range,
         tile,
-        width,
         epsilon,
         first: vec![None; tile.area() as usize],
-        cells: 0,
         counters,
         chain: Vec::new(),
     };
     if !range.is_empty() {
         search.visit(tile, range);
     }
-    let cells = search.cells;
-    (search.first, cells)
+    search.first
 }
 
 /// One tile's search.
@@ -108,10 +116,8 @@ struct Search<'a> {
     bounds: &'a IBox,
     range: Interval<f64>,
     tile: PixelRect,
-    width: usize,
     epsilon: f64,
     first: Vec<Option<FirstCell>>,
-    cells: u64,
     counters: &'a mut RootCounters,
     /// The restrictions of `g` of the cells holding the one searched, outermost first
     /// (each over its own cell, a part of the one before); empty: the whole `g`.
@@ -120,7 +126,8 @@ struct Search<'a> {
 
 impl Search<'_> {
     fn index(&self, x: u32, y: u32) -> usize {
-        (y - self.tile.y0) as usize * self.width + (x - self.tile.x0) as usize
+        let width = (self.tile.x1 - self.tile.x0) as usize;
+        (y - self.tile.y0) as usize * width + (x - self.tile.x0) as usize
     }
 
     /// Where every ray of the leaf's beam (set on `g` with the innermost restriction) has
@@ -132,34 +139,31 @@ impl Search<'_> {
     /// any), so the probes reach as far as the leaf's depth needs.
     fn included(
         &mut self,
-        beam: &crate::ray::Beam,
+        beam: &Beam,
         t: Interval<f64>,
         extent: &Extent<'_>,
     ) -> Option<(Interval<f64>, Option<BeamScope>)> {
-        let innermost = self.chain.last().cloned();
         if extent.holds(t.sup()) && inclusion_test(&mut *self.g, t, self.counters) {
-            return Some((t, innermost));
+            return Some((t, self.chain.last().cloned()));
         }
         let start = Eval::new(&mut *self.g, self.counters).at(t.inf());
         let furthest = t.sup() + t.wid() * f64::from(1u32 << LOOK_AHEAD);
-        let mut scopes: Vec<Option<BeamScope>> =
-            self.chain.iter().rev().cloned().map(Some).collect();
-        if scopes.is_empty() {
-            scopes.push(None);
-        }
+        // Level `k` is the restriction `chain[k - 1]`, level 0 the whole `g` (only tried
+        // without any restriction): from the innermost out.
+        let outermost = usize::from(!self.chain.is_empty());
         let mut reached = t.sup();
-        for scope in scopes {
-            let limit = scope.as_ref().map_or(self.range.sup(), |s| s.t.sup());
+        for k in (outermost..=self.chain.len()).rev() {
+            let scope = k.checked_sub(1).map(|i| &self.chain[i]);
+            let limit = scope.map_or(self.range.sup(), |s| s.t.sup());
             if limit <= reached {
                 continue;
             }
-            self.g
-                .set_interval_beam(beam, scope.as_ref().map(|s| &s.tape));
+            self.g.set_interval_beam(beam, scope.map(|s| &s.tape));
             let mut ev = Eval::new(&mut *self.g, self.counters);
             if let Some(found) =
                 sign_change_ahead(&mut ev, t, start, limit, LOOK_AHEAD, &|p| extent.holds(p))
             {
-                return Some((found, scope));
+                return Some((found, scope.cloned()));
             }
             if furthest <= limit {
                 // Every probe lay inside this region: a wider one would not change them.
@@ -178,12 +182,10 @@ impl Search<'_> {
             return;
         }
         let beam = self.beams.beam(r);
-        let scope = self.chain.last().cloned();
         self.g
-            .set_interval_beam(&beam, scope.as_ref().map(|s| &s.tape));
+            .set_interval_beam(&beam, self.chain.last().map(|s| &s.tape));
         let gt = self.g.g(t);
         self.counters.g_evals += 1;
-        self.cells += 1;
         if gt.is_empty() || gt.inf() > 0.0 {
             return;
         }
@@ -204,7 +206,7 @@ impl Search<'_> {
             };
             let (cell, hit, scope) = match included {
                 Some((range, holds)) => (range, true, holds),
-                None => (t, false, scope),
+                None => (t, false, self.chain.last().cloned()),
             };
             let first = FirstCell {
                 t: cell,

@@ -391,22 +391,7 @@ impl BeamEval {
     /// parameters it holds for), or the whole `g` without one. The point evaluations keep
     /// the ray they had: for searches that evaluate intervals only (the frustum octree).
     pub fn set_interval_beam(&mut self, beam: &Beam, scope: Option<&Tape>) {
-        let Some(scope) = scope else {
-            self.set_interval_ray(beam.origin, beam.dir);
-            return;
-        };
-        let (origin, dir) = (beam.origin, beam.dir);
-        self.origin = origin;
-        self.dir = dir;
-        match self.precision {
-            Precision::F64 => self.interval.set_ray_within(origin, dir, scope),
-            Precision::F32 => self
-                .interval32
-                .set_ray_within(box32(&origin), box32(&dir), scope),
-            Precision::Dd => self
-                .interval_dd
-                .set_ray_within(box_dd(&origin), box_dd(&dir), scope),
-        }
+        self.set_interval_ray_within(beam.origin, beam.dir, scope);
     }
 
     /// Sets the beam the following evaluations are about.
@@ -465,12 +450,24 @@ impl BeamEval {
             .enclose(tape, &points)
     }
 
-    /// Sets the interval evaluator's ray or beam and then the restriction `scope` (which
-    /// must hold for it), as [`RayFn::set_scope`].
+    /// Sets the interval evaluator's ray or beam with the restriction `scope` (which must
+    /// hold for it, as for [`RayFn::set_scope`]), without loading the whole `g` in between;
+    /// the whole `g` without one.
     fn set_interval_ray_within(&mut self, origin: IBox, dir: IBox, scope: Option<&Tape>) {
-        self.set_interval_ray(origin, dir);
-        if let Some(scope) = scope {
-            self.set_scope(scope);
+        let Some(scope) = scope else {
+            self.set_interval_ray(origin, dir);
+            return;
+        };
+        self.origin = origin;
+        self.dir = dir;
+        match self.precision {
+            Precision::F64 => self.interval.set_ray_within(origin, dir, scope),
+            Precision::F32 => self
+                .interval32
+                .set_ray_within(box32(&origin), box32(&dir), scope),
+            Precision::Dd => self
+                .interval_dd
+                .set_ray_within(box_dd(&origin), box_dd(&dir), scope),
         }
     }
 }

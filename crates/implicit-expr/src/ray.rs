@@ -256,8 +256,7 @@ impl<N: Number> RayEvaluator<N> {
     /// evaluated whole again (see [`restrict`](Self::restrict)).
     pub fn set_ray(&mut self, origin: [N; 3], dir: [N; 3]) {
         self.g.set_tape(&self.g_full);
-        self.vars[0..3].copy_from_slice(&origin);
-        self.vars[4..7].copy_from_slice(&dir);
+        self.set_ray_vars(origin, dir);
     }
 
     /// [`set_ray`](Self::set_ray) followed by [`set_scope`](Self::set_scope) with `scope`,
@@ -266,6 +265,11 @@ impl<N: Number> RayEvaluator<N> {
     /// whole `g` in between.
     pub fn set_ray_within(&mut self, origin: [N; 3], dir: [N; 3], scope: &Tape) {
         self.g.set_tape(scope);
+        self.set_ray_vars(origin, dir);
+    }
+
+    /// The variable slots of the ray's origin and direction.
+    fn set_ray_vars(&mut self, origin: [N; 3], dir: [N; 3]) {
         self.vars[0..3].copy_from_slice(&origin);
         self.vars[4..7].copy_from_slice(&dir);
     }

@@ -13,6 +13,7 @@ use crate::beam::{BeamScope, BoxClass};
 use crate::beam::{child_window, forward};
 use crate::camera::Camera;
 use crate::error::Error;
+use crate::frustum::FirstCell;
 use crate::plan::{Pass, Plan, Primary};
 use crate::progress::Progress;
 use crate::root::{Proof, RootResult};
@@ -72,22 +73,10 @@ fn octree(
         for (tile, firsts) in band.iter().zip(answers.values) {
             for ((x, y), first) in tile.pixels().zip(firsts) {
                 let i = (y * w + x) as usize;
-                match first {
-                    Some(f) if f.hit => {
-                        c.hit_pixels += 1;
-                        classes[i] = Some((BoxClass::Hit { t_final: f.t }, false));
-                        scopes[i] = f.scope;
-                    }
-                    Some(f) => {
-                        c.undecided_pixels += 1;
-                        classes[i] = Some((BoxClass::Undecided { t: f.t }, false));
-                        scopes[i] = f.scope;
-                    }
-                    None => {
-                        c.miss_pixels += 1;
-                        classes[i] = Some((BoxClass::Miss, false));
-                    }
-                }
+                let class = first.as_ref().map_or(BoxClass::Miss, FirstCell::class);
+                c.add_pixels(&class, 1);
+                classes[i] = Some((class, false));
+                scopes[i] = first.and_then(|f| f.scope);
             }
         }
         progress.advance(u64::from(band[0].y1 - band[0].y0));
@@ -151,12 +140,7 @@ fn screen_boxes(
                 );
                 continue;
             }
-            let count = match class {
-                BoxClass::Miss => &mut c.miss_pixels,
-                BoxClass::Hit { .. } => &mut c.hit_pixels,
-                BoxClass::Undecided { .. } => &mut c.undecided_pixels,
-            };
-            *count += rect.area();
+            c.add_pixels(&class, rect.area());
             for (x, y) in rect.pixels() {
                 let edge = x == rect.x0 || y == rect.y0;
                 classes[(y * w + x) as usize] = Some((class, edge));
@@ -256,42 +240,26 @@ fn pixel_ray(
         },
         class => {
             let (ox, oy) = offsets[r];
-            let ray = cam.ray(fx + ox, fy + oy);
-            let weight = 1.0 / offsets.len() as f32;
-            match (start, class) {
+            let (window, scope, fallback) = match (start, class) {
                 (RayStart::FirstCell, Some(BoxClass::Undecided { t })) => {
-                    // No ray of the pixel meets a surface before its first cell.
+                    // No ray of the pixel meets a surface before its first cell: the cell
+                    // with its scope where it has one, then the rest of the ray.
                     let rest = Interval::new_unchecked(t.inf(), f64::INFINITY);
                     match scope.as_ref().filter(|s| t.subset(s.t)) {
-                        Some(s) => PixelRay {
-                            weight,
-                            query: RayQuery {
-                                ray,
-                                window: t,
-                                scope: Some(s.clone()),
-                            },
-                            fallback: Some(rest),
-                        },
-                        None => PixelRay {
-                            weight,
-                            query: RayQuery {
-                                ray,
-                                window: rest,
-                                scope: None,
-                            },
-                            fallback: None,
-                        },
+                        Some(s) => (t, Some(s.clone()), Some(rest)),
+                        None => (rest, None, None),
                     }
                 }
-                _ => PixelRay {
-                    weight,
-                    query: RayQuery {
-                        ray,
-                        window: child_window(class.as_ref()),
-                        scope: None,
-                    },
-                    fallback: None,
+                _ => (child_window(class.as_ref()), None, None),
+            };
+            PixelRay {
+                weight: 1.0 / offsets.len() as f32,
+                query: RayQuery {
+                    ray: cam.ray(fx + ox, fy + oy),
+                    window,
+                    scope,
                 },
+                fallback,
             }
         }
     }

@@ -2,6 +2,7 @@
 //! [`PassStats`](super::PassStats) lists them by name, in the order of their declaration,
 //! with the root-search counters of the pass's queries last.
 
+use crate::beam::BoxClass;
 use crate::root::RootCounters;
 
 /// The root-search counters by name, in the order they are reported; `block_proven` only
@@ -212,5 +213,17 @@ counters! {
     pub struct ShadingCounters {
         /// Samples shaded.
         shaded_samples,
+    }
+}
+
+impl ScreenBoxCounters {
+    /// Counts `pixels` pixels of class `class`.
+    pub fn add_pixels(&mut self, class: &BoxClass, pixels: u64) {
+        let count = match class {
+            BoxClass::Miss => &mut self.miss_pixels,
+            BoxClass::Hit { .. } => &mut self.hit_pixels,
+            BoxClass::Undecided { .. } => &mut self.undecided_pixels,
+        };
+        *count += pixels;
     }
 }

@@ -202,7 +202,6 @@ impl CpuQueries<'_> {
             self.plan.beam.epsilon,
             c,
         )
-        .0
     }
 
     /// EvaluateBox of a beam against the whole scene function. A beam lying inside a
