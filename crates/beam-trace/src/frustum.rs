@@ -19,14 +19,14 @@
 //!
 //! What a pixel's first cell proves: every earlier cell of its column was rejected, so no
 //! ray of the pixel meets the surface before `T`: the pixel is
-//! [`BoxClass::Undecided`](crate::beam::BoxClass::Undecided) with `T`, and its rays search
+//! [`BoxClass::Undecided`] with `T`, and its rays search
 //! from there. Where the first cell is a leaf that passes the inclusion test
 //! ([`inclusion_test`]: `g` continuous over the pixel's beam and `T`, with opposite signs at
 //! `T`'s ends for every ray, both ends inside the scene bounds) on `T`, or on `[inf T, p]`
 //! for a probe `p` up to 16 lengths of `T` further, every ray of the pixel has its first
-//! root in that range: the pixel is a [`BoxClass::Hit`](crate::beam::BoxClass::Hit) with it
+//! root in that range: the pixel is a [`BoxClass::Hit`] with it
 //! as `T_final`. A pixel without a first cell is a
-//! [`BoxClass::Miss`](crate::beam::BoxClass::Miss).
+//! [`BoxClass::Miss`].
 //! Each cell that is split prunes `g` to its beam over `T` ([`RayFn::restrict`]) for the
 //! cells inside it, so the deep cells evaluate a few instructions of a long formula; the
 //! restrictions of the cells holding a leaf are kept, and a probe past the region of the
