@@ -77,6 +77,13 @@ pub struct Plan {
     pub primary: Primary,
     /// Normals and Phong shading (the scene has lights).
     pub shading: bool,
+    /// Whether the ray of a Hit pixel narrows the box's `T_final` to a root proven unique
+    /// to the root finder's epsilon. The shading needs it (the normal and the shadow rays
+    /// start at the root), and so does an unlit scene whose objects differ in colour (the
+    /// colour is the first root's object's). Without it, in an unlit scene of one colour,
+    /// `T_final` is the root's enclosure: the inclusion test proved a root in it for every
+    /// ray of the pixel, and no root before it ([`Proof::Exists`](crate::root::Proof)).
+    pub narrow_hits: bool,
     /// Number of point lights that cast hard shadows (0: no shadow pass).
     pub hard_shadow_lights: usize,
     /// Number of area lights that cast soft shadows (0: no soft-shadow pass).
@@ -190,6 +197,10 @@ impl Plan {
                 0
             }
         };
+        let leaves = scene.geometry.leaves();
+        let one_colour = leaves
+            .iter()
+            .all(|l| l.material.color == leaves[0].material.color);
         let hard_shadow_lights = count(|l| l.as_point().is_some());
         let soft_shadow_lights = count(|l| l.as_area().is_some());
         Plan {
@@ -202,6 +213,7 @@ impl Plan {
             }),
             primary,
             shading,
+            narrow_hits: shading || !one_colour,
             hard_shadow_lights,
             soft_shadow_lights,
             shadow_method: s.shadow_method,
@@ -232,6 +244,18 @@ impl Plan {
 
     /// What `pass` does under this plan, in words (empty when it does not run).
     pub fn describe(&self, pass: Pass) -> String {
+        let mut what = self.describe_settings(pass);
+        if !self.narrow_hits && matches!(pass, Pass::PrimaryRays | Pass::PixelBeams) {
+            what.push_str(
+                "; unlit, one colour: a Hit pixel's root is the one its T_final is proven to \
+                 hold (no search)",
+            );
+        }
+        what
+    }
+
+    /// [`describe`](Self::describe) without the note on Hit pixels.
+    fn describe_settings(&self, pass: Pass) -> String {
         if !self.runs(pass) {
             return String::new();
         }
@@ -243,7 +267,7 @@ impl Plan {
             Pass::ScreenBoxes => match self.primary {
                 Primary::Octree { .. } => "frustum octree: cells of pixels x parameter ranges, \
                     nearest first, rejection tests on tapes pruned per cell; each pixel's first \
-                    cell (Miss / Undecided)"
+                    cell (Miss; Hit where its inclusion test passes; else Undecided)"
                     .to_string(),
                 _ => {
                     "beams over screen boxes: rejection + inclusion tests (Miss / Hit / Undecided)"

@@ -1,6 +1,7 @@
 //! The shading points the CPU places inside proven root enclosures: on the eye's side of a
 //! floating-point sign change of `g`, inside the enclosure, and as close to the exact
-//! surface as the rounding of `g` lets a sign change be found.
+//! surface as the rounding of `g` lets a sign change be found, in a lit scene; at the
+//! enclosure's near end in an unlit one, which needs no more.
 
 mod ball;
 
@@ -11,18 +12,14 @@ use beam_trace::{Cpu, Plan};
 use glam::DVec3;
 use interval_core::Interval;
 
-/// Roots of every pixel centre's ray, then their shading points: each lies inside its
-/// enclosure, outside the sphere (the eye's side) and within a small relative distance of
-/// the exact intersection.
-fn check(centre: [f64; 3], r: f64, eye: [f64; 3], tolerance: f64) {
-    let ball = Ball {
-        centre,
-        r,
-        eye,
-        size: 24,
-        fov: 30.0,
-    };
-    let scene = ball.scene("");
+/// A point light above the eye.
+const LIGHT: &str = "[[lights]]\ntype = \"point\"\nposition = [0.0, 100.0, 100.0]\n";
+
+/// The roots of every pixel centre's ray in the view of a ball with the tables `tail`
+/// after it, and their hit points: each ray's root enclosure (it contains the exact
+/// intersection) and hit point.
+fn hit_points(ball: &Ball, tail: &str) -> Vec<(beam_trace::Ray, Interval<f64>, DVec3)> {
+    let scene = ball.scene(tail);
     let plan = Plan::for_scene(&scene);
     let prepared = Cpu
         .prepare(&scene, &plan, &[QueryKind::Roots, QueryKind::HitPoints])
@@ -57,24 +54,43 @@ fn check(centre: [f64; 3], r: f64, eye: [f64; 3], tolerance: f64) {
         })
         .collect();
     let points = q.hit_points(&queries).unwrap_or_else(|e| panic!("{e}"));
+    hits.iter()
+        .zip(&points.values)
+        .map(|(&(k, t), hit)| {
+            let ray = rays[k].ray;
+            let exact = ball
+                .exact_t(ray.origin, ray.dir)
+                .expect("a hit ray meets the sphere");
+            assert!(
+                t.inf() <= exact && exact <= t.sup(),
+                "{exact} in the enclosure {t:?}"
+            );
+            (ray, t, hit.point)
+        })
+        .collect()
+}
+
+/// The shading points of a lit ball: each lies inside its enclosure, outside the sphere
+/// (the eye's side) and within a small relative distance of the exact intersection.
+fn check(centre: [f64; 3], r: f64, eye: [f64; 3], tolerance: f64) {
+    let ball = Ball {
+        centre,
+        r,
+        eye,
+        size: 24,
+        fov: 30.0,
+    };
     let c = DVec3::from(centre);
-    for (&(k, t), hit) in hits.iter().zip(&points.values) {
-        let ray = rays[k].ray;
-        let exact = ball
-            .exact_t(ray.origin, ray.dir)
-            .expect("a hit ray meets the sphere");
-        assert!(
-            t.inf() <= exact && exact <= t.sup(),
-            "{exact} in the enclosure {t:?}"
-        );
+    for (ray, t, point) in hit_points(&ball, LIGHT) {
+        let exact = ball.exact_t(ray.origin, ray.dir).expect("a hit");
         // The point is on the ray at a parameter inside the enclosure.
-        let tp = (hit.point - ray.origin).dot(ray.dir) / ray.dir.dot(ray.dir);
+        let tp = (point - ray.origin).dot(ray.dir) / ray.dir.dot(ray.dir);
         let slack = 1e-12 * tp.abs();
         assert!(
             t.inf() - slack <= tp && tp <= t.sup() + slack,
             "{tp} in {t:?}"
         );
-        let d = (hit.point - c).length();
+        let d = (point - c).length();
         assert!(
             (d - r).abs() <= tolerance * r.max(c.length()),
             "point at distance {d} from the centre, radius {r}"
@@ -99,4 +115,18 @@ fn shading_points_where_g_is_noisy() {
     // Far from the origin the formula's terms are ~1e8 and cancel to a value of ~1: its
     // floating-point values change sign many times near the surface.
     check([1.0e4, 0.0, 0.0], 1.0, [1.0e4, 0.0, 6.0], 1e-11);
+}
+
+#[test]
+fn unlit_hit_points_are_the_near_ends_of_their_enclosures() {
+    let ball = Ball {
+        centre: [0.0, 0.0, 0.0],
+        r: 1.0,
+        eye: [0.3, 0.4, 5.0],
+        size: 24,
+        fov: 30.0,
+    };
+    for (ray, t, point) in hit_points(&ball, "") {
+        assert_eq!(point, ray.at(t.inf()), "enclosure {t:?}");
+    }
 }

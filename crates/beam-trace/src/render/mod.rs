@@ -173,6 +173,7 @@ pub fn render_on<'a>(
             let refine = pixel_beams::Refinement {
                 max_depth,
                 threshold,
+                narrow_hits: plan.narrow_hits,
             };
             passes.push(PassStats::skipped(Pass::PrimaryRays.name()));
             let (samples, cost, stats) =
@@ -193,7 +194,7 @@ pub fn render_on<'a>(
                 q,
                 scene,
                 (&classes, &scopes),
-                (rays_per_undecided, start),
+                (rays_per_undecided, start, plan.narrow_hits),
                 progress,
             )?;
             passes.push(stats);

@@ -29,7 +29,7 @@ use crate::error::Error;
 use crate::plan::Pass;
 use crate::progress::Progress;
 use crate::ray::Beam;
-use crate::root::RootResult;
+use crate::root::{Proof, RootResult};
 use crate::sample::{Area, Sample};
 use crate::scene::Scene;
 use crate::stats::PassStats;
@@ -41,6 +41,11 @@ use crate::stats::counters::PixelBeamCounters;
 pub(super) struct Refinement {
     pub(super) max_depth: u32,
     pub(super) threshold: Option<f64>,
+    /// Whether a Hit part's central ray narrows `T_final` ([`Plan::narrow_hits`]); else its
+    /// root is the one `T_final` is proven to hold.
+    ///
+    /// [`Plan::narrow_hits`]: crate::plan::Plan::narrow_hits
+    pub(super) narrow_hits: bool,
 }
 
 /// A sub-pixel waiting for its beam.
@@ -224,7 +229,7 @@ pub(super) fn pixel_beams(
             })
             .collect();
         let done = subdivide(q, cam, level, refine, &mut pixel_cost, &mut c)?;
-        let samples = shade_parts(q, done, n, &mut pixel_cost, &mut c)?;
+        let samples = shade_parts(q, done, (n, refine.narrow_hits), &mut pixel_cost, &mut c)?;
         pixels.append(samples);
         cost.extend(pixel_cost);
         progress.advance(u64::from(rows));
@@ -249,6 +254,7 @@ fn subdivide(
     let Refinement {
         max_depth,
         threshold,
+        ..
     } = refine;
     let mut done: Vec<Shaded> = Vec::new();
     while !level.is_empty() {
@@ -332,26 +338,46 @@ fn subdivide(
     Ok(done)
 }
 
-/// The samples of a batch's finished parts, pixel by pixel in depth-first quadrant order:
-/// the central rays are searched, then every hit's shading point is found.
+/// The samples of a batch's `n` pixels' finished parts, pixel by pixel in depth-first
+/// quadrant order: the central rays are searched (a Hit part's only where `narrow`, else
+/// its root is the one its `T_final` holds), then every hit's shading point is found.
 fn shade_parts(
     q: &dyn Queries,
     done: Vec<Shaded>,
-    n: usize,
+    (n, narrow): (usize, bool),
     pixel_cost: &mut [f32],
     c: &mut PixelBeamCounters,
 ) -> Result<Pixels, Error> {
     let shaded: Vec<usize> = (0..done.len()).filter(|&k| done[k].ray.is_some()).collect();
-    let queries: Vec<RayQuery> = shaded
-        .iter()
-        .filter_map(|&k| done[k].ray.as_ref().map(|r| r.0.clone()))
+    let known = |k: usize| match &done[k].ray {
+        Some((_, t_final)) if !narrow && done[k].area == Area::Covered => Some(RootResult::Root {
+            t: *t_final,
+            proof: Proof::Exists,
+        }),
+        _ => None,
+    };
+    let searched: Vec<usize> = (0..shaded.len())
+        .filter(|&i| known(shaded[i]).is_none())
         .collect();
-    let roots = q.roots(&queries)?;
-    c.search.add(&roots.search);
+    let queries: Vec<RayQuery> = searched
+        .iter()
+        .filter_map(|&i| done[shaded[i]].ray.as_ref().map(|r| r.0.clone()))
+        .collect();
+    let answers = q.roots(&queries)?;
+    c.search.add(&answers.search);
+    let mut roots: Vec<RootResult> = shaded
+        .iter()
+        .map(|&k| known(k).unwrap_or(RootResult::NoRoot))
+        .collect();
+    let mut root_cost = vec![0f32; shaded.len()];
+    for ((&i, r), t) in searched.iter().zip(answers.values).zip(answers.cost) {
+        roots[i] = r;
+        root_cost[i] = t;
+    }
     let hit_queries: Vec<HitQuery> = shaded
         .iter()
-        .zip(&roots.values)
-        .zip(&roots.cost)
+        .zip(&roots)
+        .zip(&root_cost)
         .filter_map(|((&k, r), t)| {
             pixel_cost[done[k].pixel] += t;
             let (query, fallback) = done[k].ray.as_ref()?;
@@ -382,12 +408,7 @@ fn shade_parts(
             )
         })
         .collect();
-    for (((&k, hit), t), r) in shaded
-        .iter()
-        .zip(hits.values)
-        .zip(&hits.cost)
-        .zip(&roots.values)
-    {
+    for (((&k, hit), t), r) in shaded.iter().zip(hits.values).zip(&hits.cost).zip(&roots) {
         parts[k].2.hit = Some(hit);
         pixel_cost[done[k].pixel] += t;
         if done[k].area == Area::Unknown {

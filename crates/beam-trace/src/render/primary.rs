@@ -173,15 +173,18 @@ fn pixel_offsets(n: u32) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// One ray of a pixel: its weight, the query, and the window searched (with the whole
-/// function) when the query's search ends without a root: the whole ray after a Hit box's
-/// `T_final` (where a root is known to exist, so a limit was reached), the rest of the ray
-/// after a first cell of the frustum octree.
+/// One ray of a pixel: its weight, the query, the window searched (with the whole
+/// function) when the query's search ends without a root (the whole ray after a Hit box's
+/// `T_final`, where a root is known to exist, so a limit was reached; the rest of the ray
+/// after a first cell of the frustum octree), and the answer where the box proved it and
+/// the plan asks no more (see [`Plan::narrow_hits`](crate::plan::Plan)): then it is not
+/// searched.
 #[derive(Clone)]
 struct PixelRay {
     weight: f32,
     query: RayQuery,
     fallback: Option<Interval<f64>>,
+    known: Option<RootResult>,
 }
 
 /// Where the rays of an Undecided pixel start.
@@ -216,11 +219,11 @@ fn ray_count(class: Option<(BoxClass, bool)>, stratified: usize) -> usize {
 }
 
 /// Ray `r` of pixel `i` (row-major in a `w`-wide image) of box class `class`: the central
-/// ray, searched in a Hit box's `T_final` (with the box's `scope`); else stratified ray
-/// `r`, searched from where the pixel's beam proved every ray root-free (see
-/// [`ray_count`]).
+/// ray, searched in a Hit box's `T_final` (with the box's `scope`) where `narrow`, else
+/// known to have its first root there; else stratified ray `r`, searched from where the
+/// pixel's beam proved every ray root-free (see [`ray_count`]).
 fn pixel_ray(
-    (cam, start): (&Camera, RayStart),
+    (cam, start, narrow): (&Camera, RayStart, bool),
     i: usize,
     w: u32,
     (class, scope): (Option<(BoxClass, bool)>, &Option<BeamScope>),
@@ -237,6 +240,10 @@ fn pixel_ray(
                 scope: scope.clone(),
             },
             fallback: Some(forward()),
+            known: (!narrow).then_some(RootResult::Root {
+                t: t_final,
+                proof: Proof::Exists,
+            }),
         },
         class => {
             let (ox, oy) = offsets[r];
@@ -260,6 +267,7 @@ fn pixel_ray(
                     scope,
                 },
                 fallback,
+                known: None,
             }
         }
     }
@@ -269,12 +277,13 @@ fn pixel_ray(
 /// (the whole ray again if the search stops at a limit there); elsewhere `rays` stratified
 /// rays per pixel, from where the pixel's beam proved them root-free; a Miss box's pixels
 /// are background without a ray. `classes` holds each pixel's box and `scopes` the scope
-/// of the box's beam (none in per-pixel mode).
+/// of the box's beam (none in per-pixel mode). Without `narrow`, a Hit box's ray is not
+/// searched: its first root is the one the box proved in `T_final`.
 pub(super) fn primary_rays(
     q: &dyn Queries,
     scene: &Scene,
     (classes, scopes): (&PixelClasses, &PixelScopes),
-    (rays, start): (u32, RayStart),
+    (rays, start, narrow): (u32, RayStart, bool),
     progress: &dyn Progress,
 ) -> Result<PixelSamples, Error> {
     let cam = &scene.camera;
@@ -302,15 +311,35 @@ pub(super) fn primary_rays(
                 let k = k as usize;
                 let r = j - first_ray[k];
                 let p = first + k;
-                pixel_ray((cam, start), p, w, (classes[p], &scopes[p]), &offsets, r)
+                pixel_ray(
+                    (cam, start, narrow),
+                    p,
+                    w,
+                    (classes[p], &scopes[p]),
+                    &offsets,
+                    r,
+                )
             })
             .collect();
-        let queries: Vec<RayQuery> = batch.par_iter().map(|r| r.query.clone()).collect();
+        let searched: Vec<usize> = (0..batch.len())
+            .filter(|&j| batch[j].known.is_none())
+            .collect();
+        let queries: Vec<RayQuery> = searched
+            .par_iter()
+            .map(|&j| batch[j].query.clone())
+            .collect();
         let first_try = q.roots(&queries)?;
         c.rays += queries.len() as u64;
         c.search.add(&first_try.search);
-        let mut results = first_try.values;
-        let mut ray_cost = first_try.cost;
+        let mut results: Vec<RootResult> = batch
+            .iter()
+            .map(|r| r.known.unwrap_or(RootResult::NoRoot))
+            .collect();
+        let mut ray_cost = vec![0f32; batch.len()];
+        for ((&j, r), t) in searched.iter().zip(first_try.values).zip(first_try.cost) {
+            results[j] = r;
+            ray_cost[j] = t;
+        }
         // No root where one was expected first: search the fallback window.
         let retry: Vec<(usize, Interval<f64>)> = (0..batch.len())
             .filter(|&j| !matches!(results[j], RootResult::Root { .. }))

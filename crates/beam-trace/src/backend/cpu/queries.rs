@@ -323,7 +323,9 @@ impl CpuQueries<'_> {
     /// grid cell holds the points of `t`, `g` is the cell's function (sign-equivalent to the
     /// scene function there, and much shorter); where `t` lies in the parameters of the
     /// `scope` of the beam the ray lies in, its function (equal to the scene function
-    /// there); else the scene function.
+    /// there); else the scene function. Without shading (an unlit scene shows the flat
+    /// colour of the object hit) the point is `t`'s near end, where the object is looked
+    /// up, with no search.
     pub(super) fn hit(
         &self,
         ev: &mut Evals,
@@ -332,6 +334,35 @@ impl CpuQueries<'_> {
         scope: Option<&BeamScope>,
         c: &mut RootCounters,
     ) -> Hit {
+        let tm = if self.plan.shading || !t.inf().is_finite() {
+            self.shading_parameter(ev, ray, t, scope, c)
+        } else {
+            t.inf()
+        };
+        let point = ray.at(tm);
+        Hit {
+            t,
+            point,
+            to_eye: (-ray.dir).normalize_or_zero(),
+            leaf: match self.grid.as_ref().and_then(|g| g.leaf_candidates_at(point)) {
+                Some(c) => ev.geo.leaf_among(&c, point),
+                None => ev.geo.leaf_at(point),
+            } as u32,
+            normal: -ray.dir.normalize_or_zero(),
+        }
+    }
+
+    /// The parameter of `ray`'s shading point inside the root enclosure `t`
+    /// ([`shading_parameter`]), with the shortest function that has the scene function's
+    /// signs there (see [`hit`](Self::hit)).
+    fn shading_parameter(
+        &self,
+        ev: &mut Evals,
+        ray: &Ray,
+        t: Interval<f64>,
+        scope: Option<&BeamScope>,
+        c: &mut RootCounters,
+    ) -> f64 {
         let eval = match ev.scoped.within(&self.scoped, scope, t) {
             Some(e) => e,
             // Inside one cell, its (reduced, pruned) function has the scene function's
@@ -346,18 +377,7 @@ impl CpuQueries<'_> {
                 None => &mut ev.geo.beam,
             },
         };
-        let tm = shading_parameter(eval, ray, t, c);
-        let point = ray.at(tm);
-        Hit {
-            t,
-            point,
-            to_eye: (-ray.dir).normalize_or_zero(),
-            leaf: match self.grid.as_ref().and_then(|g| g.leaf_candidates_at(point)) {
-                Some(c) => ev.geo.leaf_among(&c, point),
-                None => ev.geo.leaf_at(point),
-            } as u32,
-            normal: -ray.dir.normalize_or_zero(),
-        }
+        shading_parameter(eval, ray, t, c)
     }
 }
 
