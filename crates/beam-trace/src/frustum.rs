@@ -100,13 +100,83 @@ pub fn first_cells(
         tile,
         epsilon,
         first: vec![None; tile.area() as usize],
+        filled: Filled::new(tile),
         counters,
         chain: Vec::new(),
     };
     if !range.is_empty() {
-        search.visit(tile, range);
+        let column = Column::of(&search.beams, tile);
+        search.visit(&column, range);
     }
     search.first
+}
+
+/// A rectangle of pixels with its beam and the beam's largest spread of directions (its
+/// cross-section at `t` is the spread times `t`: the origin is the eye).
+struct Column {
+    r: PixelRect,
+    beam: Beam,
+    spread: f64,
+}
+
+impl Column {
+    /// The column of `r`, whose beam `beams` gives.
+    fn of(beams: &EdgeBeams, r: PixelRect) -> Self {
+        let beam = beams.beam(r);
+        let spread = beam.dir.iter().map(|d| d.wid()).fold(0.0, f64::max);
+        Self { r, beam, spread }
+    }
+}
+
+/// Which pixels of a tile have their first cell: a bit per pixel, rows of 64-bit words.
+struct Filled {
+    tile: PixelRect,
+    words: usize,
+    bits: Vec<u64>,
+}
+
+impl Filled {
+    /// No pixel of `tile` filled.
+    fn new(tile: PixelRect) -> Self {
+        let words = ((tile.x1 - tile.x0) as usize).div_ceil(64);
+        Self {
+            tile,
+            words,
+            bits: vec![0; words * (tile.y1 - tile.y0) as usize],
+        }
+    }
+
+    /// Marks pixel `(x, y)`.
+    fn set(&mut self, x: u32, y: u32) {
+        let (row, col) = ((y - self.tile.y0) as usize, (x - self.tile.x0) as usize);
+        self.bits[row * self.words + col / 64] |= 1 << (col % 64);
+    }
+
+    /// Whether every pixel of `r` (inside the tile) is marked.
+    fn all(&self, r: PixelRect) -> bool {
+        let (c0, c1) = (
+            (r.x0 - self.tile.x0) as usize,
+            (r.x1 - self.tile.x0) as usize,
+        );
+        (r.y0..r.y1).all(|y| {
+            let row = &self.bits[(y - self.tile.y0) as usize * self.words..][..self.words];
+            let mut c = c0;
+            while c < c1 {
+                let (word, bit) = (c / 64, c % 64);
+                let n = (c1 - c).min(64 - bit);
+                let mask = if n == 64 {
+                    u64::MAX
+                } else {
+                    ((1u64 << n) - 1) << bit
+                };
+                if row[word] & mask != mask {
+                    return false;
+                }
+                c += n;
+            }
+            true
+        })
+    }
 }
 
 /// One tile's search.
@@ -118,6 +188,8 @@ struct Search<'a> {
     tile: PixelRect,
     epsilon: f64,
     first: Vec<Option<FirstCell>>,
+    /// The pixels of `first` that are set.
+    filled: Filled,
     counters: &'a mut RootCounters,
     /// The restrictions of `g` of the cells holding the one searched, outermost first
     /// (each over its own cell, a part of the one before); empty: the whole `g`.
@@ -174,33 +246,33 @@ impl Search<'_> {
         None
     }
 
-    /// Searches the cell `r × t` with the innermost restriction of the chain.
-    fn visit(&mut self, r: PixelRect, t: Interval<f64>) {
-        if r.pixels()
-            .all(|(x, y)| self.first[self.index(x, y)].is_some())
-        {
+    /// Searches the cell `column × t` with the innermost restriction of the chain.
+    fn visit(&mut self, column: &Column, t: Interval<f64>) {
+        let Column {
+            r,
+            ref beam,
+            spread,
+        } = *column;
+        if self.filled.all(r) {
             return;
         }
-        let beam = self.beams.beam(r);
         self.g
-            .set_interval_beam(&beam, self.chain.last().map(|s| &s.tape));
+            .set_interval_beam(beam, self.chain.last().map(|s| &s.tape));
         let gt = self.g.g(t);
         self.counters.g_evals += 1;
         if gt.is_empty() || gt.inf() > 0.0 {
             return;
         }
-        // The cross-section of the beam at the far end of `t` (its origin is the eye).
-        let spread = beam.dir.iter().map(|d| d.wid()).fold(0.0, f64::max);
         let across = spread * t.sup().abs();
         let shallow = t.wid() <= self.epsilon.max(across);
         let leaf = r.is_pixel() && shallow;
         if gt.sup() < 0.0 || leaf {
             let extent = Extent {
-                beam: &beam,
+                beam,
                 bounds: self.bounds,
             };
             let included = if leaf && gt.inf() < 0.0 && extent.holds(t.inf()) {
-                self.included(&beam, t, &extent)
+                self.included(beam, t, &extent)
             } else {
                 None
             };
@@ -217,6 +289,7 @@ impl Search<'_> {
                 let i = self.index(x, y);
                 if self.first[i].is_none() {
                     self.first[i] = Some(first.clone());
+                    self.filled.set(x, y);
                 }
             }
             return;
@@ -237,18 +310,64 @@ impl Search<'_> {
                 pushed = true;
             }
         }
+        // Each pixel's cells come in increasing `t` either way: a quadrant's halves one
+        // after the other.
         let (near, far) = t.bisect();
-        for half in [near, far] {
-            if shallow {
-                for q in r.split() {
-                    self.visit(q, half);
-                }
-            } else {
-                self.visit(r, half);
+        if shallow {
+            for q in r.split() {
+                let quadrant = Column::of(&self.beams, q);
+                self.visit(&quadrant, near);
+                self.visit(&quadrant, far);
             }
+        } else {
+            self.visit(column, near);
+            self.visit(column, far);
         }
         if pushed {
             self.chain.pop();
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bitmap agrees with a plain set of pixels on every rectangle of a tile wider than
+    /// one word, after marking a scattered set.
+    #[test]
+    fn filled_pixels_agree_with_a_plain_set() {
+        let tile = PixelRect {
+            x0: 3,
+            y0: 5,
+            x1: 3 + 70,
+            y1: 5 + 4,
+        };
+        let mut filled = Filled::new(tile);
+        let mut plain = std::collections::HashSet::new();
+        for (k, (x, y)) in tile.pixels().enumerate() {
+            if k % 7 != 3 {
+                filled.set(x, y);
+                plain.insert((x, y));
+            }
+        }
+        // Then every pixel of the second row but one.
+        for x in tile.x0..tile.x1 {
+            if x != 40 {
+                filled.set(x, 6);
+                plain.insert((x, 6));
+            }
+        }
+        for y0 in tile.y0..tile.y1 {
+            for y1 in y0 + 1..=tile.y1 {
+                for x0 in tile.x0..tile.x1 {
+                    for x1 in x0 + 1..=tile.x1 {
+                        let r = PixelRect { x0, y0, x1, y1 };
+                        let expected = r.pixels().all(|p| plain.contains(&p));
+                        assert_eq!(filled.all(r), expected, "{r:?}");
+                    }
+                }
+            }
         }
     }
 }

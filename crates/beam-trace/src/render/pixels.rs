@@ -1,5 +1,6 @@
 //! The samples of every pixel, stored flat: one vector of samples, pixel after pixel, and
-//! where each pixel's samples start.
+//! where each pixel's samples start. A pixel without samples is background, proven missed
+//! (its [`Coverage`](crate::sample::Coverage) is `[0, 0]`).
 
 use std::ops::Range;
 

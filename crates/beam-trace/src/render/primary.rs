@@ -66,7 +66,7 @@ fn octree(
     let mut scopes: PixelScopes = vec![None; w as usize * h as usize];
     let mut c = ScreenBoxCounters::default();
     let all = tiles(w, h, OCTREE_TILE);
-    for band in all.chunk_by(|a, b| a.y0 == b.y0) {
+    for band in all.chunk_by(|a, b| a.y0 / (4 * OCTREE_TILE) == b.y0 / (4 * OCTREE_TILE)) {
         let queries: Vec<CellQuery> = band.iter().map(|&tile| CellQuery { tile }).collect();
         let answers = q.first_cells(&queries)?;
         c.search.add(&answers.search);
@@ -237,7 +237,8 @@ fn pixel_ray(
             query: RayQuery {
                 ray: cam.ray(fx + 0.5, fy + 0.5),
                 window: t_final,
-                scope: scope.clone(),
+                // A ray that is not searched needs no scope.
+                scope: if narrow { scope.clone() } else { None },
             },
             fallback: Some(forward()),
             known: (!narrow).then_some(RootResult::Root {
@@ -406,32 +407,19 @@ pub(super) fn primary_rays(
             RootResult::NoRoot => None,
             _ => Some(hits.values[hit_rank[j]]),
         };
-        // Each pixel's samples, in the order of its rays (background without a ray).
-        let first_sample =
-            pixels::offsets((0..n).map(|k| (first_ray[k + 1] - first_ray[k]).max(1)));
-        let samples: Vec<Sample> = owners(&first_sample)
+        cost.extend((0..n).map(|k| ray_cost[first_ray[k]..first_ray[k + 1]].iter().sum::<f32>()));
+        // Each pixel's samples: one per ray, in order. A Miss box's pixel has none: it is
+        // background, proven missed.
+        let samples: Vec<Sample> = ray_pixel
             .par_iter()
             .enumerate()
-            .map(|(i, &k)| {
-                let k = k as usize;
-                let area = sample_area(classes[first + k]);
-                if first_ray[k] == first_ray[k + 1] {
-                    return Sample {
-                        weight: 1.0,
-                        hit: None,
-                        area,
-                    };
-                }
-                let j = first_ray[k] + (i - first_sample[k]);
-                Sample {
-                    weight: batch[j].weight,
-                    hit: hit_of(j),
-                    area,
-                }
+            .map(|(j, &k)| Sample {
+                weight: batch[j].weight,
+                hit: hit_of(j),
+                area: sample_area(classes[first + k as usize]),
             })
             .collect();
-        pixels.append(Pixels::from_offsets(samples, first_sample));
-        cost.extend((0..n).map(|k| ray_cost[first_ray[k]..first_ray[k + 1]].iter().sum::<f32>()));
+        pixels.append(Pixels::from_offsets(samples, first_ray));
         progress.advance(u64::from(rows));
     }
     progress.end();
