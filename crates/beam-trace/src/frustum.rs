@@ -44,7 +44,7 @@ use crate::camera::{Camera, EdgeBeams};
 use crate::ibox::IBox;
 use crate::ray::{Beam, BeamEval, RayFn};
 use crate::root::RootCounters;
-use crate::root::search::{Eval, sign_change_ahead};
+use crate::root::search::{Eval, sign, sign_change};
 use crate::screen::PixelRect;
 
 /// How far [`Search::included`] looks past a leaf: up to `2^LOOK_AHEAD` of its lengths.
@@ -63,7 +63,9 @@ pub struct FirstCell {
     pub t: Interval<f64>,
     /// Every ray of the pixel has its first root in `t` (the inclusion test passed).
     pub hit: bool,
-    /// `g` pruned for a cell holding this one, for the pixel's rays over `t`.
+    /// `g` pruned for a cell holding this one, for the pixel's rays over the scope's own
+    /// parameters: `t` for a Hit, the whole region of the restriction (which holds `t`)
+    /// otherwise.
     pub scope: Option<BeamScope>,
 }
 
@@ -206,9 +208,9 @@ impl Search<'_> {
     /// its first root, given none before `t`, and the restriction that holds there: `t`
     /// itself when the inclusion test passes, else `[inf t, p]` for the first
     /// `p = sup t + w·2^k` (`k ≤` [`LOOK_AHEAD`]) where the sign has changed for every ray,
-    /// with `g` continuous up to it and both ends inside the scene bounds. A probe past the
-    /// region of a restriction is made with the next one out (the whole `g` only without
-    /// any), so the probes reach as far as the leaf's depth needs.
+    /// with `g` continuous up to it and both ends inside the scene bounds. Each probe is
+    /// made with the innermost restriction whose region holds it (the whole `g` only
+    /// without any), so the probes reach as far as the leaf's depth needs, each made once.
     fn included(
         &mut self,
         beam: &Beam,
@@ -219,29 +221,43 @@ impl Search<'_> {
             return Some((t, self.chain.last().cloned()));
         }
         let start = Eval::new(&mut *self.g, self.counters).at(t.inf());
-        let furthest = t.sup() + t.wid() * f64::from(1u32 << LOOK_AHEAD);
+        let (a, b, w) = (t.inf(), t.sup(), t.wid());
+        if w.is_nan() || w <= 0.0 || sign(start) == 0 {
+            return None;
+        }
         // Level `k` is the restriction `chain[k - 1]`, level 0 the whole `g` (only tried
-        // without any restriction): from the innermost out.
+        // without any restriction); the leaf's beam is set with the innermost.
         let outermost = usize::from(!self.chain.is_empty());
-        let mut reached = t.sup();
-        for k in (outermost..=self.chain.len()).rev() {
-            let scope = k.checked_sub(1).map(|i| &self.chain[i]);
-            let limit = scope.map_or(self.range.sup(), |s| s.t.sup());
-            if limit <= reached {
-                continue;
+        let limit = |chain: &[BeamScope], k: usize| match k {
+            0 => self.range.sup(),
+            k => chain[k - 1].t.sup(),
+        };
+        let mut level = self.chain.len();
+        let mut step = w;
+        for _ in 0..=LOOK_AHEAD {
+            let p = b + step;
+            if level > outermost && limit(&self.chain, level) < p {
+                while level > outermost && limit(&self.chain, level) < p {
+                    level -= 1;
+                }
+                let scope = level.checked_sub(1).map(|i| &self.chain[i].tape);
+                self.g.set_interval_beam(beam, scope);
             }
-            self.g.set_interval_beam(beam, scope.map(|s| &s.tape));
-            let mut ev = Eval::new(&mut *self.g, self.counters);
-            if let Some(found) =
-                sign_change_ahead(&mut ev, t, start, limit, LOOK_AHEAD, &|p| extent.holds(p))
-            {
-                return Some((found, scope.cloned()));
-            }
-            if furthest <= limit {
-                // Every probe lay inside this region: a wider one would not change them.
+            if limit(&self.chain, level) < p {
+                // Past the region of every restriction.
                 return None;
             }
-            reached = limit;
+            let mut ev = Eval::new(&mut *self.g, self.counters);
+            if sign_change(start, ev.at(p)) {
+                if !extent.holds(p) {
+                    return None;
+                }
+                let h = Interval::new_unchecked(a, p);
+                let (_, continuous) = ev.checked(h);
+                let scope = level.checked_sub(1).map(|i| self.chain[i].clone());
+                return continuous.then_some((h, scope));
+            }
+            step *= 2.0;
         }
         None
     }
@@ -276,14 +292,19 @@ impl Search<'_> {
             } else {
                 None
             };
-            let (cell, hit, scope) = match included {
-                Some((range, holds)) => (range, true, holds),
-                None => (t, false, self.chain.last().cloned()),
-            };
-            let first = FirstCell {
-                t: cell,
-                hit,
-                scope: scope.map(|s| BeamScope { t: cell, ..s }),
+            // A Hit's scope is asked about its range only; an undecided cell's keeps the
+            // whole region it holds for, where the pixel's rays search on from the cell.
+            let first = match included {
+                Some((range, holds)) => FirstCell {
+                    t: range,
+                    hit: true,
+                    scope: holds.map(|s| BeamScope { t: range, ..s }),
+                },
+                None => FirstCell {
+                    t,
+                    hit: false,
+                    scope: self.chain.last().cloned(),
+                },
             };
             for (x, y) in r.pixels() {
                 let i = self.index(x, y);

@@ -250,11 +250,16 @@ fn pixel_ray(
             let (ox, oy) = offsets[r];
             let (window, scope, fallback) = match (start, class) {
                 (RayStart::FirstCell, Some(BoxClass::Undecided { t })) => {
-                    // No ray of the pixel meets a surface before its first cell: the cell
-                    // with its scope where it has one, then the rest of the ray.
+                    // No ray of the pixel meets a surface before its first cell: from the
+                    // cell through the region of its scope where it has one (the scope
+                    // holds there), then the rest of the ray.
                     let rest = Interval::new_unchecked(t.inf(), f64::INFINITY);
                     match scope.as_ref().filter(|s| t.subset(s.t)) {
-                        Some(s) => (t, Some(s.clone()), Some(rest)),
+                        Some(s) => (
+                            Interval::new_unchecked(t.inf(), s.t.sup()),
+                            Some(s.clone()),
+                            Some(rest),
+                        ),
                         None => (rest, None, None),
                     }
                 }
@@ -341,10 +346,21 @@ pub(super) fn primary_rays(
             results[j] = r;
             ray_cost[j] = t;
         }
-        // No root where one was expected first: search the fallback window.
+        // No root where one was expected first: search the fallback window, past the
+        // first window where that one is proven root-free.
         let retry: Vec<(usize, Interval<f64>)> = (0..batch.len())
             .filter(|&j| !matches!(results[j], RootResult::Root { .. }))
-            .filter_map(|j| batch[j].fallback.map(|w| (j, w)))
+            .filter_map(|j| {
+                let w = batch[j].fallback?;
+                let searched = batch[j].query.window;
+                Some(match results[j] {
+                    RootResult::NoRoot if searched.inf() <= w.inf() => (
+                        j,
+                        Interval::new_unchecked(searched.sup().max(w.inf()), w.sup()),
+                    ),
+                    _ => (j, w),
+                })
+            })
             .collect();
         if !retry.is_empty() {
             let queries: Vec<RayQuery> = retry
