@@ -50,19 +50,42 @@ pub enum Primary {
         /// Largest spread of the shaded colour over a proven hit region for shading it once
         /// ([`shading_variation`](crate::aa::shading_variation)).
         threshold: f64,
+        /// Rays per side of an undecided part at the depth limit.
+        limit_rays: u32,
     },
 }
 
+/// The settings of the pixel-beams pass ([`Primary::pixel_beams`]).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct PixelBeams {
+    /// Largest subdivision depth of a pixel's beam.
+    pub max_depth: u32,
+    /// The shading-variation threshold above which Hit beams are split too
+    /// (anti-aliasing); `None`: Hit pixels are shaded once.
+    pub threshold: Option<f64>,
+    /// Rays per side of a part left undecided at the depth limit: `limit_rays²` stratified
+    /// rays estimate the share of it its surface covers (1: its central ray).
+    pub limit_rays: u32,
+}
+
 impl Primary {
-    /// The settings of the pixel-beams pass: the depth limit, and the shading-variation
-    /// threshold when Hit pixels are judged too (anti-aliasing); `None` for the ray modes.
-    pub fn pixel_beams(&self) -> Option<(u32, Option<f64>)> {
+    /// The settings of the pixel-beams pass; `None` for the ray modes.
+    pub fn pixel_beams(&self) -> Option<PixelBeams> {
         match *self {
-            Primary::ScreenBoxes { max_depth } => Some((max_depth, None)),
+            Primary::ScreenBoxes { max_depth } => Some(PixelBeams {
+                max_depth,
+                threshold: None,
+                limit_rays: 1,
+            }),
             Primary::Iaa {
                 max_depth,
                 threshold,
-            } => Some((max_depth, Some(threshold))),
+                limit_rays,
+            } => Some(PixelBeams {
+                max_depth,
+                threshold: Some(threshold),
+                limit_rays,
+            }),
             Primary::ScreenRays { .. } | Primary::PerPixel { .. } | Primary::Octree { .. } => None,
         }
     }
@@ -166,9 +189,11 @@ impl Plan {
             AaMode::Iaa {
                 max_depth,
                 threshold,
+                limit_rays,
             } => Primary::Iaa {
                 max_depth,
                 threshold,
+                limit_rays,
             },
             AaMode::Supersample(n) => Primary::PerPixel {
                 rays_per_pixel: n * n,
@@ -289,15 +314,30 @@ impl Plan {
                 ),
                 Primary::ScreenBoxes { .. } | Primary::Iaa { .. } => String::new(),
             },
-            Pass::PixelBeams => match self.primary.pixel_beams() {
-                Some((max_depth, None)) => format!(
-                    "1 ray per pixel in Hit boxes (search in T_final); Undecided pixels' beams split in four to depth {max_depth}, one central ray per part"
-                ),
-                Some((max_depth, Some(threshold))) => format!(
-                    "interval anti-aliasing: Undecided pixels' beams, and Hit pixels' whose shading may vary by more than {threshold}, split in four to depth {max_depth}; one central ray per part"
-                ),
-                None => String::new(),
-            },
+            Pass::PixelBeams => {
+                let Some(PixelBeams {
+                    max_depth,
+                    threshold,
+                    limit_rays,
+                }) = self.primary.pixel_beams()
+                else {
+                    return String::new();
+                };
+                let limit = match limit_rays {
+                    1 => "one central ray per part".to_string(),
+                    m => format!(
+                        "one central ray per decided part, {m} x {m} per part left undecided at the limit"
+                    ),
+                };
+                match threshold {
+                    None => format!(
+                        "1 ray per pixel in Hit boxes (search in T_final); Undecided pixels' beams split in four to depth {max_depth}; {limit}"
+                    ),
+                    Some(threshold) => format!(
+                        "interval anti-aliasing: Undecided pixels' beams, and Hit pixels' whose shading may vary by more than {threshold}, split in four to depth {max_depth}; {limit}"
+                    ),
+                }
+            }
             Pass::Normals => "surface normals from the gradient".to_string(),
             Pass::HardShadows => format!(
                 "shadow segments to {} point light(s), searched through the grid: a reliable \"no root\" proves the point lit",

@@ -403,6 +403,7 @@ max_steps = 77
 aa = "iaa"
 iaa_depth = 3
 iaa_threshold = 0.2
+iaa_limit_rays = 3
 primary = "per-pixel"
 rays_per_undecided = 16
 rays_per_pixel = 4
@@ -435,7 +436,8 @@ shadows = false
         r.aa,
         AaMode::Iaa {
             max_depth: 3,
-            threshold: 0.2
+            threshold: 0.2,
+            limit_rays: 3,
         }
     );
     assert_eq!(r.primary, PrimaryMode::PerPixel);
@@ -532,6 +534,33 @@ fn io_errors_name_the_path() {
     let e = Scene::load(&missing).unwrap_err();
     assert!(matches!(e, Error::Io { .. }));
     assert!(e.to_string().contains("no-such-scene.toml"), "{e}");
+}
+
+#[test]
+fn an_iaa_mode_keeps_its_settings_where_no_iaa_key_sets_them() {
+    let text = |extra: &str| {
+        format!(
+            "[camera]\neye = [0.0, 0.0, 5.0]\nlook_at = [0.0, 0.0, 0.0]\n[[surfaces]]\n\
+             name = \"ball\"\ncatalog = \"sphere\"\n[render]\naa = \"iaa:2:0.3:4\"\n{extra}"
+        )
+    };
+    let aa = |extra: &str| load_str(&text(extra)).unwrap().settings.aa;
+    assert_eq!(
+        aa(""),
+        AaMode::Iaa {
+            max_depth: 2,
+            threshold: 0.3,
+            limit_rays: 4
+        }
+    );
+    assert_eq!(
+        aa("iaa_limit_rays = 1\n"),
+        AaMode::Iaa {
+            max_depth: 2,
+            threshold: 0.3,
+            limit_rays: 1
+        }
+    );
 }
 
 #[test]

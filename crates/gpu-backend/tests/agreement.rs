@@ -81,6 +81,7 @@ fn suite() -> Vec<(String, Scene)> {
     iaa.settings.aa = AaMode::Iaa {
         max_depth: 2,
         threshold: AaMode::IAA_THRESHOLD,
+        limit_rays: AaMode::IAA_LIMIT_RAYS,
     };
     out.push(("iaa".into(), iaa));
     let mut per_pixel = scene("minkowski:stochastic:8");
@@ -172,6 +173,7 @@ fn the_gpu_routing_names_what_runs_on_the_cpu() {
     s.settings.aa = AaMode::Iaa {
         max_depth: 2,
         threshold: AaMode::IAA_THRESHOLD,
+        limit_rays: AaMode::IAA_LIMIT_RAYS,
     };
     let plan = beam_trace::Plan::for_scene(&s);
     let routing = Routing::new(&backend, &s, &plan).to_string();

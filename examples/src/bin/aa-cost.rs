@@ -43,9 +43,10 @@ struct Args {
 
 /// The modes measured: a name, the primary mode and the anti-aliasing mode.
 fn modes() -> Vec<(&'static str, PrimaryMode, AaMode)> {
-    let iaa = |d, t| AaMode::Iaa {
+    let iaa = |d, t, m| AaMode::Iaa {
         max_depth: d,
         threshold: t,
+        limit_rays: m,
     };
     vec![
         (
@@ -62,11 +63,17 @@ fn modes() -> Vec<(&'static str, PrimaryMode, AaMode)> {
         ("ss:2", PrimaryMode::ScreenBoxes, AaMode::Supersample(2)),
         ("ss:3", PrimaryMode::ScreenBoxes, AaMode::Supersample(3)),
         ("ss:4", PrimaryMode::ScreenBoxes, AaMode::Supersample(4)),
-        ("iaa:1:0.1", PrimaryMode::ScreenBoxes, iaa(1, 0.1)),
-        ("iaa:2:0.1", PrimaryMode::ScreenBoxes, iaa(2, 0.1)),
-        ("iaa:3:0.1", PrimaryMode::ScreenBoxes, iaa(3, 0.1)),
-        ("iaa:4:0.1", PrimaryMode::ScreenBoxes, iaa(4, 0.1)),
-        ("iaa:2:0.5", PrimaryMode::ScreenBoxes, iaa(2, 0.5)),
+        ("iaa:1:0.1:1", PrimaryMode::ScreenBoxes, iaa(1, 0.1, 1)),
+        ("iaa:2:0.1:1", PrimaryMode::ScreenBoxes, iaa(2, 0.1, 1)),
+        ("iaa:4:0.1:1", PrimaryMode::ScreenBoxes, iaa(4, 0.1, 1)),
+        ("iaa:1:0.1:2", PrimaryMode::ScreenBoxes, iaa(1, 0.1, 2)),
+        ("iaa:2:0.1:2", PrimaryMode::ScreenBoxes, iaa(2, 0.1, 2)),
+        ("iaa:3:0.1:2", PrimaryMode::ScreenBoxes, iaa(3, 0.1, 2)),
+        ("iaa:4:0.1:2", PrimaryMode::ScreenBoxes, iaa(4, 0.1, 2)),
+        ("iaa:1:0.1:4", PrimaryMode::ScreenBoxes, iaa(1, 0.1, 4)),
+        ("iaa:2:0.1:4", PrimaryMode::ScreenBoxes, iaa(2, 0.1, 4)),
+        ("iaa:3:0.1:4", PrimaryMode::ScreenBoxes, iaa(3, 0.1, 4)),
+        ("iaa:2:0.5:2", PrimaryMode::ScreenBoxes, iaa(2, 0.5, 2)),
     ]
 }
 

@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! render [SCENE] [--out FILE.png] [--width W --height H] [--root-finder NAME]
-//!        [--epsilon E] [--aa none|iaa|iaa:D:T|ss:N] [--threads N] [--stats FILE.json]
+//!        [--epsilon E] [--aa none|iaa|iaa:D:T:M|ss:N] [--threads N] [--stats FILE.json]
 //!        [--primary screen-boxes|screen-rays|per-pixel|octree] [--undecided-depth D]
 //!        [--classification FILE.png] [--cost-map FILE.png]
 //!        [--shadows stochastic:N|beam:n|beam-all:n|beam-quadtree:n|
@@ -56,7 +56,8 @@ struct Args {
     #[arg(long)]
     epsilon: Option<f64>,
     /// Anti-aliasing: none, iaa, iaa:D (depth D), iaa:D:T (and shading-variation threshold
-    /// T), or ss:N (N × N rays per pixel).
+    /// T), iaa:D:T:M (and M × M rays in a part left undecided at depth D, default 2), or
+    /// ss:N (N × N rays per pixel).
     #[arg(long)]
     aa: Option<AaMode>,
     /// Primary visibility: screen-boxes (Undecided pixels resolved by their beams),

@@ -13,7 +13,7 @@ use super::query::{
 use super::traits::{Backend, Prepared, Queries};
 use crate::error::Error;
 use crate::frustum::FirstCell;
-use crate::plan::{Pass, Plan, Primary};
+use crate::plan::{Pass, PixelBeams, Plan, Primary};
 use crate::root::RootResult;
 use crate::sample::Hit;
 use crate::scene::Scene;
@@ -35,7 +35,9 @@ pub fn pass_queries(pass: Pass, plan: &Plan) -> &'static [QueryKind] {
         Pass::PrimaryRays => &[QueryKind::Roots, QueryKind::HitPoints],
         // Hit regions are judged by their shading only with anti-aliasing.
         Pass::PixelBeams => match plan.primary.pixel_beams() {
-            Some((_, Some(_))) => &[
+            Some(PixelBeams {
+                threshold: Some(_), ..
+            }) => &[
                 QueryKind::Beams,
                 QueryKind::ShadingVariation,
                 QueryKind::Roots,

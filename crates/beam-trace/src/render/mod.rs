@@ -30,7 +30,7 @@ use crate::beam::BoxClass;
 use crate::error::Error;
 use crate::float_map::FloatMap;
 use crate::image::Image;
-use crate::plan::{Pass, Plan, Primary};
+use crate::plan::{Pass, PixelBeams, Plan, Primary};
 use crate::progress::Progress;
 use crate::sample::Coverage;
 use crate::scene::Scene;
@@ -166,7 +166,11 @@ pub fn render_on<'a>(
 
     let (mut samples, cost) = match plan.primary {
         Primary::ScreenBoxes { .. } | Primary::Iaa { .. } => {
-            let (max_depth, threshold) = plan
+            let PixelBeams {
+                max_depth,
+                threshold,
+                limit_rays,
+            } = plan
                 .primary
                 .pixel_beams()
                 .expect("the beam modes resolve pixels by their beams");
@@ -174,6 +178,7 @@ pub fn render_on<'a>(
                 max_depth,
                 threshold,
                 narrow_hits: plan.narrow_hits,
+                limit_rays,
             };
             passes.push(PassStats::skipped(Pass::PrimaryRays.name()));
             let (samples, cost, stats) =

@@ -28,7 +28,7 @@ use crate::camera::Camera;
 use crate::error::Error;
 use crate::plan::Pass;
 use crate::progress::Progress;
-use crate::ray::Beam;
+use crate::ray::{Beam, Ray};
 use crate::root::{Proof, RootResult};
 use crate::sample::{Area, Sample};
 use crate::scene::Scene;
@@ -46,6 +46,9 @@ pub(super) struct Refinement {
     ///
     /// [`Plan::narrow_hits`]: crate::plan::Plan::narrow_hits
     pub(super) narrow_hits: bool,
+    /// Rays per side of an undecided part at the depth limit: its share of the surface is
+    /// estimated from `limit_rays²` stratified rays (1: from its central ray alone).
+    pub(super) limit_rays: u32,
 }
 
 /// A sub-pixel waiting for its beam.
@@ -95,13 +98,16 @@ impl Part {
 }
 
 /// A finished part: background, or its central ray's root search and the enclosure to
-/// shade when that ray finds no root; and what its beam proved about its area.
+/// shade when that ray finds no root; what its beam proved about its area; and the
+/// stratified rays that estimate the share of an undecided part at the depth limit (none:
+/// its central ray alone).
 struct Shaded {
     pixel: usize,
     path: u64,
     weight: f32,
     ray: Option<(RayQuery, Interval<f64>)>,
     area: Area,
+    probes: Vec<Ray>,
 }
 
 /// A level of parts classified: each part's beam, class and scope.
@@ -254,6 +260,7 @@ fn subdivide(
     let Refinement {
         max_depth,
         threshold,
+        limit_rays,
         ..
     } = refine;
     let mut done: Vec<Shaded> = Vec::new();
@@ -277,19 +284,20 @@ fn subdivide(
         for (j, (p, class)) in level.iter().zip(&classes).enumerate() {
             let weight = (p.size * p.size) as f32;
             let centre = cam.ray(p.x0 + 0.5 * p.size, p.y0 + 0.5 * p.size);
-            let mut finish = |ray, area| {
+            let mut finish = |ray, area, probes| {
                 done.push(Shaded {
                     pixel: p.pixel,
                     path: p.path,
                     weight,
                     ray,
                     area,
+                    probes,
                 });
             };
             match *class {
                 BoxClass::Miss => {
                     c.rejected += 1;
-                    finish(None, Area::Missed);
+                    finish(None, Area::Missed, Vec::new());
                 }
                 BoxClass::Hit { t_final } if !open(j) || smooth[j] => {
                     c.shaded_once += 1;
@@ -299,7 +307,7 @@ fn subdivide(
                         window: t_final,
                         scope: scopes[j].clone(),
                     };
-                    finish(Some((query, t_final)), Area::Covered);
+                    finish(Some((query, t_final)), Area::Covered, Vec::new());
                 }
                 BoxClass::Hit { .. } => {
                     c.splits_variation += 1;
@@ -316,16 +324,17 @@ fn subdivide(
                     }));
                 }
                 BoxClass::Undecided { t } if !open(j) => {
-                    // At the limit: the central ray may miss while some ray of the beam
+                    // At the limit: the part's rays may all miss while some ray of the beam
                     // meets the surface in `t`: then `t` is shaded, and the feature kept.
                     c.depth_limit += 1;
-                    c.rays += 1;
+                    let probes = stratified(cam, p, limit_rays);
+                    c.rays += probes.len().max(1) as u64;
                     let query = RayQuery {
                         ray: centre,
                         window: child_window(Some(class)),
                         scope: None,
                     };
-                    finish(Some((query, t)), Area::Unknown);
+                    finish(Some((query, t)), Area::Unknown, probes);
                 }
                 BoxClass::Undecided { .. } => {
                     c.splits_undecided += 1;
@@ -338,9 +347,25 @@ fn subdivide(
     Ok(done)
 }
 
+/// `m × m` stratified rays over part `p` (none for `m ≤ 1`: the part's central ray
+/// stands for it).
+fn stratified(cam: &Camera, p: &Part, m: u32) -> Vec<Ray> {
+    if m <= 1 {
+        return Vec::new();
+    }
+    let step = p.size / f64::from(m);
+    (0..m * m)
+        .map(|i| {
+            let (u, v) = (f64::from(i % m) + 0.5, f64::from(i / m) + 0.5);
+            cam.ray(p.x0 + u * step, p.y0 + v * step)
+        })
+        .collect()
+}
+
 /// The samples of a batch's `n` pixels' finished parts, pixel by pixel in depth-first
-/// quadrant order: the central rays are searched (a Hit part's only where `narrow`, else
-/// its root is the one its `T_final` holds), then every hit's shading point is found.
+/// quadrant order: the rays are searched (a part's stratified rays where it has them, else
+/// its central ray; a Hit part's only where `narrow`, else its root is the one its
+/// `T_final` holds), then the shading point of each part's first ray that met a surface.
 fn shade_parts(
     q: &dyn Queries,
     done: Vec<Shaded>,
@@ -356,37 +381,64 @@ fn shade_parts(
         }),
         _ => None,
     };
-    let searched: Vec<usize> = (0..shaded.len())
-        .filter(|&i| known(shaded[i]).is_none())
-        .collect();
-    let queries: Vec<RayQuery> = searched
-        .iter()
-        .filter_map(|&i| done[shaded[i]].ray.as_ref().map(|r| r.0.clone()))
-        .collect();
+    // The rays searched for shaded part `i`: `queries[first[i]..first[i + 1]]`.
+    let part_queries = |k: usize| -> Vec<RayQuery> {
+        let Some((query, _)) = &done[k].ray else {
+            return Vec::new();
+        };
+        if !done[k].probes.is_empty() {
+            return done[k]
+                .probes
+                .iter()
+                .map(|&ray| RayQuery {
+                    ray,
+                    window: query.window,
+                    scope: query.scope.clone(),
+                })
+                .collect();
+        }
+        match known(k) {
+            Some(_) => Vec::new(),
+            None => vec![query.clone()],
+        }
+    };
+    let per_part: Vec<Vec<RayQuery>> = shaded.iter().map(|&k| part_queries(k)).collect();
+    let first = offsets(per_part.iter().map(Vec::len));
+    let queries: Vec<RayQuery> = per_part.into_iter().flatten().collect();
     let answers = q.roots(&queries)?;
     c.search.add(&answers.search);
-    let mut roots: Vec<RootResult> = shaded
+    // Each shaded part's ray to shade, its root, and the share of its rays that met a
+    // surface (or may have).
+    let found: Vec<(Ray, RootResult, f32)> = shaded
         .iter()
-        .map(|&k| known(k).unwrap_or(RootResult::NoRoot))
+        .enumerate()
+        .map(|(i, &k)| {
+            let (query, _) = done[k].ray.as_ref().expect("a shaded part");
+            pixel_cost[done[k].pixel] += answers.cost[first[i]..first[i + 1]].iter().sum::<f32>();
+            if let Some(r) = known(k) {
+                return (query.ray, r, 1.0);
+            }
+            let roots = &answers.values[first[i]..first[i + 1]];
+            let met = |r: &RootResult| !matches!(r, RootResult::NoRoot);
+            let hits = roots.iter().filter(|r| met(r)).count();
+            let share = hits as f32 / roots.len().max(1) as f32;
+            match roots.iter().position(met) {
+                Some(j) => (queries[first[i] + j].ray, roots[j], share),
+                None => (query.ray, RootResult::NoRoot, share),
+            }
+        })
         .collect();
-    let mut root_cost = vec![0f32; shaded.len()];
-    for ((&i, r), t) in searched.iter().zip(answers.values).zip(answers.cost) {
-        roots[i] = r;
-        root_cost[i] = t;
-    }
     let hit_queries: Vec<HitQuery> = shaded
         .iter()
-        .zip(&roots)
-        .zip(&root_cost)
-        .filter_map(|((&k, r), t)| {
-            pixel_cost[done[k].pixel] += t;
+        .zip(&found)
+        .filter_map(|(&k, &(ray, r, _))| {
             let (query, fallback) = done[k].ray.as_ref()?;
-            let t = match *r {
+            let t = match r {
                 RootResult::Root { t, .. } | RootResult::Undecided { t } => t,
                 RootResult::NoRoot => *fallback,
             };
             Some(HitQuery {
-                ray: query.ray,
+                ray,
                 t,
                 scope: query.scope.clone(),
             })
@@ -408,19 +460,20 @@ fn shade_parts(
             )
         })
         .collect();
-    for (((&k, hit), t), r) in shaded.iter().zip(hits.values).zip(&hits.cost).zip(&roots) {
+    for (((&k, hit), t), &(_, _, met)) in shaded.iter().zip(hits.values).zip(&hits.cost).zip(&found)
+    {
         parts[k].2.hit = Some(hit);
         pixel_cost[done[k].pixel] += t;
         if done[k].area == Area::Unknown {
-            // An undecided part at the limit: its surface's share of it is unknown. For a
-            // straight edge through the part the share is in [1/2, 1] when the central
-            // ray meets the surface and in [0, 1/2] when it misses; the part is split
-            // between the surface and the background at those ranges' middles.
-            let share = if matches!(r, RootResult::NoRoot) {
-                0.25
-            } else {
-                0.75
-            };
+            // An undecided part at the limit: its surface's share of it is unknown. With
+            // `m²` stratified rays of which a share `met` meets the surface, the part is
+            // split between the surface and the background at `met` kept a quarter of a
+            // ray's share inside (0, 1): neither all nor none of an undecided part is
+            // proven. With its central ray alone (m = 1) that is 3/4 when it meets the
+            // surface and 1/4 when it misses: for a straight edge through the part the
+            // share is in [1/2, 1] or [0, 1/2], and these are the ranges' middles.
+            let m2 = done[k].probes.len().max(1) as f32;
+            let share = met.clamp(0.25 / m2, 1.0 - 0.25 / m2);
             let (pixel, path, sample) = &mut parts[k];
             let background = Sample {
                 weight: sample.weight * (1.0 - share),

@@ -243,9 +243,10 @@ impl Scene {
     /// root_finder = "newton-alefeld-hansen"
     /// epsilon = 1e-6
     /// max_steps = 100000
-    /// aa = "none"                       # none | iaa | iaa:D | iaa:D:T | ss:N (N × N rays per pixel, N ≤ 16)
+    /// aa = "none"                       # none | iaa | iaa:D | iaa:D:T | iaa:D:T:M | ss:N (N × N rays per pixel, N ≤ 16)
     /// iaa_depth = 4
     /// iaa_threshold = 0.05
+    /// iaa_limit_rays = 2                # iaa: M × M rays in a part left undecided at the depth limit
     /// primary = "screen-boxes"          # screen-boxes | screen-rays | per-pixel | octree
     /// undecided_depth = 1               # screen-boxes: Undecided pixels' beams split to this depth
     /// rays_per_undecided = 9            # screen-rays: point rays per Undecided pixel

@@ -90,6 +90,10 @@ pub enum AaMode {
         /// Largest spread of the shaded colour over a proven hit region for it to be shaded
         /// once ([`shading_variation`](crate::aa::shading_variation)).
         threshold: f64,
+        /// Rays per side of an undecided part at the depth limit: the share of the part
+        /// its surface covers is estimated from `limit_rays²` stratified rays (1: from its
+        /// central ray, 3/4 or 1/4).
+        limit_rays: u32,
     },
     /// `n × n` stratified rays per pixel (point-sampling supersampling).
     Supersample(u32),
@@ -100,42 +104,61 @@ impl AaMode {
     pub const IAA_DEPTH: u32 = 4;
     /// Default IAA shading-variation threshold (a spread of the colour, channels in `[0, 1]`).
     pub const IAA_THRESHOLD: f64 = 0.05;
+    /// Default rays per side of an IAA part left undecided at the depth limit.
+    pub const IAA_LIMIT_RAYS: u32 = 2;
+    /// Most rays per side of an undecided part at the depth limit.
+    pub const MAX_LIMIT_RAYS: u32 = 16;
 }
 
 impl std::str::FromStr for AaMode {
     type Err = String;
 
     /// `none`, `iaa`, `iaa:D` (depth `D`, 1 to 8), `iaa:D:T` (and shading-variation
-    /// threshold `T > 0`), or `ss:N` (`N × N` rays per pixel, `1 <= N <= 16`).
+    /// threshold `T > 0`), `iaa:D:T:M` (and `M × M` rays in a part left undecided at the
+    /// depth limit, `1 <= M <= 16`), or `ss:N` (`N × N` rays per pixel, `1 <= N <= 16`).
     fn from_str(s: &str) -> Result<Self, String> {
         if let Some(rest) = s.strip_prefix("iaa:") {
-            let mut parts = rest.split(':');
-            let depth = parts.next().map(str::parse::<u32>);
-            let threshold = parts.next().map(str::parse::<f64>);
-            return match (depth, threshold, parts.next()) {
-                (Some(Ok(d)), t, None) if (1..=8).contains(&d) => match t {
-                    None => Ok(AaMode::Iaa {
-                        max_depth: d,
-                        threshold: AaMode::IAA_THRESHOLD,
-                    }),
-                    Some(Ok(t)) if t > 0.0 && t.is_finite() => Ok(AaMode::Iaa {
-                        max_depth: d,
-                        threshold: t,
-                    }),
-                    Some(_) => Err(format!(
-                        "'{s}': the IAA threshold must be a positive number"
-                    )),
-                },
-                _ => Err(format!(
-                    "'{s}': write iaa:D or iaa:D:T with a depth D from 1 to 8 and a threshold T > 0"
-                )),
+            let usage = || {
+                format!(
+                    "'{s}': write iaa:D, iaa:D:T or iaa:D:T:M with a depth D from 1 to 8, a \
+                     threshold T > 0 and M from 1 to {} rays per side at the depth limit",
+                    AaMode::MAX_LIMIT_RAYS
+                )
             };
+            let parts: Vec<&str> = rest.split(':').collect();
+            if parts.len() > 3 {
+                return Err(usage());
+            }
+            let max_depth = match parts[0].parse::<u32>() {
+                Ok(d) if (1..=8).contains(&d) => d,
+                _ => return Err(usage()),
+            };
+            let threshold = match parts.get(1).map(|t| t.parse::<f64>()) {
+                None => AaMode::IAA_THRESHOLD,
+                Some(Ok(t)) if t > 0.0 && t.is_finite() => t,
+                Some(_) => {
+                    return Err(format!(
+                        "'{s}': the IAA threshold must be a positive number"
+                    ));
+                }
+            };
+            let limit_rays = match parts.get(2).map(|m| m.parse::<u32>()) {
+                None => AaMode::IAA_LIMIT_RAYS,
+                Some(Ok(m)) if (1..=AaMode::MAX_LIMIT_RAYS).contains(&m) => m,
+                Some(_) => return Err(usage()),
+            };
+            return Ok(AaMode::Iaa {
+                max_depth,
+                threshold,
+                limit_rays,
+            });
         }
         match s {
             "none" => Ok(AaMode::None),
             "iaa" => Ok(AaMode::Iaa {
                 max_depth: AaMode::IAA_DEPTH,
                 threshold: AaMode::IAA_THRESHOLD,
+                limit_rays: AaMode::IAA_LIMIT_RAYS,
             }),
             _ => match s.strip_prefix("ss:").map(str::parse::<u32>) {
                 Some(Ok(n)) if (1..=16).contains(&n) => Ok(AaMode::Supersample(n)),
@@ -143,7 +166,7 @@ impl std::str::FromStr for AaMode {
                     "'{s}': the supersampling count must be an integer from 1 to 16"
                 )),
                 None => Err(format!(
-                    "unknown anti-aliasing mode '{s}' (one of: none, iaa, iaa:D, iaa:D:T, ss:N)"
+                    "unknown anti-aliasing mode '{s}' (one of: none, iaa, iaa:D, iaa:D:T, iaa:D:T:M, ss:N)"
                 )),
             },
         }

@@ -143,6 +143,7 @@ pub(super) struct RawRender {
     pub(super) aa: Option<String>,
     pub(super) iaa_depth: Option<i64>,
     pub(super) iaa_threshold: Option<f64>,
+    pub(super) iaa_limit_rays: Option<i64>,
     pub(super) primary: Option<String>,
     pub(super) rays_per_undecided: Option<i64>,
     pub(super) undecided_depth: Option<i64>,

@@ -64,19 +64,27 @@ pub(super) fn render_settings(doc: &Doc<'_>, r: &RawRender) -> Result<RenderSett
     if let Some(a) = &r.aa {
         s.aa = a.parse().map_err(|m| doc.err("render.aa", m))?;
     }
-    let depth = match r.iaa_depth {
-        Some(v) => doc.int_in("render.iaa_depth", v, 1, 8)?,
-        None => AaMode::IAA_DEPTH,
-    };
-    let threshold = match r.iaa_threshold {
-        Some(v) => doc.positive("render.iaa_threshold", v)?,
-        None => AaMode::IAA_THRESHOLD,
-    };
-    if let AaMode::Iaa { .. } = s.aa {
-        s.aa = AaMode::Iaa {
-            max_depth: depth,
-            threshold,
-        };
+    // The `iaa_*` keys set what they name of an IAA mode; the others keep the mode's.
+    if let AaMode::Iaa {
+        max_depth,
+        threshold,
+        limit_rays,
+    } = &mut s.aa
+    {
+        if let Some(v) = r.iaa_depth {
+            *max_depth = doc.int_in("render.iaa_depth", v, 1, 8)?;
+        }
+        if let Some(v) = r.iaa_threshold {
+            *threshold = doc.positive("render.iaa_threshold", v)?;
+        }
+        if let Some(v) = r.iaa_limit_rays {
+            *limit_rays = doc.int_in(
+                "render.iaa_limit_rays",
+                v,
+                1,
+                i64::from(AaMode::MAX_LIMIT_RAYS),
+            )?;
+        }
     }
     if let Some(p) = &r.primary {
         s.primary = p.parse().map_err(|m| doc.err("render.primary", m))?;
@@ -125,8 +133,37 @@ mod tests {
         assert!("ss:".parse::<AaMode>().is_err());
         assert!(matches!(
             "iaa".parse::<AaMode>(),
-            Ok(AaMode::Iaa { max_depth: 4, .. })
+            Ok(AaMode::Iaa {
+                max_depth: 4,
+                limit_rays: 2,
+                ..
+            })
         ));
+        assert_eq!(
+            "iaa:3:0.1:4".parse::<AaMode>(),
+            Ok(AaMode::Iaa {
+                max_depth: 3,
+                threshold: 0.1,
+                limit_rays: 4
+            })
+        );
+        assert!(matches!(
+            "iaa:2".parse::<AaMode>(),
+            Ok(AaMode::Iaa {
+                max_depth: 2,
+                limit_rays: 2,
+                ..
+            })
+        ));
+        for bad in [
+            "iaa:3:0.1:0",
+            "iaa:3:0.1:17",
+            "iaa:3:0.1:2:1",
+            "iaa:0",
+            "iaa:3:-1",
+        ] {
+            assert!(bad.parse::<AaMode>().is_err(), "{bad}");
+        }
         assert_eq!(
             "per-pixel".parse::<PrimaryMode>(),
             Ok(PrimaryMode::PerPixel)
