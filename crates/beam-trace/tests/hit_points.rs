@@ -118,6 +118,30 @@ fn shading_points_where_g_is_noisy() {
 }
 
 #[test]
+fn unlit_hit_points_of_objects_of_different_colours_are_searched() {
+    // A second object of another colour, out of view: the colour of a pixel is then its
+    // first root's object's, and the point is searched as in a lit scene.
+    let other = "[[surfaces]]\nformula = \"(x - 40)^2 + y^2 + z^2 - 1\"\n\
+                 bounds = [[38.0, -2.0, -2.0], [42.0, 2.0, 2.0]]\n\
+                 material = { color = [1.0, 0.0, 0.0] }\n";
+    let ball = Ball {
+        centre: [0.0, 0.0, 0.0],
+        r: 1.0,
+        eye: [0.3, 0.4, 5.0],
+        size: 24,
+        fov: 30.0,
+    };
+    for (ray, t, point) in hit_points(&ball, other) {
+        let exact = ball.exact_t(ray.origin, ray.dir).expect("a hit");
+        let tp = (point - ray.origin).dot(ray.dir) / ray.dir.dot(ray.dir);
+        assert!(
+            (tp - exact).abs() <= 1e-12 * exact && t.inf() <= tp && tp <= t.sup(),
+            "{tp} against {exact} in {t:?}"
+        );
+    }
+}
+
+#[test]
 fn unlit_hit_points_are_the_near_ends_of_their_enclosures() {
     let ball = Ball {
         centre: [0.0, 0.0, 0.0],

@@ -261,7 +261,7 @@ fn subdivide(
         max_depth,
         threshold,
         limit_rays,
-        ..
+        narrow_hits,
     } = refine;
     let mut done: Vec<Shaded> = Vec::new();
     while !level.is_empty() {
@@ -301,7 +301,8 @@ fn subdivide(
                 }
                 BoxClass::Hit { t_final } if !open(j) || smooth[j] => {
                     c.shaded_once += 1;
-                    c.rays += 1;
+                    // Searched only where the plan narrows hits.
+                    c.rays += u64::from(narrow_hits);
                     let query = RayQuery {
                         ray: centre,
                         window: t_final,

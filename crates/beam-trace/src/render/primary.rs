@@ -79,7 +79,7 @@ fn octree(
                 scopes[i] = first.and_then(|f| f.scope);
             }
         }
-        progress.advance(u64::from(band[0].y1 - band[0].y0));
+        progress.advance(u64::from(band[band.len() - 1].y1 - band[0].y0));
     }
     // The beams evaluated: the cells and the leaves' inclusion tests.
     c.beams = c.search.g_evals;

@@ -317,8 +317,8 @@ impl Scene {
     ///
     /// **`[render]`**: `root_finder` (a [`RootMethod`] name), `epsilon` (positive),
     /// `max_steps` (at least 1), `sampling_step` (in `(0, 1]`) and `lipschitz` (positive) for
-    /// the unreliable baselines, `aa` (see [`AaMode`]'s [`FromStr`]), `iaa_depth` (1 to 8) and
-    /// `iaa_threshold` (positive) for `aa = "iaa"`, `primary` (see [`PrimaryMode`]'s
+    /// the unreliable baselines, `aa` (see [`AaMode`]'s [`FromStr`]), `iaa_depth` (1 to 8),
+    /// `iaa_threshold` (positive) and `iaa_limit_rays` (1 to 16) for `aa = "iaa"`, `primary` (see [`PrimaryMode`]'s
     /// [`FromStr`]), `undecided_depth` (0 to 8), `rays_per_undecided` and `rays_per_pixel`
     /// (square numbers 1 to 256),
     /// `t_final_width` (positive), `grid` (0 to 256; 0: no grid), `shadows`,

@@ -64,27 +64,36 @@ pub(super) fn render_settings(doc: &Doc<'_>, r: &RawRender) -> Result<RenderSett
     if let Some(a) = &r.aa {
         s.aa = a.parse().map_err(|m| doc.err("render.aa", m))?;
     }
-    // The `iaa_*` keys set what they name of an IAA mode; the others keep the mode's.
+    // The `iaa_*` keys are checked whatever the mode, and set what they name of an IAA
+    // mode; the others keep the mode's.
+    let depth = r
+        .iaa_depth
+        .map(|v| doc.int_in("render.iaa_depth", v, 1, 8))
+        .transpose()?;
+    let threshold_key = r
+        .iaa_threshold
+        .map(|v| doc.positive("render.iaa_threshold", v))
+        .transpose()?;
+    let rays = r
+        .iaa_limit_rays
+        .map(|v| {
+            doc.int_in(
+                "render.iaa_limit_rays",
+                v,
+                1,
+                i64::from(AaMode::MAX_LIMIT_RAYS),
+            )
+        })
+        .transpose()?;
     if let AaMode::Iaa {
         max_depth,
         threshold,
         limit_rays,
     } = &mut s.aa
     {
-        if let Some(v) = r.iaa_depth {
-            *max_depth = doc.int_in("render.iaa_depth", v, 1, 8)?;
-        }
-        if let Some(v) = r.iaa_threshold {
-            *threshold = doc.positive("render.iaa_threshold", v)?;
-        }
-        if let Some(v) = r.iaa_limit_rays {
-            *limit_rays = doc.int_in(
-                "render.iaa_limit_rays",
-                v,
-                1,
-                i64::from(AaMode::MAX_LIMIT_RAYS),
-            )?;
-        }
+        *max_depth = depth.unwrap_or(*max_depth);
+        *threshold = threshold_key.unwrap_or(*threshold);
+        *limit_rays = rays.unwrap_or(*limit_rays);
     }
     if let Some(p) = &r.primary {
         s.primary = p.parse().map_err(|m| doc.err("render.primary", m))?;

@@ -323,9 +323,10 @@ impl CpuQueries<'_> {
     /// grid cell holds the points of `t`, `g` is the cell's function (sign-equivalent to the
     /// scene function there, and much shorter); where `t` lies in the parameters of the
     /// `scope` of the beam the ray lies in, its function (equal to the scene function
-    /// there); else the scene function. Without shading (an unlit scene shows the flat
-    /// colour of the object hit) the point is `t`'s near end, where the object is looked
-    /// up, with no search.
+    /// there); else the scene function. Where the plan does not narrow hits
+    /// ([`Plan::narrow_hits`](crate::plan::Plan::narrow_hits): an unlit scene of one
+    /// colour, whose image needs no normal and no telling objects apart) the point is
+    /// `t`'s near end, with no search.
     pub(super) fn hit(
         &self,
         ev: &mut Evals,
@@ -334,7 +335,7 @@ impl CpuQueries<'_> {
         scope: Option<&BeamScope>,
         c: &mut RootCounters,
     ) -> Hit {
-        let tm = if self.plan.shading || !t.inf().is_finite() {
+        let tm = if self.plan.narrow_hits || !t.inf().is_finite() {
             self.shading_parameter(ev, ray, t, scope, c)
         } else {
             t.inf()
