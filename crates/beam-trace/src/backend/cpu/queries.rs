@@ -218,11 +218,28 @@ impl CpuQueries<'_> {
         c: &mut RootCounters,
     ) -> Classified {
         let (beam, parent) = (&query.beam, query.parent.as_ref());
-        let ranges = match parent {
-            Some(BoxClass::Hit { t_final }) => vec![*t_final],
-            _ => self.beam_ranges(beam, child_window(parent)),
+        let window = child_window(parent);
+        // Inside an Undecided parent, first up to the end of the parent's restriction
+        // (where its tape holds, and where the parent's undecided piece lies), then, where
+        // that part is rejected, the rest of the window.
+        let cap = match (parent, &query.scope) {
+            (Some(BoxClass::Undecided { .. }), Some(s))
+                if s.t.sup() > window.inf() && s.t.sup() < window.sup() =>
+            {
+                Some(s.t.sup())
+            }
+            _ => None,
         };
-        if ranges.is_empty() {
+        let ranges = match (parent, cap) {
+            (Some(BoxClass::Hit { t_final }), _) => vec![*t_final],
+            (_, Some(cap)) => self.beam_ranges(beam, Interval::new_unchecked(window.inf(), cap)),
+            _ => self.beam_ranges(beam, window),
+        };
+        let rest = || match cap {
+            Some(cap) => self.beam_ranges(beam, Interval::new_unchecked(cap, window.sup())),
+            None => Vec::new(),
+        };
+        if ranges.is_empty() && cap.is_none() {
             return BoxClass::Miss.into();
         }
         ev.geo.beam.set_beam(beam);
@@ -255,15 +272,37 @@ impl CpuQueries<'_> {
             near,
             free,
         };
-        let (class, scope) = evaluate_box_within(
-            &mut ev.geo.beam,
-            &ranges,
-            inherited,
-            Some(&extent),
-            &self.plan.beam,
-            record.as_mut(),
-            c,
-        );
+        let (mut class, mut scope) = if ranges.is_empty() {
+            (BoxClass::Miss, None)
+        } else {
+            evaluate_box_within(
+                &mut ev.geo.beam,
+                &ranges,
+                inherited,
+                Some(&extent),
+                &self.plan.beam,
+                record.as_mut(),
+                c,
+            )
+        };
+        if class == BoxClass::Miss {
+            let rest = rest();
+            if !rest.is_empty() {
+                (class, scope) = evaluate_box_within(
+                    &mut ev.geo.beam,
+                    &rest,
+                    Inherited {
+                        scope: None,
+                        near: None,
+                        free,
+                    },
+                    Some(&extent),
+                    &self.plan.beam,
+                    record.as_mut(),
+                    c,
+                );
+            }
+        }
         if let (Some(p), Some(k), Some(r)) = (proofs, key, record) {
             p.record(k, &r);
         }
