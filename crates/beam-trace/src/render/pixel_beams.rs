@@ -18,6 +18,7 @@
 use std::time::Instant;
 
 use interval_core::Interval;
+use rayon::prelude::*;
 
 use super::pixels::{Pixels, offsets};
 use super::primary::{PixelClasses, PixelScopes};
@@ -74,6 +75,11 @@ struct Part {
 }
 
 impl Part {
+    /// The part's beam.
+    fn beam(&self, cam: &Camera) -> Beam {
+        cam.beam(self.x0, self.y0, self.x0 + self.size, self.y0 + self.size)
+    }
+
     fn quadrants(
         &self,
         class: BoxClass,
@@ -110,9 +116,8 @@ struct Shaded {
     probes: Vec<Ray>,
 }
 
-/// A level of parts classified: each part's beam, class and scope.
+/// A level of parts classified: each part's class and scope.
 struct Classified {
-    beams: Vec<Beam>,
     classes: Vec<BoxClass>,
     scopes: Vec<Option<BeamScope>>,
 }
@@ -126,17 +131,13 @@ fn classify(
     pixel_cost: &mut [f32],
     c: &mut PixelBeamCounters,
 ) -> Result<Classified, Error> {
-    let beams: Vec<_> = level
-        .iter()
-        .map(|p| cam.beam(p.x0, p.y0, p.x0 + p.size, p.y0 + p.size))
-        .collect();
     let asked: Vec<usize> = (0..level.len())
         .filter(|&j| level[j].known.is_none())
         .collect();
     let queries: Vec<BeamQuery> = asked
-        .iter()
+        .par_iter()
         .map(|&j| BeamQuery {
-            beam: beams[j],
+            beam: level[j].beam(cam),
             parent: level[j].parent,
             scope: level[j].scope.clone(),
         })
@@ -155,19 +156,14 @@ fn classify(
         scopes[j] = a.scope;
         pixel_cost[level[j].pixel] += t;
     }
-    Ok(Classified {
-        beams,
-        classes,
-        scopes,
-    })
+    Ok(Classified { classes, scopes })
 }
 
 /// Whether each Hit part of `judged` may be shaded once: its shading varies by at most
 /// `threshold` over its proven region.
 fn smooth_hits(
     q: &dyn Queries,
-    level: &[Part],
-    beams: &[Beam],
+    (cam, level): (&Camera, &[Part]),
     classes: &[BoxClass],
     judged: &[usize],
     threshold: f64,
@@ -177,7 +173,7 @@ fn smooth_hits(
         .iter()
         .filter_map(|&j| match classes[j] {
             BoxClass::Hit { t_final } => Some(VariationQuery {
-                beam: beams[j],
+                beam: level[j].beam(cam),
                 t_final,
             }),
             _ => None,
@@ -265,25 +261,22 @@ fn subdivide(
     } = refine;
     let mut done: Vec<Shaded> = Vec::new();
     while !level.is_empty() {
-        let Classified {
-            beams,
-            classes,
-            scopes,
-        } = classify(q, cam, &mut level, pixel_cost, c)?;
+        let Classified { classes, scopes } = classify(q, cam, &mut level, pixel_cost, c)?;
         let open = |j: usize| level[j].depth < max_depth;
         let smooth = match threshold {
             Some(limit) => {
                 let judged: Vec<usize> = (0..level.len())
                     .filter(|&j| open(j) && matches!(classes[j], BoxClass::Hit { .. }))
                     .collect();
-                smooth_hits(q, &level, &beams, &classes, &judged, limit, pixel_cost)?
+                smooth_hits(q, (cam, &level), &classes, &judged, limit, pixel_cost)?
             }
             None => vec![true; level.len()],
         };
         let mut next = Vec::new();
         for (j, (p, class)) in level.iter().zip(&classes).enumerate() {
             let weight = (p.size * p.size) as f32;
-            let centre = cam.ray(p.x0 + 0.5 * p.size, p.y0 + 0.5 * p.size);
+            // The part's central ray, made only for the parts that are shaded.
+            let centre = || cam.ray(p.x0 + 0.5 * p.size, p.y0 + 0.5 * p.size);
             let mut finish = |ray, area, probes| {
                 done.push(Shaded {
                     pixel: p.pixel,
@@ -304,7 +297,7 @@ fn subdivide(
                     // Searched only where the plan narrows hits.
                     c.rays += u64::from(narrow_hits);
                     let query = RayQuery {
-                        ray: centre,
+                        ray: centre(),
                         window: t_final,
                         scope: scopes[j].clone(),
                     };
@@ -331,7 +324,7 @@ fn subdivide(
                     let probes = stratified(cam, p, limit_rays);
                     c.rays += probes.len().max(1) as u64;
                     let query = RayQuery {
-                        ray: centre,
+                        ray: centre(),
                         window: child_window(Some(class)),
                         scope: None,
                     };
