@@ -290,7 +290,11 @@ fn subdivide(
             match *class {
                 BoxClass::Miss => {
                     c.rejected += 1;
-                    finish(None, Area::Missed, Vec::new());
+                    // A whole pixel missed has no sample (background, proven missed); a
+                    // part's background keeps its share of the pixel.
+                    if p.depth > 0 {
+                        finish(None, Area::Missed, Vec::new());
+                    }
                 }
                 BoxClass::Hit { t_final } if !open(j) || smooth[j] => {
                     c.shaded_once += 1;
