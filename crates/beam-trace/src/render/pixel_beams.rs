@@ -212,7 +212,11 @@ pub(super) fn pixel_beams(
         // With anti-aliasing a Hit pixel's own beam is classified inside its box's
         // `T_final`: its own, narrower section is the region whose shading is judged.
         let class = |k: usize| classes[first + k].map(|c| c.0);
+        // A pixel its screen box proved missed is background with no part (counted as
+        // rejected); the others start as whole-pixel parts.
+        let missed = |k: usize| matches!(class(k), Some(BoxClass::Miss));
         let level: Vec<Part> = (0..n)
+            .filter(|&k| !missed(k))
             .map(|k| {
                 let i = (first + k) as u32;
                 Part {
@@ -230,6 +234,7 @@ pub(super) fn pixel_beams(
                 }
             })
             .collect();
+        c.rejected += (n - level.len()) as u64;
         let done = subdivide(q, cam, level, refine, &mut pixel_cost, &mut c)?;
         let samples = shade_parts(q, done, (n, refine.narrow_hits), &mut pixel_cost, &mut c)?;
         pixels.append(samples);
