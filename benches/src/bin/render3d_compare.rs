@@ -13,8 +13,11 @@
 //! threads for each renderer), `--runs 3` (the time reported is the best of that many
 //! renders; the median is printed beside it), `--distance 100000` (our eye's distance, see
 //! below), `--precision f64|f32` (our interval evaluations; fidget's are `f32`), `--primary
-//! screen-rays|octree` (our primary visibility: the screen box structure, the default, or
-//! the frustum octree of `beam_trace::frustum`; one ray per undecided pixel either way), `--stats`
+//! screen-rays|octree|screen-boxes` (our primary visibility: the screen box structure, the
+//! default, or the frustum octree of `beam_trace::frustum`, with one ray per undecided pixel
+//! either way; or the renderer's default mode, whose undecided pixels are resolved by their
+//! beams: a pixel then counts as covered where the surface has more than half of its
+//! weight, instead of where its centre's ray meets it), `--stats`
 //! (print our render's statistics: the time and counters of each pass), `--images DIR`
 //! (write `DIR/MODEL-SIZE.png`, the silhouettes compared: white where both renderers hit,
 //! red where only ours does, blue where only fidget's JIT does, and our screen box
@@ -74,7 +77,7 @@ use fidget::shape::Shape;
 use fidget::vm::VmFunction;
 
 const USAGE: &str = "usage: render3d_compare [--sizes 512,1024] [--threads 2] [--runs 3] \
-[--distance 100000] [--precision f64|f32] [--primary screen-rays|octree] [--stats] [--images DIR] \
+[--distance 100000] [--precision f64|f32] [--primary screen-rays|octree|screen-boxes] [--stats] [--images DIR] \
 [MODEL.vm ...]";
 
 struct Options {
@@ -132,8 +135,10 @@ fn parse_args() -> Result<Option<Options>, String> {
             }
             "--primary" => {
                 let v = value("--primary")?;
-                if v != "screen-rays" && v != "octree" {
-                    return Err(format!("--primary {v}: screen-rays or octree"));
+                if !["screen-rays", "octree", "screen-boxes"].contains(&v.as_str()) {
+                    return Err(format!(
+                        "--primary {v}: screen-rays, octree or screen-boxes"
+                    ));
                 }
                 o.primary = v;
             }
