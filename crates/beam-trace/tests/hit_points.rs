@@ -12,6 +12,15 @@ use beam_trace::{Cpu, Plan};
 use glam::DVec3;
 use interval_core::Interval;
 
+/// The unit ball seen from a little off its axis.
+const UNIT_BALL: Ball = Ball {
+    centre: [0.0, 0.0, 0.0],
+    r: 1.0,
+    eye: [0.3, 0.4, 5.0],
+    size: 24,
+    fov: 30.0,
+};
+
 /// A point light above the eye.
 const LIGHT: &str = "[[lights]]\ntype = \"point\"\nposition = [0.0, 100.0, 100.0]\n";
 
@@ -124,13 +133,7 @@ fn unlit_hit_points_of_objects_of_different_colours_are_searched() {
     let other = "[[surfaces]]\nformula = \"(x - 40)^2 + y^2 + z^2 - 1\"\n\
                  bounds = [[38.0, -2.0, -2.0], [42.0, 2.0, 2.0]]\n\
                  material = { color = [1.0, 0.0, 0.0] }\n";
-    let ball = Ball {
-        centre: [0.0, 0.0, 0.0],
-        r: 1.0,
-        eye: [0.3, 0.4, 5.0],
-        size: 24,
-        fov: 30.0,
-    };
+    let ball = UNIT_BALL;
     for (ray, t, point) in hit_points(&ball, other) {
         let exact = ball.exact_t(ray.origin, ray.dir).expect("a hit");
         let tp = (point - ray.origin).dot(ray.dir) / ray.dir.dot(ray.dir);
@@ -143,13 +146,7 @@ fn unlit_hit_points_of_objects_of_different_colours_are_searched() {
 
 #[test]
 fn unlit_hit_points_are_the_near_ends_of_their_enclosures() {
-    let ball = Ball {
-        centre: [0.0, 0.0, 0.0],
-        r: 1.0,
-        eye: [0.3, 0.4, 5.0],
-        size: 24,
-        fov: 30.0,
-    };
+    let ball = UNIT_BALL;
     for (ray, t, point) in hit_points(&ball, "") {
         assert_eq!(point, ray.at(t.inf()), "enclosure {t:?}");
     }
