@@ -30,7 +30,7 @@ use crate::error::Error;
 use crate::plan::Pass;
 use crate::progress::Progress;
 use crate::ray::{Beam, Ray};
-use crate::root::{Proof, RootResult};
+use crate::root::RootResult;
 use crate::sample::{Area, Sample};
 use crate::scene::Scene;
 use crate::stats::PassStats;
@@ -378,36 +378,29 @@ fn shade_parts(
 ) -> Result<Pixels, Error> {
     let shaded: Vec<usize> = (0..done.len()).filter(|&k| done[k].ray.is_some()).collect();
     let known = |k: usize| match &done[k].ray {
-        Some((_, t_final)) if !narrow && done[k].area == Area::Covered => Some(RootResult::Root {
-            t: *t_final,
-            proof: Proof::Exists,
-        }),
+        Some((_, t_final)) if !narrow && done[k].area == Area::Covered => {
+            Some(RootResult::included(*t_final))
+        }
         _ => None,
     };
-    // The rays searched for shaded part `i`: `queries[first[i]..first[i + 1]]`.
-    let part_queries = |k: usize| -> Vec<RayQuery> {
-        let Some((query, _)) = &done[k].ray else {
-            return Vec::new();
-        };
+    // The rays searched for shaded part `i`: `queries[first[i]..first[i + 1]]`, its
+    // stratified rays where it has them, else its central ray unless its root is known.
+    let mut queries: Vec<RayQuery> = Vec::with_capacity(shaded.len());
+    let mut first = Vec::with_capacity(shaded.len() + 1);
+    first.push(0);
+    for &k in &shaded {
+        let (query, _) = done[k].ray.as_ref().expect("a shaded part");
         if !done[k].probes.is_empty() {
-            return done[k]
-                .probes
-                .iter()
-                .map(|&ray| RayQuery {
-                    ray,
-                    window: query.window,
-                    scope: query.scope.clone(),
-                })
-                .collect();
+            queries.extend(done[k].probes.iter().map(|&ray| RayQuery {
+                ray,
+                window: query.window,
+                scope: query.scope.clone(),
+            }));
+        } else if known(k).is_none() {
+            queries.push(query.clone());
         }
-        match known(k) {
-            Some(_) => Vec::new(),
-            None => vec![query.clone()],
-        }
-    };
-    let per_part: Vec<Vec<RayQuery>> = shaded.iter().map(|&k| part_queries(k)).collect();
-    let first = offsets(per_part.iter().map(Vec::len));
-    let queries: Vec<RayQuery> = per_part.into_iter().flatten().collect();
+        first.push(queries.len());
+    }
     let answers = q.roots(&queries)?;
     c.search.add(&answers.search);
     // Each shaded part's ray to shade, its root, and the share of its rays that met a

@@ -241,10 +241,7 @@ fn pixel_ray(
                 scope: if narrow { scope.clone() } else { None },
             },
             fallback: Some(forward()),
-            known: (!narrow).then_some(RootResult::Root {
-                t: t_final,
-                proof: Proof::Exists,
-            }),
+            known: (!narrow).then_some(RootResult::included(t_final)),
         },
         class => {
             let (ox, oy) = offsets[r];

@@ -71,6 +71,15 @@ pub enum RootResult {
 }
 
 impl RootResult {
+    /// The first root proven to lie in `t` by a beam's inclusion test (a sign change of a
+    /// continuous `g` for every ray, no root before `t`): [`Proof::Exists`].
+    pub fn included(t: Interval<f64>) -> Self {
+        RootResult::Root {
+            t,
+            proof: Proof::Exists,
+        }
+    }
+
     /// The root enclosure, if any.
     pub fn root(&self) -> Option<Interval<f64>> {
         match *self {

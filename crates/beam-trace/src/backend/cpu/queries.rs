@@ -230,16 +230,18 @@ impl CpuQueries<'_> {
             }
             _ => None,
         };
-        let ranges = match (parent, cap) {
-            (Some(BoxClass::Hit { t_final }), _) => vec![*t_final],
-            (_, Some(cap)) => self.beam_ranges(beam, Interval::new_unchecked(window.inf(), cap)),
-            _ => self.beam_ranges(beam, window),
+        let (searched, rest) = match cap {
+            Some(cap) => (
+                Interval::new_unchecked(window.inf(), cap),
+                Some(Interval::new_unchecked(cap, window.sup())),
+            ),
+            None => (window, None),
         };
-        let rest = || match cap {
-            Some(cap) => self.beam_ranges(beam, Interval::new_unchecked(cap, window.sup())),
-            None => Vec::new(),
+        let ranges = match parent {
+            Some(BoxClass::Hit { t_final }) => vec![*t_final],
+            _ => self.beam_ranges(beam, searched),
         };
-        if ranges.is_empty() && cap.is_none() {
+        if ranges.is_empty() && rest.is_none() {
             return BoxClass::Miss.into();
         }
         ev.geo.beam.set_beam(beam);
@@ -272,35 +274,30 @@ impl CpuQueries<'_> {
             near,
             free,
         };
-        let (mut class, mut scope) = if ranges.is_empty() {
-            (BoxClass::Miss, None)
-        } else {
-            evaluate_box_within(
-                &mut ev.geo.beam,
-                &ranges,
-                inherited,
-                Some(&extent),
-                &self.plan.beam,
-                record.as_mut(),
-                c,
-            )
+        // The rest of the window (its ranges walked only when it is reached) inherits only
+        // the block's proofs: the parent's restriction and undecided piece lie before it.
+        let later = Inherited {
+            scope: None,
+            near: None,
+            free,
         };
-        if class == BoxClass::Miss {
-            let rest = rest();
-            if !rest.is_empty() {
+        let parts = std::iter::once((ranges, inherited))
+            .chain(rest.into_iter().map(|w| (self.beam_ranges(beam, w), later)));
+        let (mut class, mut scope) = (BoxClass::Miss, None);
+        for (ranges, inherited) in parts {
+            if !ranges.is_empty() {
                 (class, scope) = evaluate_box_within(
                     &mut ev.geo.beam,
-                    &rest,
-                    Inherited {
-                        scope: None,
-                        near: None,
-                        free,
-                    },
+                    &ranges,
+                    inherited,
                     Some(&extent),
                     &self.plan.beam,
                     record.as_mut(),
                     c,
                 );
+            }
+            if class != BoxClass::Miss {
+                break;
             }
         }
         if let (Some(p), Some(k), Some(r)) = (proofs, key, record) {
