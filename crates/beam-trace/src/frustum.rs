@@ -32,11 +32,23 @@
 //! restrictions of the cells holding a leaf are kept, and a probe past the region of the
 //! leaf's own is evaluated with the next one out.
 //!
+//! A pixel whose first cell is undecided (its beam straddles the silhouette, or the
+//! inclusion test cannot place every ray's root) may have its central ray traced on the
+//! spot ([`FirstCell::traced`]): the ray is searched from the cell on with the
+//! restrictions the search holds for the cells around it, innermost first, then with the
+//! whole `g` to the end of the tile's range, each range halved nearer half first and
+//! pruned for its halves. It ends rejected everywhere ([`Traced::NoRoot`]), or at a range
+//! no longer than the pixel's cross-section where the inclusion test places the ray's first
+//! root ([`Traced::First`]), or stuck (a graze, a jump: the renderer's root finder takes
+//! the ray over). A leaf right behind cells rejected as positive knows the sign at its near
+//! face and spends no evaluation on it.
+//!
 //! Against the screen box structure ([`crate::beam::evaluate_box_within`]), a cell costs one
 //! evaluation (a leaf that may hold the surface a few more for its inclusion test; no
 //! bisection of a wide beam along `T`, no `T_final` refinement), and space and screen are
 //! subdivided together.
 
+use implicit_expr::Tape;
 use interval_core::Interval;
 
 use crate::beam::{BeamScope, BoxClass, Extent, inclusion_test};
@@ -54,6 +66,10 @@ const LOOK_AHEAD: u32 = 4;
 /// evaluations of the tape it prunes).
 const PRUNE_MIN_LEN: usize = 16;
 
+/// How far below its leaf size a traced ray's range is halved in search of a sign change
+/// before the ray is left to the root finder: `2^-TRACE_DEPTH` of it.
+const TRACE_DEPTH: i32 = 10;
+
 /// Where a pixel's surface may begin: the range `t` of its first cell (no ray of the pixel
 /// meets the surface before it), whether every ray of the pixel meets it there, and the
 /// scene function pruned to a region holding the cell.
@@ -67,6 +83,37 @@ pub struct FirstCell {
     /// parameters: `t` for a Hit, the whole region of the restriction (which holds `t`)
     /// otherwise.
     pub scope: Option<BeamScope>,
+    /// What the search of the pixel's central ray found from `inf t` on, where it was
+    /// traced (an undecided pixel, with tracing asked for) and decided.
+    pub traced: Option<Traced>,
+}
+
+/// What the search of an undecided pixel's central ray (through the pixel's centre, as
+/// [`Camera::ray`] makes it) proved from its first cell on, with the restrictions of the
+/// cells holding the pixel and the whole function past them.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Traced {
+    /// No root: the ray meets no surface (every range of it was rejected up to the end of
+    /// the tile's range, past which no ray of the tile is in a non-empty grid cell).
+    NoRoot,
+    /// The ray's first root lies in `t`: every earlier range was rejected, `g` is
+    /// continuous over `t` with opposite signs at its ends, both inside the scene bounds.
+    First {
+        /// The range, no longer than the pixel's cross-section there (or `epsilon`).
+        t: Interval<f64>,
+        /// `g` pruned for the ray over a range holding `t`, its parameters `t`.
+        scope: Option<BeamScope>,
+    },
+}
+
+/// How a range of a traced ray came out.
+enum Step {
+    /// No root in it.
+    Rejected,
+    /// The first root is in it (see [`Traced::First`]).
+    Found(Interval<f64>, Option<BeamScope>),
+    /// Neither could be proven (a graze, a jump, a range too short to halve).
+    Stuck,
 }
 
 impl FirstCell {
@@ -84,18 +131,20 @@ impl FirstCell {
 /// The first cell of each pixel of `tile` (row by row), searched in the parameter range
 /// `range` (where the tile's beam lies in the scene bounds `bounds`), with `g` the scene
 /// function of the camera's beams; leaves are no longer than `epsilon` or the pixel's
-/// cross-section. Counts each cell's evaluation (and the inclusion tests') in
-/// `counters.g_evals`.
+/// cross-section. With `trace`, the central ray of each pixel whose first cell is
+/// undecided is searched on from there ([`FirstCell::traced`]). Counts each cell's
+/// evaluation (and the inclusion tests', and the traced rays') in `counters.g_evals`.
 pub fn first_cells(
     g: &mut BeamEval,
     (cam, bounds): (&Camera, &IBox),
     tile: PixelRect,
-    range: Interval<f64>,
-    epsilon: f64,
+    (range, epsilon, trace): (Interval<f64>, f64, bool),
     counters: &mut RootCounters,
 ) -> Vec<Option<FirstCell>> {
     let mut search = Search {
         g,
+        cam,
+        trace,
         beams: cam.edge_beams(tile),
         bounds,
         range,
@@ -108,7 +157,7 @@ pub fn first_cells(
     };
     if !range.is_empty() {
         let column = Column::of(&search.beams, tile);
-        search.visit(&column, range);
+        search.visit(&column, range, false);
     }
     search.first
 }
@@ -184,6 +233,9 @@ impl Filled {
 /// One tile's search.
 struct Search<'a> {
     g: &'a mut BeamEval,
+    cam: &'a Camera,
+    /// Whether undecided pixels' central rays are traced.
+    trace: bool,
     beams: EdgeBeams,
     bounds: &'a IBox,
     range: Interval<f64>,
@@ -205,24 +257,30 @@ impl Search<'_> {
     }
 
     /// Where every ray of the leaf's beam (set on `g` with the innermost restriction) has
-    /// its first root, given none before `t`, and the restriction that holds there: `t`
-    /// itself when the inclusion test passes, else `[inf t, p]` for the first
-    /// `p = sup t + w·2^k` (`k ≤` [`LOOK_AHEAD`]) where the sign has changed for every ray,
-    /// with `g` continuous up to it and both ends inside the scene bounds. Each probe is
-    /// made with the innermost restriction whose region holds it (the whole `g` only
-    /// without any), so the probes reach as far as the leaf's depth needs, each made once.
+    /// its first root, given none before `t`, and the restriction that holds there: `[inf
+    /// t, p]` for the first `p` of `sup t` and `sup t + w·2^k` (`k ≤` [`LOOK_AHEAD`], `w`
+    /// the length of `t`) where the sign has changed for every ray since `inf t` (known
+    /// positive there where `near_positive`), with `g` continuous up to `p` and both ends
+    /// inside the scene bounds. Each probe is made with the innermost restriction whose
+    /// region holds it (the whole `g` only without any), so the probes reach as far as the
+    /// leaf's depth needs, each made once.
     fn included(
         &mut self,
         beam: &Beam,
         t: Interval<f64>,
         extent: &Extent<'_>,
+        near_positive: bool,
     ) -> Option<(Interval<f64>, Option<BeamScope>)> {
-        if extent.holds(t.sup()) && inclusion_test(&mut *self.g, t, self.counters) {
-            return Some((t, self.chain.last().cloned()));
-        }
-        let start = Eval::new(&mut *self.g, self.counters).at(t.inf());
         let (a, b, w) = (t.inf(), t.sup(), t.wid());
-        if w.is_nan() || w <= 0.0 || sign(start) == 0 {
+        if w.is_nan() || w <= 0.0 {
+            return None;
+        }
+        let start = if near_positive {
+            Interval::new_unchecked(f64::MIN_POSITIVE, f64::MAX)
+        } else {
+            Eval::new(&mut *self.g, self.counters).at(a)
+        };
+        if sign(start) == 0 {
             return None;
         }
         // Level `k` is the restriction `chain[k - 1]`, level 0 the whole `g` (only tried
@@ -233,9 +291,10 @@ impl Search<'_> {
             k => chain[k - 1].t.sup(),
         };
         let mut level = self.chain.len();
-        let mut step = w;
-        for _ in 0..=LOOK_AHEAD {
+        let mut step = 0.0;
+        for k in 0..=LOOK_AHEAD + 1 {
             let p = b + step;
+            step = if k == 0 { w } else { 2.0 * step };
             if level > outermost && limit(&self.chain, level) < p {
                 while level > outermost && limit(&self.chain, level) < p {
                     level -= 1;
@@ -257,27 +316,123 @@ impl Search<'_> {
                 let scope = level.checked_sub(1).map(|i| self.chain[i].clone());
                 return continuous.then_some((h, scope));
             }
-            step *= 2.0;
         }
         None
     }
 
-    /// Searches the cell `column × t` with the innermost restriction of the chain.
-    fn visit(&mut self, column: &Column, t: Interval<f64>) {
+    /// The central ray of pixel `(x, y)` searched from `from` (no ray of the pixel meets
+    /// the surface before it) to the end of the tile's range: through the region of each
+    /// restriction of the chain in turn, innermost first, then with the whole `g`; `None`
+    /// where it gets stuck. `spread` is the pixel's spread of directions.
+    fn trace_centre(&mut self, (x, y): (u32, u32), from: f64, spread: f64) -> Option<Traced> {
+        let ray = self.cam.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+        let beam = ray.beam();
+        let mut start = from;
+        for level in (0..=self.chain.len()).rev() {
+            let (end, tape) = match level {
+                0 => (self.range.sup(), None),
+                k => (
+                    self.chain[k - 1].t.sup(),
+                    Some(self.chain[k - 1].tape.clone()),
+                ),
+            };
+            if end.is_nan() || end <= start {
+                continue;
+            }
+            let window = Interval::new_unchecked(start, end);
+            match self.trace_range(&beam, window, tape.as_ref(), spread) {
+                Step::Rejected => start = end,
+                Step::Found(t, scope) => return Some(Traced::First { t, scope }),
+                Step::Stuck => return None,
+            }
+        }
+        Some(Traced::NoRoot)
+    }
+
+    /// The range `t` of the ray `beam` (a beam of one ray) searched with `tape` (the whole
+    /// `g` for `None`), the nearer half first, each range pruning the tape for its halves:
+    /// rejected where the enclosure is positive or empty; the first root's where the range
+    /// is no longer than the pixel's cross-section (`spread` times `t`, or `epsilon`) and
+    /// passes the inclusion test with both ends in the scene bounds; else halved, down to
+    /// `2^-TRACE_DEPTH` of that length.
+    fn trace_range(
+        &mut self,
+        beam: &Beam,
+        t: Interval<f64>,
+        tape: Option<&Tape>,
+        spread: f64,
+    ) -> Step {
+        self.g.set_interval_beam(beam, tape);
+        let gt = self.g.g(t);
+        self.counters.g_evals += 1;
+        if gt.is_empty() || gt.inf() > 0.0 {
+            return Step::Rejected;
+        }
+        if gt.sup() < 0.0 {
+            // Inside right after rejected ranges: a jump, or a root at `inf t` that needs
+            // the root finder's care.
+            return Step::Stuck;
+        }
+        let leaf = self.epsilon.max(spread * t.sup().abs());
+        let extent = Extent {
+            beam,
+            bounds: self.bounds,
+        };
+        if t.wid() <= leaf
+            && extent.holds(t.inf())
+            && extent.holds(t.sup())
+            && inclusion_test(&mut *self.g, t, self.counters)
+        {
+            let scope = tape.map(|tape| BeamScope {
+                tape: tape.clone(),
+                t,
+                escalated: false,
+            });
+            return Step::Found(t, scope);
+        }
+        let (near, far) = t.bisect();
+        if t.wid() <= leaf * 2f64.powi(-TRACE_DEPTH) || near.is_empty() || far.is_empty() {
+            return Step::Stuck;
+        }
+        // The halves search with the tape pruned to this range where that shortens it.
+        let mut inner = tape.cloned();
+        if let Some(current) = self.g.scope()
+            && current.len() > PRUNE_MIN_LEN
+        {
+            self.g.set_interval_beam(beam, tape);
+            self.g.restrict(t);
+            if let Some(pruned) = self.g.scope().filter(|p| !p.ptr_eq(&current)) {
+                inner = Some(pruned);
+            }
+        }
+        match self.trace_range(beam, near, inner.as_ref(), spread) {
+            Step::Rejected => self.trace_range(beam, far, inner.as_ref(), spread),
+            step => step,
+        }
+    }
+
+    /// Searches the cell `column × t` with the innermost restriction of the chain, where
+    /// `near_positive` says that `g > 0` at `inf t` on every ray of the cell's beam (a cell
+    /// before it in each of its pixels' columns was rejected as positive). Returns whether
+    /// that is proven at `sup t`.
+    fn visit(&mut self, column: &Column, t: Interval<f64>, near_positive: bool) -> bool {
         let Column {
             r,
             ref beam,
             spread,
         } = *column;
         if self.filled.all(r) {
-            return;
+            return false;
         }
         self.g
             .set_interval_beam(beam, self.chain.last().map(|s| &s.tape));
         let gt = self.g.g(t);
         self.counters.g_evals += 1;
-        if gt.is_empty() || gt.inf() > 0.0 {
-            return;
+        if gt.is_empty() {
+            return false;
+        }
+        if gt.inf() > 0.0 {
+            return true;
         }
         let across = spread * t.sup().abs();
         let shallow = t.wid() <= self.epsilon.max(across);
@@ -288,7 +443,7 @@ impl Search<'_> {
                 bounds: self.bounds,
             };
             let included = if leaf && gt.inf() < 0.0 && extent.holds(t.inf()) {
-                self.included(beam, t, &extent)
+                self.included(beam, t, &extent, near_positive)
             } else {
                 None
             };
@@ -299,11 +454,15 @@ impl Search<'_> {
                     t: range,
                     hit: true,
                     scope: holds.map(|s| BeamScope { t: range, ..s }),
+                    traced: None,
                 },
                 None => FirstCell {
                     t,
                     hit: false,
                     scope: self.chain.last().cloned(),
+                    traced: (leaf && self.trace)
+                        .then(|| self.trace_centre((r.x0, r.y0), t.inf(), spread))
+                        .flatten(),
                 },
             };
             for (x, y) in r.pixels() {
@@ -313,7 +472,7 @@ impl Search<'_> {
                     self.filled.set(x, y);
                 }
             }
-            return;
+            return false;
         }
         // The cells inside this one search with `g` pruned to it; where pruning decides
         // nothing, the tape keeps the wider region it holds for.
@@ -334,19 +493,22 @@ impl Search<'_> {
         // Each pixel's cells come in increasing `t` either way: a quadrant's halves one
         // after the other.
         let (near, far) = t.bisect();
-        if shallow {
+        let far_positive = if shallow {
+            let mut all = true;
             for q in r.split() {
                 let quadrant = Column::of(&self.beams, q);
-                self.visit(&quadrant, near);
-                self.visit(&quadrant, far);
+                let middle = self.visit(&quadrant, near, near_positive);
+                all &= self.visit(&quadrant, far, middle);
             }
+            all
         } else {
-            self.visit(column, near);
-            self.visit(column, far);
-        }
+            let middle = self.visit(column, near, near_positive);
+            self.visit(column, far, middle)
+        };
         if pushed {
             self.chain.pop();
         }
+        far_positive
     }
 }
 

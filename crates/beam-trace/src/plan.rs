@@ -309,7 +309,7 @@ impl Plan {
                     self.root_finder, self.root.epsilon
                 ),
                 Primary::Octree { rays_per_undecided } => format!(
-                    "{rays_per_undecided} ray(s) per pixel whose column of cells may hold a surface, from its first cell; root finder {}, epsilon {:e}",
+                    "{rays_per_undecided} ray(s) per pixel whose column of cells may hold a surface, from its first cell (one ray: the octree's trace of it where that decided it); root finder {}, epsilon {:e}",
                     self.root_finder, self.root.epsilon
                 ),
                 Primary::ScreenBoxes { .. } | Primary::Iaa { .. } => String::new(),

@@ -6,12 +6,15 @@ mod ball;
 use ball::Ball;
 use beam_trace::backend::{Backend, CellQuery, QueryKind};
 use beam_trace::beam::BoxClass;
+use beam_trace::frustum::Traced;
 use beam_trace::screen::PixelRect;
 use beam_trace::{Cpu, NoProgress, Plan, render};
 
 /// For every pixel, a 5 x 5 grid of its rays: none meets the ball before the pixel's first
 /// cell, a pixel without one has no ray meeting the ball, and where the first cell is a
-/// proven hit every ray meets the ball inside it.
+/// proven hit every ray meets the ball inside it. Where the first cell is undecided, the
+/// central ray traced on from there meets the ball where the trace says: nowhere, or first
+/// in the range it proved.
 #[test]
 fn no_ray_meets_the_surface_before_its_first_cell() {
     let ball = Ball {
@@ -41,12 +44,15 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
             y1: 21,
         },
     ];
-    let queries: Vec<CellQuery> = tiles.iter().map(|&tile| CellQuery { tile }).collect();
+    let queries: Vec<CellQuery> = tiles
+        .iter()
+        .map(|&tile| CellQuery { tile, trace: true })
+        .collect();
     let answers = prepared
         .queries
         .first_cells(&queries)
         .unwrap_or_else(|e| panic!("{e}"));
-    let mut covered = 0;
+    let (mut covered, mut traced_miss, mut traced_hit) = (0, 0, 0);
     for (tile, firsts) in tiles.iter().zip(&answers.values) {
         assert_eq!(firsts.len() as u64, tile.area());
         for ((x, y), first) in tile.pixels().zip(firsts) {
@@ -77,8 +83,27 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
                 }
             }
             covered += usize::from(first.is_some());
+            let Some(traced) = first.as_ref().and_then(|f| f.traced.as_ref()) else {
+                continue;
+            };
+            let ray = cam.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+            match (traced, ball.exact_t(ray.origin, ray.dir)) {
+                (Traced::NoRoot, None) => traced_miss += 1,
+                (Traced::First { t: range, .. }, Some(t)) => {
+                    assert!(
+                        range.inf() * (1.0 - 1e-12) <= t && t <= range.sup() * (1.0 + 1e-12),
+                        "pixel ({x}, {y}): the root at {t}, traced in {range:?}"
+                    );
+                    traced_hit += 1;
+                }
+                (traced, exact) => panic!("pixel ({x}, {y}): traced {traced:?}, root {exact:?}"),
+            }
         }
     }
+    assert!(
+        traced_miss > 0 && traced_hit > 0,
+        "the silhouette's undecided pixels trace both ways: {traced_miss} misses, {traced_hit} hits"
+    );
     assert!(covered > 500, "the ball covers much of the view: {covered}");
     let hits: usize = answers
         .values
@@ -110,27 +135,36 @@ fn octree_images_are_the_screen_boxes_images() {
             size: 40,
             fov: 35.0,
         };
-        let light = "\n[[lights]]\ntype = \"point\"\nposition = [3.0, 4.0, 6.0]\n";
-        let with_light = |render: &str| ball.scene(&format!("[render]\n{render}{light}"));
-        let octree = with_light("primary = \"octree\"\nrays_per_undecided = 1");
-        let boxes = with_light("primary = \"screen-rays\"\nrays_per_undecided = 1");
-        let a = render(&octree, &NoProgress).unwrap_or_else(|e| panic!("{e}"));
-        let b = render(&boxes, &NoProgress).unwrap_or_else(|e| panic!("{e}"));
-        assert!(a.box_classes.iter().all(Option::is_some));
-        assert!(
-            a.box_classes
-                .iter()
-                .any(|c| matches!(c, Some(BoxClass::Hit { .. })))
-        );
-        let mut differing = 0;
-        for (p, q) in a.image.pixels.iter().zip(&b.image.pixels) {
-            let d = p
-                .iter()
-                .zip(q)
-                .map(|(x, y)| (x - y).abs())
-                .fold(0.0, f32::max);
-            differing += usize::from(d > 1e-3);
+        // Lit (each hit's root narrowed) and unlit (the silhouette, each ray's first root
+        // the one its range proves: the octree's traced rays are not searched again).
+        for light in [
+            "\n[[lights]]\ntype = \"point\"\nposition = [3.0, 4.0, 6.0]\n",
+            "",
+        ] {
+            let with_light = |render: &str| ball.scene(&format!("[render]\n{render}{light}"));
+            let octree = with_light("primary = \"octree\"\nrays_per_undecided = 1");
+            let boxes = with_light("primary = \"screen-rays\"\nrays_per_undecided = 1");
+            let a = render(&octree, &NoProgress).unwrap_or_else(|e| panic!("{e}"));
+            let b = render(&boxes, &NoProgress).unwrap_or_else(|e| panic!("{e}"));
+            assert!(a.box_classes.iter().all(Option::is_some));
+            assert!(
+                a.box_classes
+                    .iter()
+                    .any(|c| matches!(c, Some(BoxClass::Hit { .. })))
+            );
+            let mut differing = 0;
+            for (p, q) in a.image.pixels.iter().zip(&b.image.pixels) {
+                let d = p
+                    .iter()
+                    .zip(q)
+                    .map(|(x, y)| (x - y).abs())
+                    .fold(0.0, f32::max);
+                differing += usize::from(d > 1e-3);
+            }
+            assert_eq!(
+                differing, 0,
+                "ball of radius {r}, light {light:?}: pixels differ"
+            );
         }
-        assert_eq!(differing, 0, "ball of radius {r}: pixels differ");
     }
 }

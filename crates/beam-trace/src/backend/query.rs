@@ -147,6 +147,9 @@ pub struct HitQuery {
 pub struct CellQuery {
     /// The tile.
     pub tile: PixelRect,
+    /// Whether the central ray of each pixel whose first cell is undecided is searched on
+    /// from there ([`FirstCell::traced`](crate::frustum::FirstCell::traced)).
+    pub trace: bool,
 }
 
 /// A hit region whose shading variation is wanted: the beam and its proven section

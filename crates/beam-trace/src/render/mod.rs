@@ -155,13 +155,13 @@ pub fn render_on<'a>(
     let (w, h) = (cam.width(), cam.height());
     let npix = w as usize * h as usize;
 
-    let (classes, scopes) = if plan.runs(Pass::ScreenBoxes) {
-        let (classes, scopes, stats) = primary::structure(q, scene, &plan, progress)?;
+    let (classes, scopes, traced) = if plan.runs(Pass::ScreenBoxes) {
+        let (classes, scopes, traced, stats) = primary::structure(q, scene, &plan, progress)?;
         passes.push(stats);
-        (classes, scopes)
+        (classes, scopes, traced)
     } else {
         passes.push(PassStats::skipped(Pass::ScreenBoxes.name()));
-        (vec![None; npix], vec![None; npix])
+        (vec![None; npix], vec![None; npix], Vec::new())
     };
 
     let (mut samples, cost) = match plan.primary {
@@ -198,7 +198,7 @@ pub fn render_on<'a>(
             let (samples, cost, stats) = primary::primary_rays(
                 q,
                 scene,
-                (&classes, &scopes),
+                (&classes, &scopes, &traced),
                 (rays_per_undecided, start, plan.narrow_hits),
                 progress,
             )?;
@@ -294,7 +294,7 @@ pub(crate) fn screen_box_pass(
     }
     let routing = Routing::new(&Cpu, scene, plan);
     let (queries, mut passes) = routing.prepare(&Cpu, scene, plan)?;
-    let (classes, _, stats) = primary::structure(&queries, scene, plan, progress)?;
+    let (classes, _, _, stats) = primary::structure(&queries, scene, plan, progress)?;
     passes.push(stats);
     Ok((passes, classes.iter().map(|c| c.map(|c| c.0)).collect()))
 }

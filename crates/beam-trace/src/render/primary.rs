@@ -13,7 +13,7 @@ use crate::beam::{BeamScope, BoxClass};
 use crate::beam::{child_window, forward};
 use crate::camera::Camera;
 use crate::error::Error;
-use crate::frustum::FirstCell;
+use crate::frustum::{FirstCell, Traced};
 use crate::plan::{Pass, Plan, Primary};
 use crate::progress::Progress;
 use crate::root::{Proof, RootResult};
@@ -33,6 +33,17 @@ pub(super) type PixelClasses = Vec<Option<(BoxClass, bool)>>;
 /// the parts of the pixel; `None` elsewhere.
 pub(super) type PixelScopes = Vec<Option<BeamScope>>;
 
+/// What the search of a pixel's central ray proved past its first cell, for each pixel the
+/// frustum octree traced ([`FirstCell::traced`]), by increasing pixel index (few pixels
+/// have one: the silhouette's); empty after the screen box structure.
+pub(super) type PixelTraces = Vec<(u32, Traced)>;
+
+/// The trace of pixel `p` in `traces`.
+fn trace_of(traces: &PixelTraces, p: usize) -> Option<&Traced> {
+    let k = traces.binary_search_by_key(&p, |&(q, _)| q as usize).ok()?;
+    Some(&traces[k].1)
+}
+
 /// The first primary pass of `plan`: the frustum octree's first cells for
 /// [`Primary::Octree`], else the screen box structure.
 pub(super) fn structure(
@@ -40,10 +51,16 @@ pub(super) fn structure(
     scene: &Scene,
     plan: &Plan,
     progress: &dyn Progress,
-) -> Result<(PixelClasses, PixelScopes, PassStats), Error> {
+) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
     match plan.primary {
-        Primary::Octree { .. } => octree(q, scene, progress),
-        _ => screen_boxes(q, scene, plan, progress),
+        // The octree knows each pixel's central ray: it traces it where that is the one ray.
+        Primary::Octree { rays_per_undecided } => {
+            octree(q, scene, rays_per_undecided == 1, progress)
+        }
+        _ => {
+            let (classes, scopes, stats) = screen_boxes(q, scene, plan, progress)?;
+            Ok((classes, scopes, Vec::new(), stats))
+        }
     }
 }
 
@@ -52,22 +69,25 @@ const OCTREE_TILE: u32 = 64;
 
 /// The frustum octree pass ([`crate::frustum`]): the tiles of a band of rows in one batch;
 /// each pixel a Hit in the range its first cell proved (with that cell's scope), else
-/// Undecided in its first cell, or a Miss without one.
+/// Undecided in its first cell (its central ray traced on from there with `trace`), or a
+/// Miss without one.
 fn octree(
     q: &dyn Queries,
     scene: &Scene,
+    trace: bool,
     progress: &dyn Progress,
-) -> Result<(PixelClasses, PixelScopes, PassStats), Error> {
+) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
     let cam = &scene.camera;
     let (w, h) = (cam.width(), cam.height());
     let t0 = Instant::now();
     progress.begin(Pass::ScreenBoxes.name(), u64::from(h));
     let mut classes: PixelClasses = vec![None; w as usize * h as usize];
     let mut scopes: PixelScopes = vec![None; w as usize * h as usize];
+    let mut traced: PixelTraces = Vec::new();
     let mut c = ScreenBoxCounters::default();
     let all = tiles(w, h, OCTREE_TILE);
     for band in all.chunk_by(|a, b| a.y0 / (4 * OCTREE_TILE) == b.y0 / (4 * OCTREE_TILE)) {
-        let queries: Vec<CellQuery> = band.iter().map(|&tile| CellQuery { tile }).collect();
+        let queries: Vec<CellQuery> = band.iter().map(|&tile| CellQuery { tile, trace }).collect();
         let answers = q.first_cells(&queries)?;
         c.search.add(&answers.search);
         for (tile, firsts) in band.iter().zip(answers.values) {
@@ -76,17 +96,22 @@ fn octree(
                 let class = first.as_ref().map_or(BoxClass::Miss, FirstCell::class);
                 c.add_pixels(&class, 1);
                 classes[i] = Some((class, false));
-                scopes[i] = first.and_then(|f| f.scope);
+                if let Some(f) = first {
+                    scopes[i] = f.scope;
+                    traced.extend(f.traced.map(|t| (i as u32, t)));
+                }
             }
         }
         progress.advance(u64::from(band[band.len() - 1].y1 - band[0].y0));
     }
+    traced.sort_unstable_by_key(|&(p, _)| p);
     // The beams evaluated: the cells and the leaves' inclusion tests.
     c.beams = c.search.g_evals;
     progress.end();
     Ok((
         classes,
         scopes,
+        traced,
         PassStats::of(Pass::ScreenBoxes, t0.elapsed(), &c),
     ))
 }
@@ -221,16 +246,48 @@ fn ray_count(class: Option<(BoxClass, bool)>, stratified: usize) -> usize {
 /// Ray `r` of pixel `i` (row-major in a `w`-wide image) of box class `class`: the central
 /// ray, searched in a Hit box's `T_final` (with the box's `scope`) where `narrow`, else
 /// known to have its first root there; else stratified ray `r`, searched from where the
-/// pixel's beam proved every ray root-free (see [`ray_count`]).
+/// pixel's beam proved every ray root-free (see [`ray_count`]), or, where it is the
+/// pixel's one ray and the octree `traced` it, known to meet no surface or searched in (or
+/// known to have its first root in) the range the octree proved.
 fn pixel_ray(
     (cam, start, narrow): (&Camera, RayStart, bool),
     i: usize,
     w: u32,
-    (class, scope): (Option<(BoxClass, bool)>, &Option<BeamScope>),
+    (class, scope, traced): (
+        Option<(BoxClass, bool)>,
+        &Option<BeamScope>,
+        Option<&Traced>,
+    ),
     offsets: &[(f64, f64)],
     r: usize,
 ) -> PixelRay {
     let (fx, fy) = (f64::from(i as u32 % w), f64::from(i as u32 / w));
+    if let (Some(traced), [_]) = (traced, offsets) {
+        // The octree's ray is this one: through the pixel's centre.
+        let ray = cam.ray(fx + 0.5, fy + 0.5);
+        return match traced {
+            Traced::NoRoot => PixelRay {
+                weight: 1.0,
+                query: RayQuery {
+                    ray,
+                    window: forward(),
+                    scope: None,
+                },
+                fallback: None,
+                known: Some(RootResult::NoRoot),
+            },
+            Traced::First { t, scope } => PixelRay {
+                weight: 1.0,
+                query: RayQuery {
+                    ray,
+                    window: *t,
+                    scope: scope.clone(),
+                },
+                fallback: Some(Interval::new_unchecked(t.inf(), f64::INFINITY)),
+                known: (!narrow).then_some(RootResult::included(*t)),
+            },
+        };
+    }
     match class.map(|c| c.0) {
         Some(BoxClass::Hit { t_final }) => PixelRay {
             weight: 1.0,
@@ -285,7 +342,7 @@ fn pixel_ray(
 pub(super) fn primary_rays(
     q: &dyn Queries,
     scene: &Scene,
-    (classes, scopes): (&PixelClasses, &PixelScopes),
+    (classes, scopes, traced): (&PixelClasses, &PixelScopes, &PixelTraces),
     (rays, start, narrow): (u32, RayStart, bool),
     progress: &dyn Progress,
 ) -> Result<PixelSamples, Error> {
@@ -318,7 +375,7 @@ pub(super) fn primary_rays(
                     (cam, start, narrow),
                     p,
                     w,
-                    (classes[p], &scopes[p]),
+                    (classes[p], &scopes[p], trace_of(traced, p)),
                     &offsets,
                     r,
                 )

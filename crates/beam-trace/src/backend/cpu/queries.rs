@@ -198,8 +198,7 @@ impl CpuQueries<'_> {
             &mut ev.geo.beam,
             (cam, &bounds),
             r,
-            range,
-            self.plan.beam.epsilon,
+            (range, self.plan.beam.epsilon, query.trace),
             c,
         )
     }
