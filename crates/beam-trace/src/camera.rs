@@ -140,6 +140,25 @@ impl Camera {
         }
     }
 
+    /// The rays through every position `(xs[i], ys[j])` (continuous pixel positions), with
+    /// the terms of each column and row computed once ([`RayTable`]).
+    pub fn ray_table(&self, xs: &[f64], ys: &[f64]) -> RayTable {
+        let c = self.corner.to_array();
+        let du = self.du.to_array();
+        let dv = self.dv.to_array();
+        RayTable {
+            eye: self.eye,
+            columns: xs
+                .iter()
+                .map(|&x| std::array::from_fn(|i| ipoint(c[i]) + ipoint(x) * ipoint(du[i])))
+                .collect(),
+            rows: ys
+                .iter()
+                .map(|&y| std::array::from_fn(|i| ipoint(y) * ipoint(dv[i])))
+                .collect(),
+        }
+    }
+
     /// The beams of the pixel rectangles inside `area`, with the terms of each pixel edge
     /// computed once ([`EdgeBeams`]).
     pub fn edge_beams(&self, area: PixelRect) -> EdgeBeams {
@@ -165,6 +184,34 @@ impl Camera {
         Beam {
             origin: point_box(self.eye),
             dir: self.dirs(ival(x0, x1), ival(y0, y1)),
+        }
+    }
+}
+
+/// The rays through a grid of continuous pixel positions, equal bit for bit to
+/// [`Camera::ray`] at each: a ray's direction is the midpoint of `(c + x·du) + y·dv` in
+/// interval arithmetic, whose first term depends on the column only and the product of the
+/// second on the row only, so each is computed once.
+#[derive(Clone, Debug)]
+pub struct RayTable {
+    eye: DVec3,
+    /// `c + x·du` for every position `x`.
+    columns: Vec<IBox>,
+    /// `y·dv` for every position `y`.
+    rows: Vec<IBox>,
+}
+
+impl RayTable {
+    /// The ray through `(xs[i], ys[j])` of [`Camera::ray_table`].
+    ///
+    /// # Panics
+    /// If `i` or `j` is out of range.
+    pub fn ray(&self, i: usize, j: usize) -> Ray {
+        let (x, y) = (&self.columns[i], &self.rows[j]);
+        let d: [f64; 3] = std::array::from_fn(|k| (x[k] + y[k]).mid());
+        Ray {
+            origin: self.eye,
+            dir: DVec3::from_array(d),
         }
     }
 }
@@ -210,11 +257,9 @@ impl EdgeBeams {
 mod tests {
     use super::*;
 
-    /// Every rectangle of a few areas of two cameras: the edge beams are the camera's beams,
-    /// bit for bit.
-    #[test]
-    fn edge_beams_are_the_camera_beams() {
-        let cams = [
+    /// A wide view and a narrow, distant one (the benchmarks' near-orthographic view).
+    fn cameras() -> [Camera; 2] {
+        [
             Camera::new(
                 DVec3::new(2.74, 2.19, 6.02),
                 DVec3::ZERO,
@@ -233,8 +278,40 @@ mod tests {
                 64,
             )
             .unwrap(),
-        ];
-        for cam in &cams {
+        ]
+    }
+
+    /// The ray table's rays are the camera's, bit for bit, at pixel centres, stratified
+    /// offsets and corners.
+    #[test]
+    fn table_rays_are_the_camera_rays() {
+        for cam in &cameras() {
+            let offsets = [0.0, 0.5, 1.0 / 6.0, 5.0 / 6.0, 0.125];
+            let (w, h) = (cam.width(), cam.height());
+            let xs: Vec<f64> = (0..w)
+                .flat_map(|x| offsets.map(|o| f64::from(x) + o))
+                .collect();
+            let ys: Vec<f64> = (0..h)
+                .flat_map(|y| offsets.map(|o| f64::from(y) + o))
+                .collect();
+            let table = cam.ray_table(&xs, &ys);
+            for (i, &x) in xs.iter().enumerate() {
+                for (j, &y) in ys.iter().enumerate().step_by(7) {
+                    let (a, b) = (table.ray(i, j), cam.ray(x, y));
+                    assert_eq!(a.origin, b.origin);
+                    for k in 0..3 {
+                        assert_eq!(a.dir[k].to_bits(), b.dir[k].to_bits(), "({x}, {y})");
+                    }
+                }
+            }
+        }
+    }
+
+    /// Every rectangle of a few areas of two cameras: the edge beams are the camera's beams,
+    /// bit for bit.
+    #[test]
+    fn edge_beams_are_the_camera_beams() {
+        for cam in &cameras() {
             let area = PixelRect {
                 x0: 3,
                 y0: 5,

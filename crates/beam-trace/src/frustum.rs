@@ -203,8 +203,18 @@ impl Filled {
         self.bits[row * self.words + col / 64] |= 1 << (col % 64);
     }
 
+    /// Whether pixel `(x, y)` is marked.
+    #[inline]
+    fn get(&self, x: u32, y: u32) -> bool {
+        let (row, col) = ((y - self.tile.y0) as usize, (x - self.tile.x0) as usize);
+        self.bits[row * self.words + col / 64] & (1 << (col % 64)) != 0
+    }
+
     /// Whether every pixel of `r` (inside the tile) is marked.
     fn all(&self, r: PixelRect) -> bool {
+        if r.is_pixel() {
+            return self.get(r.x0, r.y0);
+        }
         let (c0, c1) = (
             (r.x0 - self.tile.x0) as usize,
             (r.x1 - self.tile.x0) as usize,
@@ -312,7 +322,8 @@ impl Search<'_> {
                     return None;
                 }
                 let h = Interval::new_unchecked(a, p);
-                let (_, continuous) = ev.checked(h);
+                let continuous = self.g.continuous_everywhere()
+                    || Eval::new(&mut *self.g, self.counters).checked(h).1;
                 let scope = level.checked_sub(1).map(|i| self.chain[i].clone());
                 return continuous.then_some((h, scope));
             }
@@ -495,7 +506,7 @@ impl Search<'_> {
         let (near, far) = t.bisect();
         let far_positive = if shallow {
             let mut all = true;
-            for q in r.split() {
+            for q in r.quadrants() {
                 let quadrant = Column::of(&self.beams, q);
                 let middle = self.visit(&quadrant, near, near_positive);
                 all &= self.visit(&quadrant, far, middle);

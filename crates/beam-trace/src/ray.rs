@@ -106,6 +106,13 @@ pub trait RayFn {
         None
     }
 
+    /// Whether `g` as evaluated now (its current restriction) is proven defined and
+    /// continuous at every point by its form ([`Tape::is_continuous_everywhere`]), so that
+    /// a continuity proof over a range needs no decorated evaluation. The default: `false`.
+    fn continuous_everywhere(&self) -> bool {
+        false
+    }
+
     /// Returns to a restriction that [`scope`](RayFn::scope) gave for the same ray or beam;
     /// only parameters inside its region may be asked then.
     fn set_scope(&mut self, _scope: &Tape) {}
@@ -624,6 +631,14 @@ impl RayFn for BeamEval {
         self.interval.unrestrict();
         self.interval32.unrestrict();
         self.interval_dd.unrestrict();
+    }
+
+    fn continuous_everywhere(&self) -> bool {
+        match self.precision {
+            Precision::F64 => self.interval.scope().is_continuous_everywhere(),
+            Precision::F32 => self.interval32.scope().is_continuous_everywhere(),
+            Precision::Dd => self.interval_dd.scope().is_continuous_everywhere(),
+        }
     }
 
     fn scope(&self) -> Option<Tape> {

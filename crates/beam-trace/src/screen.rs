@@ -34,19 +34,22 @@ impl PixelRect {
 
     /// The (up to) four quadrants.
     pub fn split(&self) -> Vec<PixelRect> {
+        self.quadrants().collect()
+    }
+
+    /// The (up to) four quadrants, top left, top right, bottom left, bottom right (the
+    /// empty ones of a rectangle one pixel wide or high left out), without allocating.
+    pub fn quadrants(&self) -> impl Iterator<Item = PixelRect> + use<> {
         let xm = self.x0 + (self.x1 - self.x0).div_ceil(2);
         let ym = self.y0 + (self.y1 - self.y0).div_ceil(2);
         let xs = [(self.x0, xm), (xm, self.x1)];
         let ys = [(self.y0, ym), (ym, self.y1)];
-        let mut out = Vec::with_capacity(4);
-        for &(y0, y1) in &ys {
-            for &(x0, x1) in &xs {
-                if x1 > x0 && y1 > y0 {
-                    out.push(PixelRect { x0, y0, x1, y1 });
-                }
-            }
-        }
-        out
+        (0..4)
+            .map(move |k| {
+                let ((x0, x1), (y0, y1)) = (xs[k % 2], ys[k / 2]);
+                PixelRect { x0, y0, x1, y1 }
+            })
+            .filter(|q| q.x1 > q.x0 && q.y1 > q.y0)
     }
 
     /// The pixels, row by row.

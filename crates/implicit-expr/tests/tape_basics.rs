@@ -235,3 +235,50 @@ fn total_and_continuous_formulas() {
         assert_eq!(t.is_total_and_continuous(), total_and_continuous, "{text}");
     }
 }
+
+/// Square roots of arguments non-negative by their form keep a tape continuous everywhere;
+/// every such tape's decorated evaluation is at least `dac` on boxes anywhere, the others
+/// are not flagged.
+#[test]
+fn continuous_everywhere_formulas() {
+    use implicit_expr::parse::parse;
+    use interval_core::Decoration;
+    let cases = [
+        ("x^2 + y^2 + z^2 - 1", true),
+        ("sqrt(x^2 + y^2) - 1", true),
+        ("sqrt(sqr(x - 1) + sqr(y) + sqr(z)) - 0.5", true),
+        ("sqrt(abs(x) + 2) + sqrt(sqrt(y^4 + 1))", true),
+        ("sqrt(max(x, sqr(y))) - z", true),
+        ("sqrt(x * x + exp(y)) - 2", true),
+        ("min(sqrt(x^2 + z^2) - 1, max(y, -z))", true),
+        ("sqrt(min(x, sqr(y)))", false),
+        ("sqrt(x^2 - 1)", false),
+        ("sqrt(x)", false),
+        ("sqrt(x * y + 1)", false),
+        ("floor(x) + y", false),
+        ("x / y", false),
+        ("ln(x^2 + 1)", false),
+    ];
+    let boxes = [
+        [iv(-3.0, -1.0), iv(-0.5, 0.25), iv(0.0, 4.0)],
+        [iv(-1e3, 1e3), iv(-1e3, 1e3), iv(-1e3, 1e3)],
+        [iv(0.5, 0.5), iv(-2.0, -2.0), iv(1.0, 1.5)],
+    ];
+    for (text, expected) in cases {
+        let mut c = Context::new();
+        let f = parse(&mut c, text, &[]).unwrap();
+        let t = Tape::new(&c, &[f]).unwrap();
+        assert_eq!(t.is_continuous_everywhere(), expected, "{text}");
+        assert!(
+            !t.is_total_and_continuous() || t.is_continuous_everywhere(),
+            "{text}: total and continuous"
+        );
+        if expected {
+            let mut e = Evaluator::<Interval<f64>>::new(&t);
+            for b in &boxes {
+                let (_, dec) = e.eval_decorated(b).unwrap();
+                assert!(dec >= Decoration::Dac, "{text} on {b:?}: {dec:?}");
+            }
+        }
+    }
+}

@@ -11,11 +11,12 @@ use super::{PixelSamples, RowBatch, row_batches};
 use crate::backend::{BeamQuery, CellQuery, HitQuery, Queries, RayQuery};
 use crate::beam::{BeamScope, BoxClass};
 use crate::beam::{child_window, forward};
-use crate::camera::Camera;
+use crate::camera::{Camera, RayTable};
 use crate::error::Error;
 use crate::frustum::{FirstCell, Traced};
 use crate::plan::{Pass, Plan, Primary};
 use crate::progress::Progress;
+use crate::ray::Ray;
 use crate::root::{Proof, RootResult};
 use crate::sample::{Area, Sample};
 use crate::scene::Scene;
@@ -185,17 +186,52 @@ fn screen_boxes(
     ))
 }
 
-/// Stratified sample positions inside a pixel: `n` must be a square.
-fn pixel_offsets(n: u32) -> Vec<(f64, f64)> {
-    let k = (n as f64).sqrt().round().max(1.0) as u32;
-    (0..k * k)
-        .map(|i| {
-            (
-                (f64::from(i % k) + 0.5) / f64::from(k),
-                (f64::from(i / k) + 0.5) / f64::from(k),
-            )
-        })
-        .collect()
+/// The rays of the primary-rays pass: through each pixel's centre and through its `k × k`
+/// stratified positions (`((a + 0.5) / k, (b + 0.5) / k)` inside it, `a` across, `b` down),
+/// bit for bit the camera's ([`Camera::ray_table`]).
+struct PixelRays {
+    table: RayTable,
+    k: usize,
+}
+
+impl PixelRays {
+    /// The rays of `cam`'s pixels, `n` stratified ones per pixel (a square; its nearest).
+    fn new(cam: &Camera, n: u32) -> Self {
+        let k = (n as f64).sqrt().round().max(1.0) as u32;
+        // Per pixel and axis: the centre, then the `k` stratified positions.
+        let inside: Vec<f64> = std::iter::once(0.5)
+            .chain((0..k).map(|a| (f64::from(a) + 0.5) / f64::from(k)))
+            .collect();
+        let positions = |n: u32| -> Vec<f64> {
+            (0..n)
+                .flat_map(|p| inside.iter().map(move |o| f64::from(p) + o))
+                .collect()
+        };
+        Self {
+            table: cam.ray_table(&positions(cam.width()), &positions(cam.height())),
+            k: k as usize,
+        }
+    }
+
+    /// The number of stratified rays per pixel.
+    fn count(&self) -> usize {
+        self.k * self.k
+    }
+
+    /// The ray through the centre of pixel `(x, y)`.
+    fn centre(&self, x: u32, y: u32) -> Ray {
+        let per = self.k + 1;
+        self.table.ray(x as usize * per, y as usize * per)
+    }
+
+    /// Stratified ray `r` of pixel `(x, y)`.
+    fn stratified(&self, x: u32, y: u32, r: usize) -> Ray {
+        let per = self.k + 1;
+        self.table.ray(
+            x as usize * per + 1 + r % self.k,
+            y as usize * per + 1 + r / self.k,
+        )
+    }
 }
 
 /// One ray of a pixel: its weight, the query, the window searched (with the whole
@@ -250,7 +286,7 @@ fn ray_count(class: Option<(BoxClass, bool)>, stratified: usize) -> usize {
 /// pixel's one ray and the octree `traced` it, known to meet no surface or searched in (or
 /// known to have its first root in) the range the octree proved.
 fn pixel_ray(
-    (cam, start, narrow): (&Camera, RayStart, bool),
+    (rays, start, narrow): (&PixelRays, RayStart, bool),
     i: usize,
     w: u32,
     (class, scope, traced): (
@@ -258,13 +294,12 @@ fn pixel_ray(
         &Option<BeamScope>,
         Option<&Traced>,
     ),
-    offsets: &[(f64, f64)],
     r: usize,
 ) -> PixelRay {
-    let (fx, fy) = (f64::from(i as u32 % w), f64::from(i as u32 / w));
-    if let (Some(traced), [_]) = (traced, offsets) {
+    let (x, y) = (i as u32 % w, i as u32 / w);
+    if let (Some(traced), 1) = (traced, rays.count()) {
         // The octree's ray is this one: through the pixel's centre.
-        let ray = cam.ray(fx + 0.5, fy + 0.5);
+        let ray = rays.centre(x, y);
         return match traced {
             Traced::NoRoot => PixelRay {
                 weight: 1.0,
@@ -292,7 +327,7 @@ fn pixel_ray(
         Some(BoxClass::Hit { t_final }) => PixelRay {
             weight: 1.0,
             query: RayQuery {
-                ray: cam.ray(fx + 0.5, fy + 0.5),
+                ray: rays.centre(x, y),
                 window: t_final,
                 // A ray that is not searched needs no scope.
                 scope: if narrow { scope.clone() } else { None },
@@ -301,7 +336,6 @@ fn pixel_ray(
             known: (!narrow).then_some(RootResult::included(t_final)),
         },
         class => {
-            let (ox, oy) = offsets[r];
             let (window, scope, fallback) = match (start, class) {
                 (RayStart::FirstCell, Some(BoxClass::Undecided { t })) => {
                     // No ray of the pixel meets a surface before its first cell: from the
@@ -320,9 +354,9 @@ fn pixel_ray(
                 _ => (child_window(class.as_ref()), None, None),
             };
             PixelRay {
-                weight: 1.0 / offsets.len() as f32,
+                weight: 1.0 / rays.count() as f32,
                 query: RayQuery {
-                    ray: cam.ray(fx + ox, fy + oy),
+                    ray: rays.stratified(x, y, r),
                     window,
                     scope,
                 },
@@ -348,8 +382,8 @@ pub(super) fn primary_rays(
 ) -> Result<PixelSamples, Error> {
     let cam = &scene.camera;
     let (w, h) = (cam.width(), cam.height());
-    let offsets = pixel_offsets(rays);
     let t0 = Instant::now();
+    let pixel_rays = PixelRays::new(cam, rays);
     progress.begin(Pass::PrimaryRays.name(), u64::from(h));
     let mut c = PrimaryRayCounters::default();
     let npix = w as usize * h as usize;
@@ -361,7 +395,7 @@ pub(super) fn primary_rays(
         let first_ray = pixels::offsets(
             classes[first..first + n]
                 .iter()
-                .map(|class| ray_count(*class, offsets.len())),
+                .map(|class| ray_count(*class, pixel_rays.count())),
         );
         let ray_pixel = owners(&first_ray);
         let batch: Vec<PixelRay> = ray_pixel
@@ -372,11 +406,10 @@ pub(super) fn primary_rays(
                 let r = j - first_ray[k];
                 let p = first + k;
                 pixel_ray(
-                    (cam, start, narrow),
+                    (&pixel_rays, start, narrow),
                     p,
                     w,
                     (classes[p], &scopes[p], trace_of(traced, p)),
-                    &offsets,
                     r,
                 )
             })

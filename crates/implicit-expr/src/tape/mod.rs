@@ -78,6 +78,8 @@ struct TapeData {
     /// Each SSA operation's index in a choice trace ([`regalloc::NO_CHOICE`] when it is not
     /// a `min` or `max`).
     choice_index: Vec<u32>,
+    /// See [`Tape::is_continuous_everywhere`].
+    continuous_everywhere: bool,
 }
 
 /// A compiled expression with one or more outputs. See the [module documentation](self).
@@ -152,6 +154,7 @@ impl Tape {
         choice: impl Fn(usize) -> Choice,
     ) -> Self {
         let c = regalloc::compile(ssa, consts, outputs, choice);
+        let continuous_everywhere = continuous_everywhere(&c.ssa, &c.consts);
         Tape(Arc::new(TapeData {
             ssa: c.ssa,
             ssa_outputs: c.ssa_outputs,
@@ -162,6 +165,7 @@ impl Tape {
             var_count,
             choice_count: c.choice_count,
             choice_index: c.choice_index,
+            continuous_everywhere,
         }))
     }
 
@@ -243,6 +247,17 @@ impl Tape {
         self.is_total() && self.is_continuous()
     }
 
+    /// Whether the tape is defined and continuous at every real point of its variables:
+    /// [total and continuous](Self::is_total_and_continuous) but for square roots whose
+    /// argument is non-negative by its form (a square, an absolute value, a square root, an
+    /// exponential, an even power, a non-negative constant, the product of a value with
+    /// itself, and sums, products, `min`s of such; a `max` with one of them), as in the
+    /// distance `sqrt(x² + y² + z²)`. A sign change between two points then proves a root
+    /// between them without a decorated evaluation. Computed once, when the tape is built.
+    pub fn is_continuous_everywhere(&self) -> bool {
+        self.0.continuous_everywhere
+    }
+
     /// Number of `min`/`max` operations: the length of a choice trace.
     pub fn choice_count(&self) -> usize {
         self.0.choice_count as usize
@@ -268,4 +283,42 @@ impl Tape {
     pub fn ptr_eq(&self, other: &Tape) -> bool {
         Arc::ptr_eq(&self.0, &other.0)
     }
+}
+
+/// See [`Tape::is_continuous_everywhere`]: every operation of `ssa` defined and continuous
+/// on the whole real line, each square root's argument non-negative by its form.
+fn continuous_everywhere(ssa: &[SsaOp], consts: &[Constant]) -> bool {
+    // Whether each value is non-negative at every point, by its form.
+    let mut nonneg = Vec::with_capacity(ssa.len());
+    for op in ssa {
+        let (a, b) = (op.a as usize, op.b as usize);
+        let (ok, nn) = match op.op {
+            Opcode::Var => (true, false),
+            Opcode::Const => (true, consts[a].lo() >= 0.0),
+            Opcode::Copy => (true, nonneg[a]),
+            Opcode::Unary(UnaryOp::Sqrt) => (nonneg[a], true),
+            Opcode::Unary(u) => (
+                u.is_total() && !u.is_discontinuous(),
+                matches!(u, UnaryOp::Sqr | UnaryOp::Abs | UnaryOp::Exp),
+            ),
+            Opcode::Binary(bop) => (
+                bop.is_total(),
+                match bop {
+                    BinaryOp::Add | BinaryOp::Min => nonneg[a] && nonneg[b],
+                    BinaryOp::Mul => a == b || (nonneg[a] && nonneg[b]),
+                    BinaryOp::Max => nonneg[a] || nonneg[b],
+                    _ => false,
+                },
+            ),
+            Opcode::Pown => {
+                let n = op.b as i32;
+                (n >= 0, n >= 0 && n % 2 == 0)
+            }
+        };
+        if !ok {
+            return false;
+        }
+        nonneg.push(nn);
+    }
+    true
 }
