@@ -1,6 +1,8 @@
 //! The images a render produces besides the picture: the screen box classification, the
 //! cost map and the shadow classes.
 
+use rayon::prelude::*;
+
 use crate::beam::BoxClass;
 use crate::image::Image;
 use crate::shadow::ShadowClass;
@@ -19,7 +21,7 @@ pub fn box_class_color(class: &BoxClass) -> [f32; 3] {
 /// outlines darker; grey where no beam classified the pixel.
 pub fn classification_image(w: u32, h: u32, classes: &[Option<(BoxClass, bool)>]) -> Image {
     let pixels = classes
-        .iter()
+        .par_iter()
         .map(|c| match c {
             None => [0.5, 0.5, 0.5],
             Some((class, edge)) => {
@@ -38,16 +40,16 @@ pub fn classification_image(w: u32, h: u32, classes: &[Option<(BoxClass, bool)>]
 /// A heat map of per-pixel costs (logarithmic, blue cheap to red expensive; black where the
 /// cost is zero).
 pub fn cost_image(w: u32, h: u32, cost: &[f32]) -> Image {
-    let max = cost.iter().copied().fold(0f32, f32::max).max(1e-9);
+    let max = cost.par_iter().copied().reduce(|| 0f32, f32::max).max(1e-9);
     let min = cost
-        .iter()
+        .par_iter()
         .copied()
         .filter(|&c| c > 0.0)
-        .fold(f32::INFINITY, f32::min)
+        .reduce(|| f32::INFINITY, f32::min)
         .min(max);
     let (lmin, lmax) = (min.ln(), max.ln());
     let pixels = cost
-        .iter()
+        .par_iter()
         .map(|&c| {
             let s = if c <= 0.0 || lmax <= lmin {
                 0.0
@@ -84,7 +86,7 @@ fn heat(s: f32) -> [f32; 3] {
 /// shaded surface (dark grey).
 pub fn shadow_class_image(w: u32, h: u32, classes: &[Option<ShadowClass>]) -> Image {
     let pixels = classes
-        .iter()
+        .par_iter()
         .map(|c| match c {
             None => [0.15, 0.15, 0.15],
             Some(ShadowClass::Lit) => [0.35, 0.8, 0.3],

@@ -23,6 +23,7 @@ pub use images::{box_class_color, classification_image, cost_image, shadow_class
 use std::time::Instant;
 
 use glam::DVec3;
+use rayon::prelude::*;
 
 use crate::backend::cpu::Cpu;
 use crate::backend::{Backend, Routing};
@@ -208,6 +209,7 @@ pub fn render_on<'a>(
         }
     };
     let coverage: Vec<Coverage> = (0..samples.len())
+        .into_par_iter()
         .map(|p| Coverage::of(samples.pixel(p)))
         .collect();
 
@@ -259,7 +261,7 @@ pub fn render_on<'a>(
 
     Ok(RenderOutput {
         classification: classification_image(w, h, &classes),
-        box_classes: classes.iter().map(|c| c.map(|c| c.0)).collect(),
+        box_classes: classes.par_iter().map(|c| c.map(|c| c.0)).collect(),
         coverage,
         cost_map: cost_image(w, h, &cost),
         shadows,

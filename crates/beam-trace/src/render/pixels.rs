@@ -24,6 +24,16 @@ impl Pixels {
         }
     }
 
+    /// No pixel yet, with room for `pixels` pixels of `samples` samples in all.
+    pub(super) fn with_capacity(pixels: usize, samples: usize) -> Self {
+        let mut first = Vec::with_capacity(pixels + 1);
+        first.push(0);
+        Pixels {
+            samples: Vec::with_capacity(samples),
+            first,
+        }
+    }
+
     /// Pixels whose samples are `samples`, pixel `p`'s at `first[p]..first[p + 1]` (see
     /// [`offsets`]).
     pub(super) fn from_offsets(samples: Vec<Sample>, first: Vec<usize>) -> Self {
@@ -48,7 +58,7 @@ impl Pixels {
 
     /// Appends the pixels of `more`.
     pub(super) fn append(&mut self, more: Pixels) {
-        if self.len() == 0 {
+        if self.len() == 0 && self.samples.capacity() == 0 {
             *self = more;
             return;
         }

@@ -387,7 +387,11 @@ pub(super) fn primary_rays(
     progress.begin(Pass::PrimaryRays.name(), u64::from(h));
     let mut c = PrimaryRayCounters::default();
     let npix = w as usize * h as usize;
-    let mut pixels = Pixels::new();
+    let all_rays: usize = classes
+        .par_iter()
+        .map(|class| ray_count(*class, pixel_rays.count()))
+        .sum();
+    let mut pixels = Pixels::with_capacity(npix, all_rays);
     let mut cost: Vec<f32> = Vec::with_capacity(npix);
     for RowBatch { rows, first, n } in row_batches(w, h) {
         // The rays of every pixel of the batch, built in parallel; pixel `k` owns the rays

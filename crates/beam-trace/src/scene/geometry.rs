@@ -351,10 +351,15 @@ impl GeometryEval {
         self.interval.eval(b).expect("tape in x y z")
     }
 
+    /// Whether the scene has one leaf surface: every hit is that leaf's.
+    pub fn single_leaf(&self) -> bool {
+        self.leaves.tape().outputs().len() == 1
+    }
+
     /// The leaf whose surface passes nearest `p` (smallest `|f_leaf(p)|`): whose material
     /// shades a hit at `p`.
     pub fn leaf_at(&mut self, p: DVec3) -> usize {
-        if self.leaves.tape().outputs().len() == 1 {
+        if self.single_leaf() {
             return 0;
         }
         self.leaves

@@ -380,9 +380,13 @@ impl CpuQueries<'_> {
             t,
             point,
             to_eye: (-ray.dir).normalize_or_zero(),
-            leaf: match self.grid.as_ref().and_then(|g| g.leaf_candidates_at(point)) {
-                Some(c) => ev.geo.leaf_among(&c, point),
-                None => ev.geo.leaf_at(point),
+            leaf: if ev.geo.single_leaf() {
+                0
+            } else {
+                match self.grid.as_ref().and_then(|g| g.leaf_candidates_at(point)) {
+                    Some(c) => ev.geo.leaf_among(&c, point),
+                    None => ev.geo.leaf_at(point),
+                }
             } as u32,
             normal: -ray.dir.normalize_or_zero(),
         }
