@@ -33,14 +33,15 @@
 //! leaf's own is evaluated with the next one out.
 //!
 //! A pixel whose first cell is undecided (its beam straddles the silhouette, or the
-//! inclusion test cannot place every ray's root) may have its central ray traced on the
-//! spot ([`FirstCell::traced`]): the ray is searched from the cell on with the
+//! inclusion test cannot place every ray's root) may have its rays traced on the spot
+//! ([`FirstCell::traced`]): each ray is searched from the cell on with the
 //! restrictions the search holds for the cells around it, innermost first, then with the
 //! whole `g` to the end of the tile's range, each range halved nearer half first and
 //! pruned for its halves. It ends rejected everywhere ([`Traced::NoRoot`]), or at a range
 //! no longer than the pixel's cross-section where the inclusion test places the ray's first
-//! root ([`Traced::First`]), or stuck (a graze, a jump: the renderer's root finder takes
-//! the ray over). A leaf right behind cells rejected as positive knows the sign at its near
+//! root ([`Traced::First`]), or stuck (a graze, a jump, or a budget of evaluations spent:
+//! the renderer's root finder takes the ray over from where it is proven clear,
+//! [`Traced::Clear`]). A leaf right behind cells rejected as positive knows the sign at its near
 //! face and spends no evaluation on it.
 //!
 //! Against the screen box structure ([`crate::beam::evaluate_box_within`]), a cell costs one
@@ -57,7 +58,7 @@ use crate::ibox::IBox;
 use crate::ray::{Beam, BeamEval, RayFn};
 use crate::root::RootCounters;
 use crate::root::search::{Eval, sign, sign_change};
-use crate::screen::PixelRect;
+use crate::screen::{PixelRect, stratified_offsets};
 
 /// How far [`Search::included`] looks past a leaf: up to `2^LOOK_AHEAD` of its lengths.
 const LOOK_AHEAD: u32 = 4;
@@ -69,6 +70,13 @@ const PRUNE_MIN_LEN: usize = 16;
 /// How far below its leaf size a traced ray's range is halved in search of a sign change
 /// before the ray is left to the root finder: `2^-TRACE_DEPTH` of it.
 const TRACE_DEPTH: i32 = 10;
+
+/// The evaluations a traced ray may spend before it is left to the root finder. Bisection
+/// finds a ray's first root or its absence in a few dozen evaluations where the pruned
+/// formulas are tight (the CSG models: 90 % of the rays in fewer than 16); where a ray runs
+/// long beside a surface it can take hundreds (the default scene: half of them more than
+/// 64), and the root finder's Newton steps are cheaper there.
+const TRACE_BUDGET: u64 = 32;
 
 /// Where a pixel's surface may begin: the range `t` of its first cell (no ray of the pixel
 /// meets the surface before it), whether every ray of the pixel meets it there, and the
@@ -83,13 +91,14 @@ pub struct FirstCell {
     /// parameters: `t` for a Hit, the whole region of the restriction (which holds `t`)
     /// otherwise.
     pub scope: Option<BeamScope>,
-    /// What the search of the pixel's central ray found from `inf t` on, where it was
-    /// traced (an undecided pixel, with tracing asked for) and decided.
-    pub traced: Option<Traced>,
+    /// What the search of each of the pixel's traced rays (at the stratified positions of
+    /// the number asked for) found from `inf t` on; empty where none was traced (a Hit, or
+    /// no tracing asked for).
+    pub traced: Vec<Traced>,
 }
 
-/// What the search of an undecided pixel's central ray (through the pixel's centre, as
-/// [`Camera::ray`] makes it) proved from its first cell on, with the restrictions of the
+/// What the search of one of an undecided pixel's rays (through a position of the pixel,
+/// as [`Camera::ray`] makes it) proved from its first cell on, with the restrictions of the
 /// cells holding the pixel and the whole function past them.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Traced {
@@ -104,6 +113,12 @@ pub enum Traced {
         /// `g` pruned for the ray over a range holding `t`, its parameters `t`.
         scope: Option<BeamScope>,
     },
+    /// No root before `until`; past it the search got stuck (a graze, a jump) or ran out of
+    /// its budget ([`TRACE_BUDGET`]) and the root finder takes the ray over.
+    Clear {
+        /// Where the part of the ray proven root-free ends.
+        until: f64,
+    },
 }
 
 /// How a range of a traced ray came out.
@@ -112,8 +127,9 @@ enum Step {
     Rejected,
     /// The first root is in it (see [`Traced::First`]).
     Found(Interval<f64>, Option<BeamScope>),
-    /// Neither could be proven (a graze, a jump, a range too short to halve).
-    Stuck,
+    /// Neither could be proven from the parameter it holds on (a graze, a jump, a range too
+    /// short to halve, the budget spent): every parameter before it was rejected.
+    Stuck(f64),
 }
 
 impl FirstCell {
@@ -131,20 +147,25 @@ impl FirstCell {
 /// The first cell of each pixel of `tile` (row by row), searched in the parameter range
 /// `range` (where the tile's beam lies in the scene bounds `bounds`), with `g` the scene
 /// function of the camera's beams; leaves are no longer than `epsilon` or the pixel's
-/// cross-section. With `trace`, the central ray of each pixel whose first cell is
-/// undecided is searched on from there ([`FirstCell::traced`]). Counts each cell's
+/// cross-section. With `traced_rays` more than 0, the rays of each pixel whose first cell
+/// is undecided, at the stratified positions of that many, are searched on from there
+/// ([`FirstCell::traced`]). Counts each cell's
 /// evaluation (and the inclusion tests', and the traced rays') in `counters.g_evals`.
 pub fn first_cells(
     g: &mut BeamEval,
     (cam, bounds): (&Camera, &IBox),
     tile: PixelRect,
-    (range, epsilon, trace): (Interval<f64>, f64, bool),
+    (range, epsilon, traced_rays): (Interval<f64>, f64, u32),
     counters: &mut RootCounters,
 ) -> Vec<Option<FirstCell>> {
     let mut search = Search {
         g,
         cam,
-        trace,
+        traced: if traced_rays == 0 {
+            Vec::new()
+        } else {
+            stratified_offsets(traced_rays)
+        },
         beams: cam.edge_beams(tile),
         bounds,
         range,
@@ -244,8 +265,8 @@ impl Filled {
 struct Search<'a> {
     g: &'a mut BeamEval,
     cam: &'a Camera,
-    /// Whether undecided pixels' central rays are traced.
-    trace: bool,
+    /// The positions inside an undecided pixel of the rays traced (none: no tracing).
+    traced: Vec<(f64, f64)>,
     beams: EdgeBeams,
     bounds: &'a IBox,
     range: Interval<f64>,
@@ -331,13 +352,21 @@ impl Search<'_> {
         None
     }
 
-    /// The central ray of pixel `(x, y)` searched from `from` (no ray of the pixel meets
-    /// the surface before it) to the end of the tile's range: through the region of each
-    /// restriction of the chain in turn, innermost first, then with the whole `g`; `None`
-    /// where it gets stuck. `spread` is the pixel's spread of directions.
-    fn trace_centre(&mut self, (x, y): (u32, u32), from: f64, spread: f64) -> Option<Traced> {
-        let ray = self.cam.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+    /// The ray of pixel `(x, y)` through its position `(ox, oy)` searched from `from` (no
+    /// ray of the pixel meets the surface before it) to the end of the tile's range:
+    /// through the region of each restriction of the chain in turn, innermost first, then
+    /// with the whole `g`, within [`TRACE_BUDGET`] evaluations. `spread` is the pixel's
+    /// spread of directions.
+    fn trace_ray(
+        &mut self,
+        (x, y): (u32, u32),
+        (ox, oy): (f64, f64),
+        from: f64,
+        spread: f64,
+    ) -> Traced {
+        let ray = self.cam.ray(f64::from(x) + ox, f64::from(y) + oy);
         let beam = ray.beam();
+        let budget = self.counters.g_evals + TRACE_BUDGET;
         let mut start = from;
         for level in (0..=self.chain.len()).rev() {
             let (end, tape) = match level {
@@ -351,13 +380,13 @@ impl Search<'_> {
                 continue;
             }
             let window = Interval::new_unchecked(start, end);
-            match self.trace_range(&beam, window, tape.as_ref(), spread) {
+            match self.trace_range(&beam, window, tape.as_ref(), (spread, budget)) {
                 Step::Rejected => start = end,
-                Step::Found(t, scope) => return Some(Traced::First { t, scope }),
-                Step::Stuck => return None,
+                Step::Found(t, scope) => return Traced::First { t, scope },
+                Step::Stuck(until) => return Traced::Clear { until },
             }
         }
-        Some(Traced::NoRoot)
+        Traced::NoRoot
     }
 
     /// The range `t` of the ray `beam` (a beam of one ray) searched with `tape` (the whole
@@ -365,14 +394,17 @@ impl Search<'_> {
     /// rejected where the enclosure is positive or empty; the first root's where the range
     /// is no longer than the pixel's cross-section (`spread` times `t`, or `epsilon`) and
     /// passes the inclusion test with both ends in the scene bounds; else halved, down to
-    /// `2^-TRACE_DEPTH` of that length.
+    /// `2^-TRACE_DEPTH` of that length, while the evaluations counted stay below `budget`.
     fn trace_range(
         &mut self,
         beam: &Beam,
         t: Interval<f64>,
         tape: Option<&Tape>,
-        spread: f64,
+        (spread, budget): (f64, u64),
     ) -> Step {
+        if self.counters.g_evals >= budget {
+            return Step::Stuck(t.inf());
+        }
         self.g.set_interval_beam(beam, tape);
         let gt = self.g.g(t);
         self.counters.g_evals += 1;
@@ -382,7 +414,7 @@ impl Search<'_> {
         if gt.sup() < 0.0 {
             // Inside right after rejected ranges: a jump, or a root at `inf t` that needs
             // the root finder's care.
-            return Step::Stuck;
+            return Step::Stuck(t.inf());
         }
         let leaf = self.epsilon.max(spread * t.sup().abs());
         let extent = Extent {
@@ -403,7 +435,7 @@ impl Search<'_> {
         }
         let (near, far) = t.bisect();
         if t.wid() <= leaf * 2f64.powi(-TRACE_DEPTH) || near.is_empty() || far.is_empty() {
-            return Step::Stuck;
+            return Step::Stuck(t.inf());
         }
         // The halves search with the tape pruned to this range where that shortens it.
         let mut inner = tape.cloned();
@@ -416,8 +448,8 @@ impl Search<'_> {
                 inner = Some(pruned);
             }
         }
-        match self.trace_range(beam, near, inner.as_ref(), spread) {
-            Step::Rejected => self.trace_range(beam, far, inner.as_ref(), spread),
+        match self.trace_range(beam, near, inner.as_ref(), (spread, budget)) {
+            Step::Rejected => self.trace_range(beam, far, inner.as_ref(), (spread, budget)),
             step => step,
         }
     }
@@ -465,15 +497,22 @@ impl Search<'_> {
                     t: range,
                     hit: true,
                     scope: holds.map(|s| BeamScope { t: range, ..s }),
-                    traced: None,
+                    traced: Vec::new(),
                 },
                 None => FirstCell {
                     t,
                     hit: false,
                     scope: self.chain.last().cloned(),
-                    traced: (leaf && self.trace)
-                        .then(|| self.trace_centre((r.x0, r.y0), t.inf(), spread))
-                        .flatten(),
+                    traced: if leaf {
+                        (0..self.traced.len())
+                            .map(|k| {
+                                let at = self.traced[k];
+                                self.trace_ray((r.x0, r.y0), at, t.inf(), spread)
+                            })
+                            .collect()
+                    } else {
+                        Vec::new()
+                    },
                 },
             };
             for (x, y) in r.pixels() {

@@ -58,6 +58,26 @@ impl PixelRect {
     }
 }
 
+/// The `k × k` stratified positions inside a pixel for `n` rays per pixel (`k` the nearest
+/// whole square root of `n`, at least 1): `((a + 0.5) / k, (b + 0.5) / k)`, `a` across
+/// fastest, then `b` down. One ray is the pixel's centre.
+pub fn stratified_offsets(n: u32) -> Vec<(f64, f64)> {
+    let k = stratified_side(n);
+    (0..k * k)
+        .map(|i| {
+            (
+                (f64::from(i % k) + 0.5) / f64::from(k),
+                (f64::from(i / k) + 0.5) / f64::from(k),
+            )
+        })
+        .collect()
+}
+
+/// `k` of [`stratified_offsets`]: the nearest whole square root of `n`, at least 1.
+pub fn stratified_side(n: u32) -> u32 {
+    (f64::from(n)).sqrt().round().max(1.0) as u32
+}
+
 /// A classified box of the structure.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct ScreenBox {

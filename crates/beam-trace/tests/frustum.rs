@@ -7,13 +7,13 @@ use ball::Ball;
 use beam_trace::backend::{Backend, CellQuery, QueryKind};
 use beam_trace::beam::BoxClass;
 use beam_trace::frustum::Traced;
-use beam_trace::screen::PixelRect;
+use beam_trace::screen::{PixelRect, stratified_offsets};
 use beam_trace::{Cpu, NoProgress, Plan, render};
 
 /// For every pixel, a 5 x 5 grid of its rays: none meets the ball before the pixel's first
 /// cell, a pixel without one has no ray meeting the ball, and where the first cell is a
 /// proven hit every ray meets the ball inside it. Where the first cell is undecided, the
-/// central ray traced on from there meets the ball where the trace says: nowhere, or first
+/// rays traced on from there (2 x 2 of them) meet the ball where the traces say: nowhere, or first
 /// in the range it proved.
 #[test]
 fn no_ray_meets_the_surface_before_its_first_cell() {
@@ -30,6 +30,7 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
         .prepare(&scene, &plan, &[QueryKind::Cells])
         .unwrap_or_else(|e| panic!("{e}"));
     let cam = &scene.camera;
+    let offsets = stratified_offsets(4);
     let tiles = [
         PixelRect {
             x0: 0,
@@ -46,13 +47,16 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
     ];
     let queries: Vec<CellQuery> = tiles
         .iter()
-        .map(|&tile| CellQuery { tile, trace: true })
+        .map(|&tile| CellQuery {
+            tile,
+            traced_rays: 4,
+        })
         .collect();
     let answers = prepared
         .queries
         .first_cells(&queries)
         .unwrap_or_else(|e| panic!("{e}"));
-    let (mut covered, mut traced_miss, mut traced_hit) = (0, 0, 0);
+    let (mut covered, mut traced_miss, mut traced_hit, mut stuck) = (0, 0, 0, 0);
     for (tile, firsts) in tiles.iter().zip(&answers.values) {
         assert_eq!(firsts.len() as u64, tile.area());
         for ((x, y), first) in tile.pixels().zip(firsts) {
@@ -83,26 +87,49 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
                 }
             }
             covered += usize::from(first.is_some());
-            let Some(traced) = first.as_ref().and_then(|f| f.traced.as_ref()) else {
-                continue;
-            };
-            let ray = cam.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
-            match (traced, ball.exact_t(ray.origin, ray.dir)) {
-                (Traced::NoRoot, None) => traced_miss += 1,
-                (Traced::First { t: range, .. }, Some(t)) => {
-                    assert!(
-                        range.inf() * (1.0 - 1e-12) <= t && t <= range.sup() * (1.0 + 1e-12),
-                        "pixel ({x}, {y}): the root at {t}, traced in {range:?}"
-                    );
-                    traced_hit += 1;
+            let traced = first.as_ref().map_or(&[][..], |f| &f.traced[..]);
+            assert!(
+                traced.is_empty() || traced.len() == offsets.len(),
+                "pixel ({x}, {y}): {} traces",
+                traced.len()
+            );
+            for (traced, &(ox, oy)) in traced.iter().zip(&offsets) {
+                let ray = cam.ray(f64::from(x) + ox, f64::from(y) + oy);
+                match (traced, ball.exact_t(ray.origin, ray.dir)) {
+                    (&Traced::Clear { until }, exact) => {
+                        assert!(
+                            exact.is_none_or(|t| t >= until * (1.0 - 1e-12)),
+                            "pixel ({x}, {y}) at ({ox}, {oy}): the root at {exact:?}, clear until {until}"
+                        );
+                        stuck += 1;
+                    }
+                    (Traced::NoRoot, None) => traced_miss += 1,
+                    (Traced::First { t: range, .. }, Some(t)) => {
+                        assert!(
+                            range.inf() * (1.0 - 1e-12) <= t && t <= range.sup() * (1.0 + 1e-12),
+                            "pixel ({x}, {y}) at ({ox}, {oy}): the root at {t}, traced in {range:?}"
+                        );
+                        traced_hit += 1;
+                    }
+                    (traced, exact) => {
+                        panic!(
+                            "pixel ({x}, {y}) at ({ox}, {oy}): traced {traced:?}, root {exact:?}"
+                        )
+                    }
                 }
-                (traced, exact) => panic!("pixel ({x}, {y}): traced {traced:?}, root {exact:?}"),
             }
         }
     }
     assert!(
         traced_miss > 0 && traced_hit > 0,
         "the silhouette's undecided pixels trace both ways: {traced_miss} misses, {traced_hit} hits"
+    );
+    // The rest are left to the root finder past the part proven clear (a graze, or the
+    // budget of evaluations spent).
+    assert!(
+        stuck * 3 <= traced_miss + traced_hit,
+        "most rays are decided: {stuck} of {} left to the root finder",
+        stuck + traced_miss + traced_hit
     );
     assert!(covered > 500, "the ball covers much of the view: {covered}");
     let hits: usize = answers

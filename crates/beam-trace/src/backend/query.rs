@@ -147,9 +147,10 @@ pub struct HitQuery {
 pub struct CellQuery {
     /// The tile.
     pub tile: PixelRect,
-    /// Whether the central ray of each pixel whose first cell is undecided is searched on
-    /// from there ([`FirstCell::traced`](crate::frustum::FirstCell::traced)).
-    pub trace: bool,
+    /// How many rays of each pixel whose first cell is undecided are searched on from
+    /// there ([`FirstCell::traced`](crate::frustum::FirstCell::traced)): 0 for none, else
+    /// at the [stratified positions](crate::screen::stratified_offsets) of that many.
+    pub traced_rays: u32,
 }
 
 /// A hit region whose shading variation is wanted: the beam and its proven section

@@ -20,7 +20,7 @@ use crate::ray::Ray;
 use crate::root::{Proof, RootResult};
 use crate::sample::{Area, Sample};
 use crate::scene::Scene;
-use crate::screen::{PixelRect, needs_split, tiles};
+use crate::screen::{PixelRect, needs_split, stratified_side, tiles};
 use crate::stats::PassStats;
 use crate::stats::counters::{PrimaryRayCounters, ScreenBoxCounters};
 
@@ -34,15 +34,17 @@ pub(super) type PixelClasses = Vec<Option<(BoxClass, bool)>>;
 /// the parts of the pixel; `None` elsewhere.
 pub(super) type PixelScopes = Vec<Option<BeamScope>>;
 
-/// What the search of a pixel's central ray proved past its first cell, for each pixel the
-/// frustum octree traced ([`FirstCell::traced`]), by increasing pixel index (few pixels
-/// have one: the silhouette's); empty after the screen box structure.
-pub(super) type PixelTraces = Vec<(u32, Traced)>;
+/// What the search of each of a pixel's rays proved past its first cell, for each pixel
+/// the frustum octree traced ([`FirstCell::traced`]), by increasing pixel index (few pixels
+/// have them: the silhouette's); empty after the screen box structure.
+pub(super) type PixelTraces = Vec<(u32, Vec<Traced>)>;
 
-/// The trace of pixel `p` in `traces`.
-fn trace_of(traces: &PixelTraces, p: usize) -> Option<&Traced> {
-    let k = traces.binary_search_by_key(&p, |&(q, _)| q as usize).ok()?;
-    Some(&traces[k].1)
+/// The traces of pixel `p`'s rays in `traces` (empty where it has none).
+fn traces_of(traces: &PixelTraces, p: usize) -> &[Traced] {
+    match traces.binary_search_by_key(&p, |&(q, _)| q as usize) {
+        Ok(k) => &traces[k].1,
+        Err(_) => &[],
+    }
 }
 
 /// The first primary pass of `plan`: the frustum octree's first cells for
@@ -54,10 +56,8 @@ pub(super) fn structure(
     progress: &dyn Progress,
 ) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
     match plan.primary {
-        // The octree knows each pixel's central ray: it traces it where that is the one ray.
-        Primary::Octree { rays_per_undecided } => {
-            octree(q, scene, rays_per_undecided == 1, progress)
-        }
+        // The octree traces each undecided pixel's rays.
+        Primary::Octree { rays_per_undecided } => octree(q, scene, rays_per_undecided, progress),
         _ => {
             let (classes, scopes, stats) = screen_boxes(q, scene, plan, progress)?;
             Ok((classes, scopes, Vec::new(), stats))
@@ -70,12 +70,12 @@ const OCTREE_TILE: u32 = 64;
 
 /// The frustum octree pass ([`crate::frustum`]): the tiles of a band of rows in one batch;
 /// each pixel a Hit in the range its first cell proved (with that cell's scope), else
-/// Undecided in its first cell (its central ray traced on from there with `trace`), or a
-/// Miss without one.
+/// Undecided in its first cell (its `traced_rays` stratified rays traced on from there),
+/// or a Miss without one.
 fn octree(
     q: &dyn Queries,
     scene: &Scene,
-    trace: bool,
+    traced_rays: u32,
     progress: &dyn Progress,
 ) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
     let cam = &scene.camera;
@@ -88,7 +88,10 @@ fn octree(
     let mut c = ScreenBoxCounters::default();
     let all = tiles(w, h, OCTREE_TILE);
     for band in all.chunk_by(|a, b| a.y0 / (4 * OCTREE_TILE) == b.y0 / (4 * OCTREE_TILE)) {
-        let queries: Vec<CellQuery> = band.iter().map(|&tile| CellQuery { tile, trace }).collect();
+        let queries: Vec<CellQuery> = band
+            .iter()
+            .map(|&tile| CellQuery { tile, traced_rays })
+            .collect();
         let answers = q.first_cells(&queries)?;
         c.search.add(&answers.search);
         for (tile, firsts) in band.iter().zip(answers.values) {
@@ -99,7 +102,9 @@ fn octree(
                 classes[i] = Some((class, false));
                 if let Some(f) = first {
                     scopes[i] = f.scope;
-                    traced.extend(f.traced.map(|t| (i as u32, t)));
+                    if !f.traced.is_empty() {
+                        traced.push((i as u32, f.traced));
+                    }
                 }
             }
         }
@@ -197,7 +202,7 @@ struct PixelRays {
 impl PixelRays {
     /// The rays of `cam`'s pixels, `n` stratified ones per pixel (a square; its nearest).
     fn new(cam: &Camera, n: u32) -> Self {
-        let k = (n as f64).sqrt().round().max(1.0) as u32;
+        let k = stratified_side(n);
         // Per pixel and axis: the centre, then the `k` stratified positions.
         let inside: Vec<f64> = std::iter::once(0.5)
             .chain((0..k).map(|a| (f64::from(a) + 0.5) / f64::from(k)))
@@ -283,26 +288,24 @@ fn ray_count(class: Option<(BoxClass, bool)>, stratified: usize) -> usize {
 /// ray, searched in a Hit box's `T_final` (with the box's `scope`) where `narrow`, else
 /// known to have its first root there; else stratified ray `r`, searched from where the
 /// pixel's beam proved every ray root-free (see [`ray_count`]), or, where it is the
-/// pixel's one ray and the octree `traced` it, known to meet no surface or searched in (or
-/// known to have its first root in) the range the octree proved.
+/// pixel's ray `r` the octree `traced`, known to meet no surface, or searched in (or
+/// known to have its first root in) the range the octree proved, or searched past the part
+/// it proved clear.
 fn pixel_ray(
     (rays, start, narrow): (&PixelRays, RayStart, bool),
     i: usize,
     w: u32,
-    (class, scope, traced): (
-        Option<(BoxClass, bool)>,
-        &Option<BeamScope>,
-        Option<&Traced>,
-    ),
+    (class, scope, traced): (Option<(BoxClass, bool)>, &Option<BeamScope>, &[Traced]),
     r: usize,
 ) -> PixelRay {
     let (x, y) = (i as u32 % w, i as u32 / w);
-    if let (Some(traced), 1) = (traced, rays.count()) {
-        // The octree's ray is this one: through the pixel's centre.
-        let ray = rays.centre(x, y);
+    if let (Some(traced), true) = (traced.get(r), traced.len() == rays.count()) {
+        // The octree's ray `r` is this one: at the same stratified position.
+        let ray = rays.stratified(x, y, r);
+        let weight = 1.0 / rays.count() as f32;
         return match traced {
             Traced::NoRoot => PixelRay {
-                weight: 1.0,
+                weight,
                 query: RayQuery {
                     ray,
                     window: forward(),
@@ -312,7 +315,7 @@ fn pixel_ray(
                 known: Some(RootResult::NoRoot),
             },
             Traced::First { t, scope } => PixelRay {
-                weight: 1.0,
+                weight,
                 query: RayQuery {
                     ray,
                     window: *t,
@@ -320,6 +323,17 @@ fn pixel_ray(
                 },
                 fallback: Some(Interval::new_unchecked(t.inf(), f64::INFINITY)),
                 known: (!narrow).then_some(RootResult::included(*t)),
+            },
+            // The rest of the ray, with the whole function.
+            &Traced::Clear { until } => PixelRay {
+                weight,
+                query: RayQuery {
+                    ray,
+                    window: Interval::new_unchecked(until, f64::INFINITY),
+                    scope: None,
+                },
+                fallback: None,
+                known: None,
             },
         };
     }
@@ -413,7 +427,7 @@ pub(super) fn primary_rays(
                     (&pixel_rays, start, narrow),
                     p,
                     w,
-                    (classes[p], &scopes[p], trace_of(traced, p)),
+                    (classes[p], &scopes[p], traces_of(traced, p)),
                     r,
                 )
             })
