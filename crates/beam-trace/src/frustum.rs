@@ -114,7 +114,7 @@ pub enum Traced {
         scope: Option<BeamScope>,
     },
     /// No root before `until`; past it the search got stuck (a graze, a jump) or ran out of
-    /// its budget ([`TRACE_BUDGET`]) and the root finder takes the ray over.
+    /// its budget of evaluations (32) and the root finder takes the ray over.
     Clear {
         /// Where the part of the ray proven root-free ends.
         until: f64,
