@@ -2,7 +2,7 @@
 //! and blocks, and the pruning of a tape to a box with it.
 
 use implicit_expr::{Choice, Evaluator, Tape};
-use interval_core::Interval;
+use interval_core::{Decoration, Interval};
 
 use crate::ibox::IBox;
 
@@ -12,6 +12,8 @@ use crate::ibox::IBox;
 pub(super) struct BoxEval {
     eval: Option<Evaluator<Interval<f64>>>,
     trace: Vec<Choice>,
+    /// The tape and box whose choices `trace` holds, after [`BoxEval::defined_on`].
+    traced: Option<(Tape, IBox)>,
 }
 
 impl BoxEval {
@@ -24,10 +26,17 @@ impl BoxEval {
     }
 
     /// `tape` pruned to the box `b` ([`Evaluator::pruned`]): equal to it on `b`; `tape`
-    /// itself where it has no `min`/`max` or nothing is decided.
+    /// itself where it has no `min`/`max` or nothing is decided. Right after
+    /// [`defined_on`](Self::defined_on) of the same tape and box, without evaluating again.
     pub(super) fn pruned(&mut self, tape: &Tape, b: &IBox) -> Tape {
         if tape.choice_count() == 0 {
             return tape.clone();
+        }
+        if let Some((t, tb)) = self.traced.take()
+            && t.ptr_eq(tape)
+            && tb == *b
+        {
+            return tape.simplify(&self.trace).unwrap_or_else(|_| tape.clone());
         }
         let mut trace = std::mem::take(&mut self.trace);
         let p = self
@@ -36,6 +45,28 @@ impl BoxEval {
             .unwrap_or_else(|_| tape.clone());
         self.trace = trace;
         p
+    }
+
+    /// The enclosure of `tape` over `b`, and whether `tape` is proven defined at every point
+    /// of `b` (decorated at least `def`: a jump, such as the boundary of a partial domain
+    /// inside `b`, keeps the sign of the enclosure at every point). A tape defined
+    /// everywhere by its form ([`Tape::is_continuous_everywhere`]) needs no decorations: its
+    /// evaluation records the `min`/`max` choices instead, for a [`pruned`](Self::pruned)
+    /// of the same box that follows.
+    pub(super) fn defined_on(&mut self, tape: &Tape, b: &IBox) -> (Interval<f64>, bool) {
+        self.traced = None;
+        if tape.is_continuous_everywhere() {
+            let mut trace = std::mem::take(&mut self.trace);
+            let f = self
+                .on(tape)
+                .eval_traced(b, &mut trace)
+                .expect("tape in x y z");
+            self.trace = trace;
+            self.traced = Some((tape.clone(), *b));
+            return (f, true);
+        }
+        let (f, dec) = self.on(tape).eval_decorated(b).expect("tape in x y z");
+        (f, dec >= Decoration::Def)
     }
 }
 

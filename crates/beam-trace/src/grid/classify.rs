@@ -15,7 +15,7 @@
 //! operation here); either way each one is proven over its cell.
 
 use implicit_expr::{Evaluator, Tape};
-use interval_core::{Decoration, Interval};
+use interval_core::Interval;
 use rayon::prelude::*;
 
 use super::box_eval::{BoxEval, with_thread_eval};
@@ -65,7 +65,7 @@ impl Flat {
             let (f, defined) = if t.total[k] {
                 (self.values[k], true)
             } else {
-                defined_on(self.one.on(&t.each[k]), b)
+                self.one.defined_on(&t.each[k], b)
             };
             *o = classify(f, defined);
             if matches!(*o, C_POS | C_NEG) {
@@ -73,14 +73,6 @@ impl Flat {
             }
         }
     }
-}
-
-/// A leaf's enclosure over `b`, and whether the leaf is proven defined at every point of
-/// `b` (decorated at least `def`: a jump, such as the boundary of a partial domain inside
-/// `b`, keeps the sign of the enclosure at every point).
-fn defined_on(eval: &mut Evaluator<Interval<f64>>, b: &IBox) -> (Interval<f64>, bool) {
-    let (f, dec) = eval.eval_decorated(b).expect("tape in x y z");
-    (f, dec >= Decoration::Def)
 }
 
 /// Classifies `ncells` cells (`cell_box(idx)` the classification box of cell `idx`) with
@@ -164,7 +156,7 @@ pub(super) fn classify_cells(
                 let mut bound = parent.bound;
                 let mut unknown = Vec::new();
                 for (k, tape) in &parent.unknown {
-                    let (f, defined) = defined_on(eval.on(tape), &b);
+                    let (f, defined) = eval.defined_on(tape, &b);
                     row[*k] = classify(f, defined);
                     if matches!(row[*k], C_POS | C_NEG) {
                         bound = bound.min(f.mig());

@@ -35,9 +35,10 @@ use crate::ibox::{IBox, hull};
 use super::box_eval::{BoxEval, with_thread_eval};
 use super::cells::{EMPTY, cell as cell_of, index};
 
-/// Cells pruned per parallel piece before their tapes are merged into the cache (bounds the
-/// memory of tapes not yet deduplicated).
-const PIECE: usize = 4096;
+/// Side of the blocks of cells whose tapes are pruned first, for their cells to prune
+/// (see [`CellFunctions::build`]); the grid is pruned in slabs of this many layers of cells,
+/// which bounds the memory of tapes not yet deduplicated.
+const BLOCK: u32 = 4;
 
 /// A cell's pruned function is used when it is at most `1 / PAYS` as long as the cell's
 /// reduced function.
@@ -80,12 +81,19 @@ impl CellFunctions {
     /// Prunes the reduced function of every non-empty cell over its classification box.
     ///
     /// `reduced[idx]` is cell `idx`'s index into `tapes` (the reduced functions in `x y z`),
-    /// [`EMPTY`] for an empty cell; `class_box(idx)` its classification box. `full` is the
-    /// full scene function's tape and `full_ray` its ray form. Returns the functions and
-    /// each cell's function index. Deterministic: indices follow the cells' order.
+    /// [`EMPTY`] for an empty cell, in a grid of `n` cells per axis; `class_box(idx)` its
+    /// classification box. `full` is the full scene function's tape and `full_ray` its ray
+    /// form. Returns the functions and each cell's function index. Deterministic: indices
+    /// follow the cells' order.
+    ///
+    /// Each block of [`BLOCK`]³ cells first prunes each reduced function its cells use over
+    /// the hull of their boxes, and each cell prunes the block's tape: a `min`/`max` decided
+    /// over the block is decided the same way over the cell, and the argument it forwards
+    /// has exactly the operation's enclosure there, so the cell's tape is the one pruning the
+    /// reduced function over the cell gives, for the cost of evaluating a shorter one.
     pub(super) fn build(
         tapes: &[Tape],
-        reduced: &[u32],
+        (reduced, n): (&[u32], [u32; 3]),
         class_box: impl Fn(usize) -> IBox + Sync,
         full: Tape,
         full_ray: &RayFunction,
@@ -94,28 +102,61 @@ impl CellFunctions {
         let mut functions: Vec<CellFunction> = Vec::new();
         let mut cells = vec![EMPTY; reduced.len()];
         let mut cell_instrs = 0_u64;
-        for (p, piece) in reduced.chunks(PIECE).enumerate() {
-            let base = p * PIECE;
-            let pruned: Vec<Option<Tape>> = piece
+        let layer = n[0] as usize * n[1] as usize;
+        // Slabs of `BLOCK` layers of cells (contiguous indices), their blocks in parallel.
+        for z0 in (0..n[2]).step_by(BLOCK as usize) {
+            let z1 = (z0 + BLOCK).min(n[2]);
+            let base = z0 as usize * layer;
+            let blocks: Vec<[u32; 2]> = (0..n[1])
+                .step_by(BLOCK as usize)
+                .flat_map(|y| (0..n[0]).step_by(BLOCK as usize).map(move |x| [x, y]))
+                .collect();
+            let pruned: Vec<Vec<(usize, Tape)>> = blocks
                 .par_iter()
-                .enumerate()
-                .map_init(BoxEval::default, |eval, (k, &r)| {
-                    if r == EMPTY {
-                        return None;
+                .map_init(BoxEval::default, |eval, &[x0, y0]| {
+                    let (x1, y1) = ((x0 + BLOCK).min(n[0]), (y0 + BLOCK).min(n[1]));
+                    let members: Vec<usize> = (z0..z1)
+                        .flat_map(|z| (y0..y1).flat_map(move |y| (x0..x1).map(move |x| [x, y, z])))
+                        .map(|c| index(c, n))
+                        .filter(|&idx| reduced[idx] != EMPTY)
+                        .collect();
+                    let mut out = Vec::with_capacity(members.len());
+                    let mut rs: Vec<u32> = members.iter().map(|&idx| reduced[idx]).collect();
+                    rs.sort_unstable();
+                    rs.dedup();
+                    for r in rs {
+                        let tape = &tapes[r as usize];
+                        let mine = members.iter().copied().filter(|&idx| reduced[idx] == r);
+                        let boxes: Vec<(usize, IBox)> =
+                            mine.map(|idx| (idx, class_box(idx))).collect();
+                        let block = boxes.iter().map(|(_, b)| *b).reduce(|a, b| hull(&a, &b));
+                        let from = match block {
+                            Some(b) if boxes.len() > 1 => eval.pruned(tape, &b),
+                            _ => tape.clone(),
+                        };
+                        for (idx, b) in boxes {
+                            let pruned = eval.pruned(&from, &b);
+                            // A pruned formula has its own derivative, often tighter,
+                            // sometimes wider (a clipped surface's box faces); only a much
+                            // shorter tape pays for the change of the root searches' path.
+                            out.push((
+                                idx,
+                                if pruned.len() * PAYS <= tape.len() {
+                                    pruned
+                                } else {
+                                    tape.clone()
+                                },
+                            ));
+                        }
                     }
-                    let tape = &tapes[r as usize];
-                    let pruned = eval.pruned(tape, &class_box(base + k));
-                    // A pruned formula has its own derivative, often tighter, sometimes
-                    // wider (a clipped surface's box faces); only a much shorter tape
-                    // pays for the change of the root searches' path.
-                    Some(if pruned.len() * PAYS <= tape.len() {
-                        pruned
-                    } else {
-                        tape.clone()
-                    })
+                    out
                 })
                 .collect();
-            for (k, tape) in pruned.into_iter().enumerate() {
+            let mut slab: Vec<Option<Tape>> = vec![None; (z1 - z0) as usize * layer];
+            for (idx, tape) in pruned.into_iter().flatten() {
+                slab[idx - base] = Some(tape);
+            }
+            for (k, tape) in slab.into_iter().enumerate() {
                 let Some(tape) = tape else { continue };
                 cell_instrs += tape.len() as u64;
                 let next = functions.len() as u32;

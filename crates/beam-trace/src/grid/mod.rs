@@ -495,7 +495,7 @@ impl Grid {
             let g = &grid;
             CellFunctions::build(
                 &reduced_tapes,
-                &reduced,
+                (&reduced, n),
                 |idx| g.class_box(g.cell_of_index(idx)),
                 full,
                 geometry.ray_function(),
