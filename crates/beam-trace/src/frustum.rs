@@ -366,6 +366,11 @@ impl Search<'_> {
     ) -> Traced {
         let ray = self.cam.ray(f64::from(x) + ox, f64::from(y) + oy);
         let beam = ray.beam();
+        if from.partial_cmp(&self.range.sup()) != Some(std::cmp::Ordering::Less) {
+            // Nothing past the first cell to search (a range of one parameter): the cell
+            // itself was not rejected.
+            return Traced::Clear { until: from };
+        }
         let budget = self.counters.g_evals + TRACE_BUDGET;
         let mut start = from;
         for level in (0..=self.chain.len()).rev() {

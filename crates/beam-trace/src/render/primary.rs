@@ -20,7 +20,7 @@ use crate::ray::Ray;
 use crate::root::{Proof, RootResult};
 use crate::sample::{Area, Sample};
 use crate::scene::Scene;
-use crate::screen::{PixelRect, needs_split, stratified_side, tiles};
+use crate::screen::{PixelRect, needs_split, stratified_offsets, stratified_side, tiles};
 use crate::stats::PassStats;
 use crate::stats::counters::{PrimaryRayCounters, ScreenBoxCounters};
 
@@ -202,19 +202,27 @@ struct PixelRays {
 impl PixelRays {
     /// The rays of `cam`'s pixels, `n` stratified ones per pixel (a square; its nearest).
     fn new(cam: &Camera, n: u32) -> Self {
-        let k = stratified_side(n);
-        // Per pixel and axis: the centre, then the `k` stratified positions.
-        let inside: Vec<f64> = std::iter::once(0.5)
-            .chain((0..k).map(|a| (f64::from(a) + 0.5) / f64::from(k)))
-            .collect();
-        let positions = |n: u32| -> Vec<f64> {
+        let k = stratified_side(n) as usize;
+        // Per pixel and axis: the centre, then the `k` stratified positions, the very
+        // values the frustum octree traces its rays at (`stratified_offsets`: its first
+        // row holds the `x` offsets, its first column the `y` offsets), so that a traced
+        // ray and its scope are this ray's.
+        let offsets = stratified_offsets(n);
+        let inside = |offset: &dyn Fn(usize) -> f64| -> Vec<f64> {
+            std::iter::once(0.5).chain((0..k).map(offset)).collect()
+        };
+        let (across, down) = (inside(&|a| offsets[a].0), inside(&|b| offsets[b * k].1));
+        let positions = |n: u32, inside: &[f64]| -> Vec<f64> {
             (0..n)
                 .flat_map(|p| inside.iter().map(move |o| f64::from(p) + o))
                 .collect()
         };
         Self {
-            table: cam.ray_table(&positions(cam.width()), &positions(cam.height())),
-            k: k as usize,
+            table: cam.ray_table(
+                &positions(cam.width(), &across),
+                &positions(cam.height(), &down),
+            ),
+            k,
         }
     }
 
