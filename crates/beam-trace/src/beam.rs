@@ -158,15 +158,10 @@ pub fn rejection_test(
 }
 
 /// The inclusion test on one range `t` (Fig. 5.9, made sound as described in the module
-/// documentation): `true` when every ray of the beam has a root in `t`. Continuity over
-/// `t` needs no evaluation where `g` is continuous everywhere by its form
-/// ([`RayFn::continuous_everywhere`]).
+/// documentation): `true` when every ray of the beam has a root in `t` (its continuity
+/// over `t` proven by [`Eval::continuous`]).
 pub fn inclusion_test(g: &mut dyn RayFn, t: Interval<f64>, counters: &mut RootCounters) -> bool {
-    let continuous = g.continuous_everywhere() || {
-        counters.g_evals += 1;
-        g.g_checked(t).1
-    };
-    continuous && ends_change_sign(g, t, counters)
+    Eval::new(&mut *g, counters).continuous(t) && ends_change_sign(g, t, counters)
 }
 
 fn ends_change_sign(g: &mut dyn RayFn, t: Interval<f64>, counters: &mut RootCounters) -> bool {

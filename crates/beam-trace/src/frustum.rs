@@ -326,10 +326,11 @@ impl Search<'_> {
         for k in 0..=LOOK_AHEAD + 1 {
             let p = b + step;
             step = if k == 0 { w } else { 2.0 * step };
-            if level > outermost && limit(&self.chain, level) < p {
-                while level > outermost && limit(&self.chain, level) < p {
-                    level -= 1;
-                }
+            let was = level;
+            while level > outermost && limit(&self.chain, level) < p {
+                level -= 1;
+            }
+            if level != was {
                 let scope = level.checked_sub(1).map(|i| &self.chain[i].tape);
                 self.g.set_interval_beam(beam, scope);
             }
@@ -343,8 +344,7 @@ impl Search<'_> {
                     return None;
                 }
                 let h = Interval::new_unchecked(a, p);
-                let continuous = self.g.continuous_everywhere()
-                    || Eval::new(&mut *self.g, self.counters).checked(h).1;
+                let continuous = ev.continuous(h);
                 let scope = level.checked_sub(1).map(|i| self.chain[i].clone());
                 return continuous.then_some((h, scope));
             }

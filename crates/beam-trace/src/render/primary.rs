@@ -208,10 +208,12 @@ impl PixelRays {
         // row holds the `x` offsets, its first column the `y` offsets), so that a traced
         // ray and its scope are this ray's.
         let offsets = stratified_offsets(n);
-        let inside = |offset: &dyn Fn(usize) -> f64| -> Vec<f64> {
-            std::iter::once(0.5).chain((0..k).map(offset)).collect()
-        };
-        let (across, down) = (inside(&|a| offsets[a].0), inside(&|b| offsets[b * k].1));
+        let across: Vec<f64> = std::iter::once(0.5)
+            .chain(offsets[..k].iter().map(|o| o.0))
+            .collect();
+        let down: Vec<f64> = std::iter::once(0.5)
+            .chain(offsets.iter().step_by(k).map(|o| o.1))
+            .collect();
         let positions = |n: u32, inside: &[f64]| -> Vec<f64> {
             (0..n)
                 .flat_map(|p| inside.iter().map(move |o| f64::from(p) + o))

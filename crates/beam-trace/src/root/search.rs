@@ -52,6 +52,14 @@ impl<'a> Eval<'a> {
         self.g.g_checked(x)
     }
 
+    /// Whether `g` is proven continuous over `x`: by its form where it is continuous
+    /// everywhere ([`RayFn::continuous_everywhere`], no evaluation), else by a checked
+    /// evaluation ([`checked`](Self::checked)).
+    #[inline]
+    pub fn continuous(&mut self, x: Interval<f64>) -> bool {
+        self.g.continuous_everywhere() || self.checked(x).1
+    }
+
     /// `G([t, t])`: an enclosure of the value at one parameter, rounded outward.
     #[inline]
     pub fn at(&mut self, t: f64) -> Interval<f64> {

@@ -33,6 +33,7 @@ use super::scoped::{ScopedEval, ScopedFunctions};
 /// without, 2.73 s with; the root finder's Newton steps through short cell functions beat
 /// the bisection of long rays.
 const TRACE_MIN_CELL_INSTRS: u64 = 32;
+
 /// The CPU's queries for one scene.
 pub struct CpuQueries<'a> {
     pub(super) scene: &'a Scene,
