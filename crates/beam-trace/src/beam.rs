@@ -158,8 +158,9 @@ pub fn rejection_test(
 }
 
 /// The inclusion test on one range `t` (Fig. 5.9, made sound as described in the module
-/// documentation): `true` when every ray of the beam has a root in `t` (its continuity
-/// over `t` proven by [`Eval::continuous`]).
+/// documentation): `true` when every ray of the beam has a root in `t` (`g` proven
+/// continuous over `t` by its form, [`RayFn::continuous_everywhere`], or by a checked
+/// evaluation).
 pub fn inclusion_test(g: &mut dyn RayFn, t: Interval<f64>, counters: &mut RootCounters) -> bool {
     Eval::new(&mut *g, counters).continuous(t) && ends_change_sign(g, t, counters)
 }
