@@ -17,7 +17,9 @@
 //! default, or the frustum octree of `beam_trace::frustum`, with one ray per undecided pixel
 //! either way; or the renderer's default mode, whose undecided pixels are resolved by their
 //! beams: a pixel then counts as covered where the surface has more than half of its
-//! weight, instead of where its centre's ray meets it), `--stats`
+//! weight, instead of where its centre's ray meets it), `--isa baseline|best` (the
+//! instruction set of our evaluators' loops, see `interval_core::isa`: the best this CPU
+//! has, the default, or the baseline of its architecture), `--stats`
 //! (print our render's statistics: the time and counters of each pass), `--images DIR`
 //! (write `DIR/MODEL-SIZE.png`, the silhouettes compared: white where both renderers hit,
 //! red where only ours does, blue where only fidget's JIT does, and our screen box
@@ -75,10 +77,11 @@ use fidget::raster::voxel::{EvalConfig, RenderConfig, render};
 use fidget::render::{CancelToken, RenderHints, ThreadPool, VoxelSize};
 use fidget::shape::Shape;
 use fidget::vm::VmFunction;
+use interval_core::isa::{self, Isa};
 
 const USAGE: &str = "usage: render3d_compare [--sizes 512,1024] [--threads 2] [--runs 3] \
-[--distance 100000] [--precision f64|f32] [--primary screen-rays|octree|screen-boxes] [--stats] [--images DIR] \
-[MODEL.vm ...]";
+[--distance 100000] [--precision f64|f32] [--primary screen-rays|octree|screen-boxes] [--isa baseline|best] \
+[--stats] [--images DIR] [MODEL.vm ...]";
 
 struct Options {
     sizes: Vec<u32>,
@@ -87,6 +90,7 @@ struct Options {
     distance: f64,
     precision: String,
     primary: String,
+    isa: Isa,
     stats: bool,
     images: Option<PathBuf>,
     files: Vec<PathBuf>,
@@ -101,6 +105,7 @@ fn parse_args() -> Result<Option<Options>, String> {
         distance: 100_000.0,
         precision: "f64".into(),
         primary: "screen-rays".into(),
+        isa: isa::detected(),
         stats: false,
         images: None,
         files: Vec::new(),
@@ -141,6 +146,13 @@ fn parse_args() -> Result<Option<Options>, String> {
                     ));
                 }
                 o.primary = v;
+            }
+            "--isa" => {
+                o.isa = match value("--isa")?.as_str() {
+                    "baseline" => Isa::Baseline,
+                    "best" => isa::detected(),
+                    v => return Err(format!("--isa {v}: baseline or best")),
+                }
             }
             "--stats" => o.stats = true,
             "--images" => o.images = Some(PathBuf::from(value("--images")?)),
@@ -338,6 +350,7 @@ fn run() -> Result<(), String> {
     let Some(o) = parse_args()? else {
         return Ok(());
     };
+    let isa = isa::set_limit(o.isa);
     let pool = |what: &str| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(o.threads)
@@ -375,11 +388,12 @@ fn run() -> Result<(), String> {
         "fidget: orthographic voxel render of [-1, 1]³ along -z, one column of `size` voxels per pixel, \
          samples at voxel centres; VM and JIT, default 3D tiles.\n\
          ours: beam_trace::render, eye (0, 0, {d}) looking at the origin, up +y, fov 2·atan(1/{d}) = {:.5}°, \
-         one ray per pixel centre, no light (primary visibility only), {} intervals; \
+         one ray per pixel centre, no light (primary visibility only), {} intervals, evaluator loops for {}; \
          at depth z the view is scaled by {d}/({d} - z), at most {:.4} px off at the border of a {}² image.\n\
          {} threads for each renderer; times: best of {} runs (median in brackets).\n",
         2.0 * (1.0 / d).atan().to_degrees(),
         o.precision,
+        isa.name(),
         *o.sizes.iter().max().unwrap_or(&0) as f64 / (2.0 * (d - 1.0)),
         o.sizes.iter().max().unwrap_or(&0),
         o.threads,

@@ -35,6 +35,7 @@ pub mod dd;
 pub mod decorated;
 pub mod float;
 pub mod interval;
+pub mod isa;
 pub mod modal;
 pub mod testing;
 

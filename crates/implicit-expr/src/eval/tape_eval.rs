@@ -1,6 +1,6 @@
 //! The walk over a register tape, for one point (or box) at a time and for slices.
 
-use interval_core::Decoration;
+use interval_core::{Decoration, isa};
 
 use crate::constant::Constant;
 use crate::error::Error;
@@ -261,8 +261,40 @@ const DECORATION: u8 = 2;
 ///   `Com` otherwise (step functions and `domain` jump but are defined, which does not
 ///   stop pruning);
 /// * neither: `Com`.
+///
+/// Runs the loop compiled for the instruction set in use ([`interval_core::isa`]).
 #[inline(always)]
 fn run<N: Number, const TRACE: bool, const CHECK: u8, const SIDE: u8>(
+    instrs: &[Instr],
+    regs: &mut [N],
+    vars: &[N],
+    trace: &mut Vec<Choice>,
+    undecided: &mut u32,
+) -> Decoration {
+    #[cfg(target_arch = "x86_64")]
+    if isa::x86_64_v3() {
+        // SAFETY: `isa::x86_64_v3` checked that the CPU has the features `run_v3` is compiled for.
+        return unsafe { run_v3::<N, TRACE, CHECK, SIDE>(instrs, regs, vars, trace, undecided) };
+    }
+    walk::<N, TRACE, CHECK, SIDE>(instrs, regs, vars, trace, undecided)
+}
+
+/// [`walk`] compiled for x86-64-v3.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt")]
+fn run_v3<N: Number, const TRACE: bool, const CHECK: u8, const SIDE: u8>(
+    instrs: &[Instr],
+    regs: &mut [N],
+    vars: &[N],
+    trace: &mut Vec<Choice>,
+    undecided: &mut u32,
+) -> Decoration {
+    walk::<N, TRACE, CHECK, SIDE>(instrs, regs, vars, trace, undecided)
+}
+
+/// The body of [`run`].
+#[inline(always)]
+fn walk<N: Number, const TRACE: bool, const CHECK: u8, const SIDE: u8>(
     instrs: &[Instr],
     regs: &mut [N],
     vars: &[N],
@@ -377,9 +409,7 @@ impl<N: Number> SliceEvaluator<N> {
         let mut start = 0;
         while start < out.len() {
             let n = SLICE_CHUNK.min(out.len() - start);
-            for ins in self.tape.instrs() {
-                step(ins, &mut self.regs, vars, start, n);
-            }
+            pass(self.tape.instrs(), &mut self.regs, vars, start, n);
             out[start..start + n].copy_from_slice(&self.regs[output * SLICE_CHUNK..][..n]);
             start += n;
         }
@@ -418,9 +448,14 @@ impl<N: Number> SliceEvaluator<N> {
             let n = SLICE_CHUNK.min(out.len() - start);
             defined[..n].fill(true);
             let lanes = &mut traces[start..start + n];
-            for ins in self.tape.instrs() {
-                step_traced(ins, &mut self.regs, vars, start, n, lanes, &mut defined);
-            }
+            pass_traced(
+                self.tape.instrs(),
+                &mut self.regs,
+                vars,
+                (start, n),
+                lanes,
+                &mut defined,
+            );
             out[start..start + n].copy_from_slice(&self.regs[output * SLICE_CHUNK..][..n]);
             for (t, &d) in lanes.iter_mut().zip(&defined[..n]) {
                 if !d {
@@ -454,6 +489,70 @@ impl<N: Number> SliceEvaluator<N> {
         }
         Ok(())
     }
+}
+
+/// One pass of `instrs` over `n` inputs starting at `start`, in the loop compiled for the
+/// instruction set in use ([`interval_core::isa`]).
+fn pass<N: Number>(instrs: &[Instr], regs: &mut [N], vars: &[&[N]], start: usize, n: usize) {
+    #[inline(always)]
+    fn body<N: Number>(instrs: &[Instr], regs: &mut [N], vars: &[&[N]], start: usize, n: usize) {
+        for ins in instrs {
+            step(ins, regs, vars, start, n);
+        }
+    }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt")]
+    fn v3<N: Number>(instrs: &[Instr], regs: &mut [N], vars: &[&[N]], start: usize, n: usize) {
+        body(instrs, regs, vars, start, n);
+    }
+    #[cfg(target_arch = "x86_64")]
+    if isa::x86_64_v3() {
+        // SAFETY: `isa::x86_64_v3` checked that the CPU has the features `v3` is compiled for.
+        return unsafe { v3(instrs, regs, vars, start, n) };
+    }
+    body(instrs, regs, vars, start, n);
+}
+
+/// [`pass`] recording choices and definedness per input (see [`step_traced`]).
+fn pass_traced<N: Number>(
+    instrs: &[Instr],
+    regs: &mut [N],
+    vars: &[&[N]],
+    (start, n): (usize, usize),
+    lanes: &mut [Vec<Choice>],
+    defined: &mut [bool; SLICE_CHUNK],
+) {
+    #[inline(always)]
+    fn body<N: Number>(
+        instrs: &[Instr],
+        regs: &mut [N],
+        vars: &[&[N]],
+        (start, n): (usize, usize),
+        lanes: &mut [Vec<Choice>],
+        defined: &mut [bool; SLICE_CHUNK],
+    ) {
+        for ins in instrs {
+            step_traced(ins, regs, vars, start, n, lanes, defined);
+        }
+    }
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt")]
+    fn v3<N: Number>(
+        instrs: &[Instr],
+        regs: &mut [N],
+        vars: &[&[N]],
+        at: (usize, usize),
+        lanes: &mut [Vec<Choice>],
+        defined: &mut [bool; SLICE_CHUNK],
+    ) {
+        body(instrs, regs, vars, at, lanes, defined);
+    }
+    #[cfg(target_arch = "x86_64")]
+    if isa::x86_64_v3() {
+        // SAFETY: `isa::x86_64_v3` checked that the CPU has the features `v3` is compiled for.
+        return unsafe { v3(instrs, regs, vars, (start, n), lanes, defined) };
+    }
+    body(instrs, regs, vars, (start, n), lanes, defined);
 }
 
 /// One instruction over `n` inputs starting at `start`.

@@ -7,6 +7,12 @@
 //! `*`; selects by sign for `/`), so the results are tight. `0 · ∞` is taken as 0 (the limit
 //! over the set).
 
+//!
+//! The cheap operations (`neg`, `+`, `-`, the branching product, `sqr`, `sqrt`, `abs`,
+//! `min`, `max`) are always inlined: an evaluator loop compiled for a wider instruction set
+//! than the crate's (FMA under the error-free products) then computes them in that set too,
+//! instead of calling a copy compiled for the baseline.
+
 use super::Interval;
 use crate::float::Float;
 use core::ops::{Add, Div, Mul, Neg, Sub};
@@ -66,7 +72,7 @@ fn product_hull<T: Float>(
 
 impl<T: Float> Interval<T> {
     /// `−x`. Exact.
-    #[inline]
+    #[inline(always)]
     #[allow(clippy::should_implement_trait)]
     pub fn neg(self) -> Self {
         Self {
@@ -76,7 +82,7 @@ impl<T: Float> Interval<T> {
     }
 
     /// `x + y`, tight.
-    #[inline]
+    #[inline(always)]
     #[allow(clippy::should_implement_trait)]
     pub fn add(self, rhs: Self) -> Self {
         Self {
@@ -86,7 +92,7 @@ impl<T: Float> Interval<T> {
     }
 
     /// `x − y`, tight.
-    #[inline]
+    #[inline(always)]
     #[allow(clippy::should_implement_trait)]
     pub fn sub(self, rhs: Self) -> Self {
         Self {
@@ -126,7 +132,7 @@ impl<T: Float> Interval<T> {
     /// scalar evaluation of one formula along a ray, where the branches predict: about 12 %
     /// off the whole default render), slower on random signs, where they mispredict (see
     /// `docs/benchmarks.md`).
-    #[inline]
+    #[inline(always)]
     pub fn mul_sign_cases(self, rhs: Self) -> Self {
         if self.is_empty() || rhs.is_empty() {
             return Self::EMPTY;
@@ -231,7 +237,7 @@ impl<T: Float> Interval<T> {
 
     /// `x²`, tight (and tighter than `x · x` when `x` contains 0): `[mig(x)²↓, mag(x)²↑]`,
     /// with the mignitude chosen by selects rather than branches.
-    #[inline]
+    #[inline(always)]
     pub fn sqr(self) -> Self {
         if self.is_empty() {
             return self;
@@ -245,7 +251,7 @@ impl<T: Float> Interval<T> {
     }
 
     /// `√x` over `x ∩ [0, +∞]`, tight; empty when `x < 0`.
-    #[inline]
+    #[inline(always)]
     pub fn sqrt(self) -> Self {
         if self.is_empty() || self.hi < T::ZERO {
             return Self::EMPTY;
@@ -255,7 +261,7 @@ impl<T: Float> Interval<T> {
     }
 
     /// `|x|`. Exact.
-    #[inline]
+    #[inline(always)]
     pub fn abs(self) -> Self {
         if self.is_empty() {
             return self;
@@ -269,7 +275,7 @@ impl<T: Float> Interval<T> {
     }
 
     /// `min(x, y)` taken pointwise. Exact.
-    #[inline]
+    #[inline(always)]
     pub fn min(self, rhs: Self) -> Self {
         if self.is_empty() || rhs.is_empty() {
             return Self::EMPTY;
@@ -278,7 +284,7 @@ impl<T: Float> Interval<T> {
     }
 
     /// `max(x, y)` taken pointwise. Exact.
-    #[inline]
+    #[inline(always)]
     pub fn max(self, rhs: Self) -> Self {
         if self.is_empty() || rhs.is_empty() {
             return Self::EMPTY;
