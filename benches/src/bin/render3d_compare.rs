@@ -445,6 +445,12 @@ fn run() -> Result<(), String> {
                 pass_times(&out),
             );
             if o.stats {
+                if let Ok((bound, _, _)) = &octree {
+                    println!(
+                        "\noctree bound: {} interval evaluations, {} tapes pruned",
+                        bound.evals, bound.prunes
+                    );
+                }
                 println!("\n```text\n{}\n```\n", out.stats);
             }
             if let Some(dir) = &o.images {
