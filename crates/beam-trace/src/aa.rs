@@ -9,6 +9,13 @@
 //! beam is split in four, down to a depth limit; the pixel's colour is the area-weighted
 //! sum of its parts.
 //!
+//! A region shaded once takes one sample's shadow query for each light, so a hard shadow's
+//! edge across it would be lost: for each point light whose term in the colour
+//! ([`Variation::light_terms`]) could change it by more than the threshold, the shadow
+//! beam from the region's points lifted off the surface ([`shadow_origins`]) to the light
+//! must be proven free or proven blocked, else the region is split as one whose shading
+//! varies (the CPU backend's shading-variation query makes that judgement).
+//!
 //! At the depth limit, an undecided part is shaded with the first surface its beam may
 //! meet: its central ray's hit if it has one, else the point of the central ray in the
 //! first parameter range the beam could not reject. So a feature thinner than a pixel
@@ -62,16 +69,50 @@ impl Cone {
     }
 }
 
+/// One light's factors in the colour over a region.
+struct LightTerm {
+    /// Colour times intensity.
+    color: [Interval<f64>; 3],
+    /// The diffuse cosine.
+    nl: Interval<f64>,
+    /// The highlight's cosine.
+    er: Interval<f64>,
+}
+
+/// How much the Phong colour ([`phong`](crate::shading::phong)) may vary over a proven hit
+/// region, as [`shading_variation`] bounds it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Variation {
+    /// The largest width, over the colour channels, of the hull of the colours the region
+    /// may take, shadows aside.
+    pub spread: f64,
+    /// For each light, the most it adds to a channel of the colour at a point of the region:
+    /// what its shadow may take away there.
+    pub light_terms: Vec<f64>,
+}
+
+impl Variation {
+    /// Unbounded: a region that must be split.
+    fn unbounded(lights: usize) -> Variation {
+        Variation {
+            spread: f64::INFINITY,
+            light_terms: vec![f64::INFINITY; lights],
+        }
+    }
+}
+
 /// The spread of the Phong colour ([`phong`](crate::shading::phong)) over a proven hit
 /// region: the largest width, over the colour channels, of the hull of the colours that
 /// the region's normals, view and light directions allow, for every material in
-/// `materials` (the leaves that may shade the region). The normals are the directions of
+/// `materials` (the leaves that may shade the region); and each light's largest term in
+/// that colour. The normals are the directions of
 /// `gradient` (an enclosure of the scene function's gradient over the region), the view
 /// directions those from the hit points `region` to the viewpoints `eye`; each set is
 /// bounded by a cone around its centre direction, and the cosines of the diffuse and
 /// highlight terms by the angles between the cones' axes plus their half-angles (a
 /// reflection about a normal in a cone of half-angle θ turns by at most 2θ). Shadows are
-/// not part of it: a region shaded once takes its one sample's shadow query.
+/// not part of the spread: a region shaded once takes its one sample's shadow query, and
+/// a light's term bounds what its shadow changes.
 ///
 /// Infinite where the region may hold a silhouette (the normal may face both towards and
 /// away from the eye), the gradient may vanish, or the enclosures are unbounded. It bounds
@@ -84,27 +125,27 @@ pub fn shading_variation(
     materials: &[Material],
     ambient: f32,
     lights: &[LightSource],
-) -> f64 {
+) -> Variation {
     if materials.is_empty() {
-        return f64::INFINITY;
+        return Variation::unbounded(lights.len());
     }
     let towards = |to: &IBox| -> IBox { std::array::from_fn(|i| to[i] - region[i]) };
     let (Some(mut n), Some(e)) = (Cone::of(&gradient), Cone::of(&towards(&eye))) else {
-        return f64::INFINITY;
+        return Variation::unbounded(lights.len());
     };
     // The normal turned towards the eye: one orientation over the whole region.
     let (lo, hi) = n.cos_range(&e);
     if hi < 0.0 {
         n.axis = -n.axis;
     } else if lo <= 0.0 {
-        return f64::INFINITY;
+        return Variation::unbounded(lights.len());
     }
     let clamp = |(lo, hi): (f64, f64)| Interval::new_unchecked(lo.max(0.0), hi.max(0.0));
     let mut diffuse = [ipoint(f64::from(ambient)); 3];
-    let mut highlight: Vec<([Interval<f64>; 3], Interval<f64>)> = Vec::new();
+    let mut terms: Vec<LightTerm> = Vec::new();
     for light in lights {
         let Some(l) = Cone::of(&towards(&light.position.map(ipoint))) else {
-            return f64::INFINITY;
+            return Variation::unbounded(lights.len());
         };
         let nl = clamp(n.cos_range(&l));
         // r = 2 (n·l) n − l: the reflection of the light's axis about the normal's axis (a
@@ -118,28 +159,77 @@ pub fn shading_variation(
         for k in 0..3 {
             diffuse[k] = diffuse[k] + c[k] * nl;
         }
-        highlight.push((c, er));
+        terms.push(LightTerm { color: c, nl, er });
     }
     // The hull of the colour over every material: leaves of different colours in one
     // region spread the colour as much as shading does.
     let mut hull: [Option<Interval<f64>>; 3] = [None; 3];
+    let mut light_terms = vec![0.0f64; lights.len()];
     for m in materials {
         let p = f64::from(m.shininess);
         let power = |b: Interval<f64>| {
             Interval::new_unchecked(b.inf().min(1.0).powf(p), b.sup().min(1.0).powf(p))
         };
+        let (kd, ks) = (
+            m.color.map(|c| ipoint(f64::from(c))),
+            ipoint(f64::from(m.specular)),
+        );
         for (k, h) in hull.iter_mut().enumerate() {
-            let mut colour = ipoint(f64::from(m.color[k])) * diffuse[k];
-            for (c, er) in &highlight {
-                colour = colour + ipoint(f64::from(m.specular)) * c[k] * power(*er);
+            let mut colour = kd[k] * diffuse[k];
+            for (term, l) in light_terms.iter_mut().zip(&terms) {
+                let highlight = ks * l.color[k] * power(l.er);
+                colour = colour + highlight;
+                *term = term.max((kd[k] * l.color[k] * l.nl + highlight).sup());
             }
             *h = Some(h.map_or(colour, |h| h.convex_hull(colour)));
         }
     }
     let spread = hull.iter().flatten().map(|h| h.wid()).fold(0.0, f64::max);
-    if spread.is_nan() {
-        f64::INFINITY
+    if spread.is_nan() || light_terms.iter().any(|t| t.is_nan()) {
+        Variation::unbounded(lights.len())
     } else {
-        spread
+        Variation {
+            spread,
+            light_terms,
+        }
     }
+}
+
+/// The box of the points of `region` (hit points) each moved `offset` along its unit normal
+/// turned towards the eye, as [`Hit::shadow_origin`](crate::sample::Hit::shadow_origin)
+/// moves a sample's point to where its shadow ray starts. The normals
+/// are the directions of `gradient` (an enclosure of the scene function's gradient over the
+/// region), turned by the sign of their product with the directions to the viewpoints
+/// `eye`, in interval arithmetic rounded outward; and that sign (`1.0` or `-1.0`: the
+/// facing normals are the gradients' directions times it).
+///
+/// `None` where that sign is not one over the region (a silhouette may cross it), the
+/// gradient may vanish, or the enclosures are unbounded.
+pub fn shadow_origins(
+    gradient: &IBox,
+    region: &IBox,
+    eye: &IBox,
+    offset: f64,
+) -> Option<(IBox, f64)> {
+    let towards: IBox = std::array::from_fn(|i| eye[i] - region[i]);
+    let facing = (0..3).fold(ipoint(0.0), |d, i| d + gradient[i] * towards[i]);
+    let side = if facing.inf() > 0.0 {
+        1.0
+    } else if facing.sup() < 0.0 {
+        -1.0
+    } else {
+        return None;
+    };
+    let length = (0..3)
+        .fold(ipoint(0.0), |d, i| d + gradient[i].sqr())
+        .sqrt();
+    if length.is_empty() || length.inf() <= 0.0 || !length.sup().is_finite() {
+        return None;
+    }
+    let step = ipoint(side * offset);
+    let origins: IBox = std::array::from_fn(|i| region[i] + step * (gradient[i] / length));
+    origins
+        .iter()
+        .all(|x| !x.is_empty() && x.inf().is_finite() && x.sup().is_finite())
+        .then_some((origins, side))
 }

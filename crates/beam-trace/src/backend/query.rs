@@ -154,13 +154,19 @@ pub struct CellQuery {
 }
 
 /// A hit region whose shading variation is wanted: the beam and its proven section
-/// `T_final`.
+/// `T_final`, and the variation below which it would be shaded once.
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct VariationQuery {
     /// The beam.
     pub beam: Beam,
     /// Its proven section.
     pub t_final: Interval<f64>,
+    /// The threshold of the judgement: where the shading's spread is at most this, the
+    /// region's hard shadows are judged too. A point light whose shadow could add more to
+    /// the spread than the threshold allows (its term in the colour is that large
+    /// somewhere in the region) and is not proven the same over the whole region makes the
+    /// variation infinite; a wider spread is split anyway, so its shadows are not judged.
+    pub threshold: f64,
 }
 
 /// A hard-shadow segment from a point (already off its surface) to a point light.

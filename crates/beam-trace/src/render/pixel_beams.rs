@@ -160,7 +160,8 @@ fn classify(
 }
 
 /// Whether each Hit part of `judged` may be shaded once: its shading varies by at most
-/// `threshold` over its proven region.
+/// `threshold` over its proven region, and the shadow of each point light is proven the
+/// same over it (lit, or blocked, everywhere).
 fn smooth_hits(
     q: &dyn Queries,
     (cam, level): (&Camera, &[Part]),
@@ -175,6 +176,7 @@ fn smooth_hits(
             BoxClass::Hit { t_final } => Some(VariationQuery {
                 beam: level[j].beam(cam),
                 t_final,
+                threshold,
             }),
             _ => None,
         })

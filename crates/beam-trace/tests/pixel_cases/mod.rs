@@ -22,7 +22,8 @@ macro_rules! pixel_tests {
             two_wires_crossing_inside_a_pixel_both_appear,
             a_sphere_smaller_than_a_pixel_has_its_coverage_bounded,
             the_drops_neck_is_kept_wherever_dense_rays_see_it,
-            rays_at_the_depth_limit_estimate_an_edges_share
+            rays_at_the_depth_limit_estimate_an_edges_share,
+            a_hard_shadows_edge_is_anti_aliased
         );
     };
     ($with:path: $($case:ident),+) => {
@@ -395,5 +396,74 @@ material = {{ color = [1.0, 1.0, 1.0] }}
     assert!(
         sixteen < 0.4 * one && sixteen < 0.006,
         "edge RMS error {sixteen} with 4 x 4 rays against {one} with the central ray"
+    );
+}
+
+/// A floor lit by a point light, part of it in the shadow of a thin slab out of view whose
+/// straight edge runs at an angle: the shadow's edge crosses the floor's pixels, each of which the
+/// primary beams prove to hit the floor alone, and where the shading hardly varies. With
+/// interval anti-aliasing each region shaded once must have its shadow proven the same all
+/// over it, so the edge pixels are split and come close to a reference of 16 × 16 rays per
+/// pixel, where a region shaded with one shadow query per light would be all lit or all
+/// dark: the RMS error over the edge pixels falls well below that of the render without
+/// anti-aliasing, and every pixel's coverage bounds hold (the floor covers every pixel).
+pub fn a_hard_shadows_edge_is_anti_aliased(run: Render<'_>) {
+    let surfaces = r#"
+[[surfaces]]
+name = "floor"
+formula = "z"
+bounds = [[-3.0, -3.0, -0.5], [3.0, 3.0, 0.5]]
+material = { color = [0.9, 0.9, 0.9], specular = 0.0 }
+
+[[surfaces]]
+name = "slab"
+formula = "max(abs(z - 5) - 0.02, x + 0.4 * y + 4.85)"
+bounds = [[-20.0, -10.0, 4.9], [20.0, 10.0, 5.1]]
+material = { color = [0.2, 0.2, 0.8], specular = 0.0 }
+
+[[lights]]
+type = "point"
+position = [-10.0, 0.0, 10.0]
+intensity = 1.0
+"#;
+    let render = |aa: &str| run(&scene(surfaces, &format!("aa = \"{aa}\"")));
+    let reference = render("ss:16");
+    let plain = render("none");
+    let iaa = render("iaa:3:0.05:2");
+    let value = |out: &RenderOutput, i: usize| f64::from(out.image.pixels[i][0]);
+    // The edge pixels: neither the lit nor the shadowed floor's value in the reference.
+    let (lo, hi) = reference
+        .image
+        .pixels
+        .iter()
+        .map(|p| f64::from(p[0]))
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), v| {
+            (a.min(v), b.max(v))
+        });
+    let edge: Vec<usize> = (0..reference.image.pixels.len())
+        .filter(|&i| {
+            let v = value(&reference, i);
+            v > lo + 0.05 * (hi - lo) && v < hi - 0.05 * (hi - lo)
+        })
+        .collect();
+    assert!(edge.len() >= 10, "{} edge pixels", edge.len());
+    let rms = |out: &RenderOutput| {
+        let sum: f64 = edge
+            .iter()
+            .map(|&i| (value(out, i) - value(&reference, i)).powi(2))
+            .sum();
+        (sum / edge.len() as f64).sqrt()
+    };
+    for (i, cov) in iaa.coverage.iter().enumerate() {
+        assert_bounds(cov, 1.0, 0.0, &format!("pixel {i}"));
+    }
+    let (without, with) = (rms(&plain), rms(&iaa));
+    eprintln!(
+        "{} shadow-edge pixels, RMS error {without:.4} without anti-aliasing, {with:.4} with iaa:3",
+        edge.len()
+    );
+    assert!(
+        with < 0.25 * without,
+        "shadow-edge RMS error {with} with iaa:3 against {without} without anti-aliasing"
     );
 }

@@ -127,7 +127,14 @@ impl Queries for CpuQueries<'_> {
                 color: l.color(),
             })
             .collect();
-        Ok(self.map(queries, true, |ev, q, _| {
+        // The point lights (hard shadows) by their index in `lights`.
+        let point_lights: Vec<Option<DVec3>> = self
+            .scene
+            .lights
+            .iter()
+            .map(|l| l.as_point().map(|p| p.position))
+            .collect();
+        Ok(self.map(queries, true, |ev, q, c| {
             let region = q.beam.points(q.t_final);
             let (_, grad) = ev.geo.gradient_box(&region);
             let leaves = self.scene.geometry.leaves();
@@ -137,14 +144,31 @@ impl Queries for CpuQueries<'_> {
                 .into_iter()
                 .map(|i| leaves[i].material)
                 .collect();
-            shading_variation(
+            let v = shading_variation(
                 grad,
                 region,
                 q.beam.origin,
                 &materials,
                 self.scene.ambient,
                 &lights,
-            )
+            );
+            if v.spread > q.threshold {
+                return v.spread;
+            }
+            // The point lights whose shadow could change the colour by more than the
+            // threshold allows: their shadows must be the same over the whole region.
+            let judged: Vec<DVec3> = point_lights
+                .iter()
+                .zip(&v.light_terms)
+                .filter(|&(_, &term)| v.spread + term > q.threshold)
+                .filter_map(|(p, _)| *p)
+                .collect();
+            let region = (&grad, &region, &q.beam.origin);
+            if self.hard_shadows_uniform(ev, region, &judged, c) {
+                v.spread
+            } else {
+                f64::INFINITY
+            }
         }))
     }
 

@@ -5,9 +5,12 @@ use glam::DVec3;
 use interval_core::Interval;
 
 use super::queries::{CpuQueries, Evals};
-use crate::beam::{BoxClass, Extent, evaluate_box, rejection_search};
+use crate::aa::shadow_origins;
+use crate::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
+use crate::ibox::{IBox, ipoint};
 use crate::ray::{Beam, Ray, point_box};
 use crate::root::{Proof, RootCounters, RootFinder, RootResult};
+use crate::sample::SHADOW_OFFSET;
 use crate::shadow::beam::shadow_beam_settings;
 use crate::shadow::hard::segment_visibility;
 use crate::shadow::{Occluders, Occlusion, Patch};
@@ -83,27 +86,97 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
             origin: point_box(from),
             dir: light.directions_from(from),
         };
-        let ranges = self
-            .queries
-            .beam_ranges(&beam, Interval::new_unchecked(start, 1.0));
-        if ranges.is_empty() {
-            return BoxClass::Miss;
-        }
         let settings = shadow_beam_settings(
             &self.queries.plan.beam,
             self.queries.scene.geometry.diagonal(),
             from,
             light,
         );
-        self.ev.geo.beam.set_beam(&beam);
-        if !inclusion {
-            return rejection_search(&mut self.ev.geo.beam, &ranges, &settings, c);
+        self.queries
+            .shadow_beam(self.ev, &beam, (start, inclusion), &settings, c)
+    }
+}
+
+impl CpuQueries<'_> {
+    /// Whether the shadow of every point light at `lights` is judged the same over a hit
+    /// region (`gradient`, the points `region`, seen from `eye`), so that one sample's
+    /// shadow query may stand for all of them: the shadow beam from the region's points,
+    /// lifted off the surface, to the light is proven free or proven blocked, or the light
+    /// is behind the surface at every point (no sample asks). The region's box holds
+    /// points on both sides of the surface (its rays over the whole section `T_final`), and
+    /// rays from those inside the solid would be blocked by the surface itself; so the
+    /// origins are the box's points moved along their facing normals by the renderer's
+    /// shadow offset plus the box's diagonal ([`shadow_origins`]), above a flat region's
+    /// surface. An estimate for deciding splits: an occluder nearer the surface than that
+    /// is not seen (each sample's own segment still decides its shade). `false` where the
+    /// origins cannot be bounded (the normal may turn either way over the region).
+    pub(super) fn hard_shadows_uniform(
+        &self,
+        ev: &mut Evals,
+        (gradient, region, eye): (&IBox, &IBox, &IBox),
+        lights: &[DVec3],
+        c: &mut RootCounters,
+    ) -> bool {
+        if lights.is_empty() {
+            return true;
         }
-        let bounds = self.queries.scene.geometry.bounds();
+        let diagonal = self.scene.geometry.diagonal();
+        let size = region.iter().map(|x| x.wid() * x.wid()).sum::<f64>().sqrt();
+        let lift = SHADOW_OFFSET * diagonal + size;
+        let Some((origins, side)) = shadow_origins(gradient, region, eye, lift) else {
+            return false;
+        };
+        let centre = DVec3::from_array(std::array::from_fn(|i| origins[i].mid()));
+        lights.iter().all(|&light| {
+            let to = point_box(light);
+            // The facing normal's product with the direction to the light, over the region:
+            // at most zero everywhere, and no sample casts a segment.
+            let facing = (0..3).fold(ipoint(0.0), |d, i| d + gradient[i] * (to[i] - region[i]));
+            if (ipoint(side) * facing).sup() <= 0.0 {
+                return true;
+            }
+            let beam = Beam {
+                origin: origins,
+                dir: std::array::from_fn(|i| to[i] - origins[i]),
+            };
+            let patch = Patch {
+                corner: light,
+                edge_u: DVec3::ZERO,
+                edge_v: DVec3::ZERO,
+            };
+            let settings = shadow_beam_settings(&self.plan.beam, diagonal, centre, &patch);
+            !matches!(
+                self.shadow_beam(ev, &beam, (0.0, true), &settings, c),
+                BoxClass::Undecided { .. }
+            )
+        })
+    }
+
+    /// A shadow beam (rays `origin + t·dir` to the light at `t = 1`) searched for
+    /// `t ∈ [start, 1]` through the grid's non-empty cells with `settings`:
+    /// [`BoxClass::Miss`] proves that no ray meets a surface there; with `inclusion`,
+    /// [`BoxClass::Hit`] that every ray does; else [`BoxClass::Undecided`].
+    pub(super) fn shadow_beam(
+        &self,
+        ev: &mut Evals,
+        beam: &Beam,
+        (start, inclusion): (f64, bool),
+        settings: &BeamSettings,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        let ranges = self.beam_ranges(beam, Interval::new_unchecked(start, 1.0));
+        if ranges.is_empty() {
+            return BoxClass::Miss;
+        }
+        ev.geo.beam.set_beam(beam);
+        if !inclusion {
+            return rejection_search(&mut ev.geo.beam, &ranges, settings, c);
+        }
+        let bounds = self.scene.geometry.bounds();
         let extent = Extent {
-            beam: &beam,
+            beam,
             bounds: &bounds,
         };
-        evaluate_box(&mut self.ev.geo.beam, &ranges, Some(&extent), &settings, c)
+        evaluate_box(&mut ev.geo.beam, &ranges, Some(&extent), settings, c)
     }
 }
