@@ -195,13 +195,16 @@ pub fn shading_variation(
     }
 }
 
-/// The box of the points of `region` (hit points) each moved `offset` along its unit normal
-/// turned towards the eye, as [`Hit::shadow_origin`](crate::sample::Hit::shadow_origin)
-/// moves a sample's point to where its shadow ray starts. The normals
-/// are the directions of `gradient` (an enclosure of the scene function's gradient over the
-/// region), turned by the sign of their product with the directions to the viewpoints
-/// `eye`, in interval arithmetic rounded outward; and that sign (`1.0` or `-1.0`: the
-/// facing normals are the gradients' directions times it).
+/// The box of the points of `region` (a box holding hit points) each moved along its unit
+/// normal turned towards the eye by `offset` plus the box's extent along that normal (the
+/// largest `Σ |n_i| · wid(region_i)`): a box of a flat piece of surface holds points up to
+/// that far inside the solid, and a shadow ray's origin must lie outside it, `offset` off
+/// the surface as [`Hit::shadow_origin`](crate::sample::Hit::shadow_origin) places a
+/// sample's. The normals are the directions of `gradient` (an enclosure of the scene
+/// function's gradient over the region), turned by the sign of their product with the
+/// directions to the viewpoints `eye`, in interval arithmetic rounded outward. Returns the
+/// box and that sign (`1.0` or `-1.0`: the facing normals are the gradients' directions
+/// times it).
 ///
 /// `None` where that sign is not one over the region (a silhouette may cross it), the
 /// gradient may vanish, or the enclosures are unbounded.
@@ -226,8 +229,13 @@ pub fn shadow_origins(
     if length.is_empty() || length.inf() <= 0.0 || !length.sup().is_finite() {
         return None;
     }
+    let normal: IBox = std::array::from_fn(|i| gradient[i] / length);
+    let extent = (0..3).fold(ipoint(0.0), |d, i| {
+        d + normal[i].abs() * ipoint(region[i].wid())
+    });
+    let offset = (ipoint(offset) + extent).sup();
     let step = ipoint(side * offset);
-    let origins: IBox = std::array::from_fn(|i| region[i] + step * (gradient[i] / length));
+    let origins: IBox = std::array::from_fn(|i| region[i] + step * normal[i]);
     origins
         .iter()
         .all(|x| !x.is_empty() && x.inf().is_finite() && x.sup().is_finite())

@@ -106,8 +106,8 @@ impl CpuQueries<'_> {
     /// points on both sides of the surface (its rays over the whole section `T_final`), and
     /// rays from those inside the solid would be blocked by the surface itself; so the
     /// origins are the box's points moved along their facing normals by the renderer's
-    /// shadow offset plus the box's diagonal ([`shadow_origins`]), above a flat region's
-    /// surface. An estimate for deciding splits: an occluder nearer the surface than that
+    /// shadow offset plus the box's extent along them ([`shadow_origins`]), above a flat
+    /// region's surface. An estimate for deciding splits: an occluder nearer the surface than that
     /// is not seen (each sample's own segment still decides its shade). `false` where the
     /// origins cannot be bounded (the normal may turn either way over the region).
     pub(super) fn hard_shadows_uniform(
@@ -121,9 +121,8 @@ impl CpuQueries<'_> {
             return true;
         }
         let diagonal = self.scene.geometry.diagonal();
-        let size = region.iter().map(|x| x.wid() * x.wid()).sum::<f64>().sqrt();
-        let lift = SHADOW_OFFSET * diagonal + size;
-        let Some((origins, side)) = shadow_origins(gradient, region, eye, lift) else {
+        let offset = SHADOW_OFFSET * diagonal;
+        let Some((origins, side)) = shadow_origins(gradient, region, eye, offset) else {
             return false;
         };
         let centre = DVec3::from_array(std::array::from_fn(|i| origins[i].mid()));
