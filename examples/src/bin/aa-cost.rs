@@ -5,8 +5,12 @@
 //! than one 8-bit level in some channel (silhouettes, creases, shadow boundaries).
 //!
 //! ```text
-//! aa-cost [SCENE.toml] [--width W --height H] [--reference N] [--out FILE.md]
+//! aa-cost [SCENE.toml] [--width W --height H] [--reference N] [--modes M,M,...] [--out FILE.md]
 //! ```
+//!
+//! `--modes` measures only the anti-aliasing modes listed (as the render command's `--aa`
+//! takes them: `none`, `ss:N`, `iaa:D:T:M`, ...; `screen-rays` for the thesis's 9 point
+//! rays), after the default mode, which every ratio refers to.
 //!
 //! Prints (and with `--out` writes) a markdown table: per mode the render time, the time
 //! ratio to the default mode, the RMSE and the largest error over the edge pixels (the
@@ -36,9 +40,34 @@ struct Args {
     /// Rays per pixel side of the reference (N × N stratified rays).
     #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..=16))]
     reference: u32,
+    /// Only these modes after the default one (comma-separated, as `--aa` takes them, or
+    /// `screen-rays`); all of the built-in list when absent.
+    #[arg(long, value_delimiter = ',')]
+    modes: Vec<String>,
     /// Where to write the report too.
     #[arg(long)]
     out: Option<PathBuf>,
+}
+
+/// The default mode, then the modes `names` (see [`Args::modes`]).
+fn chosen(names: &[String]) -> Result<Vec<(String, PrimaryMode, AaMode)>, String> {
+    let mut out = vec![(
+        "default (screen-boxes)".to_string(),
+        PrimaryMode::ScreenBoxes,
+        AaMode::None,
+    )];
+    for name in names {
+        let (primary, aa) = if name == "screen-rays" {
+            (PrimaryMode::ScreenRays, AaMode::None)
+        } else {
+            let aa = name
+                .parse::<AaMode>()
+                .map_err(|e| format!("--modes {name}: {e}"))?;
+            (PrimaryMode::ScreenBoxes, aa)
+        };
+        out.push((name.clone(), primary, aa));
+    }
+    Ok(out)
 }
 
 /// The modes measured: a name, the primary mode and the anti-aliasing mode.
@@ -111,6 +140,14 @@ fn errors(a: &Image, b: &Image) -> Vec<f64> {
 
 fn run(args: &Args) -> Result<(), String> {
     let scene = load(args.scene.as_deref(), args.width, args.height)?;
+    let modes = if args.modes.is_empty() {
+        modes()
+            .into_iter()
+            .map(|(n, p, a)| (n.to_string(), p, a))
+            .collect()
+    } else {
+        chosen(&args.modes)?
+    };
     eprintln!(
         "reference: {n} × {n} rays per pixel at {} × {}",
         args.width,
@@ -133,7 +170,7 @@ fn run(args: &Args) -> Result<(), String> {
         return Err("the scene has no edge pixels: nothing to anti-alias".into());
     }
     let mut rows = Vec::new();
-    for (name, primary, aa) in modes() {
+    for (name, primary, aa) in modes {
         let (img, t) = timed(&scene, primary, aa)?;
         let e = errors(&img, &reference);
         let on_edges: Vec<f64> = edges.iter().map(|&i| e[i]).collect();
@@ -152,7 +189,8 @@ fn run(args: &Args) -> Result<(), String> {
         edges.len(),
         n = args.reference
     );
-    for &(name, t, rmse, max) in &rows {
+    for (name, t, rmse, max) in &rows {
+        let (t, rmse, max) = (*t, *rmse, *max);
         let dominated = rows
             .iter()
             .any(|&(_, t2, r2, _)| t2 <= t && r2 <= rmse && (t2 < t || r2 < rmse));
