@@ -5,7 +5,10 @@
 //!
 //! The instruction set is a process-wide setting, so this file holds one test, which
 //! switches it back and forth itself. On a CPU without x86-64-v3 (or another architecture)
-//! both runs take the baseline loops and the test checks only that they repeat.
+//! both runs take the baseline loops and the test checks only that they repeat. Needs the
+//! `proptest` feature (the crate's strategies).
+
+#![cfg(feature = "proptest")]
 
 use implicit_expr::Tape;
 use implicit_expr::eval::{Choice, Evaluator, SliceEvaluator};
