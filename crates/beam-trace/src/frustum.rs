@@ -144,7 +144,13 @@ impl FirstCell {
     }
 }
 
-/// The first cell of each pixel of `tile` (row by row), searched in the parameter range
+/// The first cells of a tile's pixels that have one, each with its pixel's row-major index
+/// in the tile, in the order the search found them; the tile's other pixels are proven
+/// missed (no ray of theirs meets a surface in the range searched). Sparse, so that a tile
+/// costs what its surface does, not a record per pixel.
+pub type TileCells = Vec<(u32, FirstCell)>;
+
+/// The first cell of each pixel of `tile` that has one ([`TileCells`]), searched in the parameter range
 /// `range` (where the tile's beam lies in the scene bounds `bounds`), with `g` the scene
 /// function of the camera's beams; leaves are no longer than `epsilon` or the pixel's
 /// cross-section. With `traced_rays` more than 0, the rays of each pixel whose first cell
@@ -157,7 +163,7 @@ pub fn first_cells(
     tile: PixelRect,
     (range, epsilon, traced_rays): (Interval<f64>, f64, u32),
     counters: &mut RootCounters,
-) -> Vec<Option<FirstCell>> {
+) -> TileCells {
     let mut search = Search {
         g,
         cam,
@@ -171,7 +177,7 @@ pub fn first_cells(
         range,
         tile,
         epsilon,
-        first: vec![None; tile.area() as usize],
+        first: Vec::new(),
         filled: Filled::new(tile),
         counters,
         chain: Vec::new(),
@@ -272,8 +278,8 @@ struct Search<'a> {
     range: Interval<f64>,
     tile: PixelRect,
     epsilon: f64,
-    first: Vec<Option<FirstCell>>,
-    /// The pixels of `first` that are set.
+    first: TileCells,
+    /// The pixels that have their first cell in `first`.
     filled: Filled,
     counters: &'a mut RootCounters,
     /// The restrictions of `g` of the cells holding the one searched, outermost first
@@ -521,10 +527,9 @@ impl Search<'_> {
                 },
             };
             for (x, y) in r.pixels() {
-                let i = self.index(x, y);
-                if self.first[i].is_none() {
-                    self.first[i] = Some(first.clone());
+                if !self.filled.get(x, y) {
                     self.filled.set(x, y);
+                    self.first.push((self.index(x, y) as u32, first.clone()));
                 }
             }
             return false;

@@ -10,7 +10,7 @@ use beam_trace::backend::{
     Answers, Backend, BeamQuery, CellQuery, Classified, HitQuery, Prepared, Queries, QueryKind,
     RayQuery, SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
-use beam_trace::frustum::FirstCell;
+use beam_trace::frustum::TileCells;
 use beam_trace::root::RootResult;
 use beam_trace::shadow::hard::Visibility;
 use beam_trace::shadow::{ShadowQuery, ShadowSpec, ShadowWork};
@@ -79,7 +79,7 @@ impl Queries for PieceQueries<'_> {
     fn beams(&self, q: &[BeamQuery]) -> Result<Answers<Classified>, Error> {
         self.pieces(q, |c| self.inner.beams(c))
     }
-    fn first_cells(&self, q: &[CellQuery]) -> Result<Answers<Vec<Option<FirstCell>>>, Error> {
+    fn first_cells(&self, q: &[CellQuery]) -> Result<Answers<TileCells>, Error> {
         self.pieces(q, |c| self.inner.first_cells(c))
     }
     fn roots(&self, q: &[RayQuery]) -> Result<Answers<RootResult>, Error> {

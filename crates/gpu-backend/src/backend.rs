@@ -15,7 +15,7 @@ use beam_trace::backend::{
 };
 use beam_trace::beam::BoxClass;
 use beam_trace::beam::child_window;
-use beam_trace::frustum::FirstCell;
+use beam_trace::frustum::TileCells;
 use beam_trace::ray::{Beam, IBox, Ray, point_box};
 use beam_trace::root::{Proof, RootCounters, RootResult};
 use beam_trace::sample::{Hit, SHADOW_OFFSET};
@@ -434,7 +434,7 @@ impl Queries for GpuQueries<'_> {
         unsupported("shading-variation")
     }
 
-    fn first_cells(&self, _: &[CellQuery]) -> Result<Answers<Vec<Option<FirstCell>>>, Error> {
+    fn first_cells(&self, _: &[CellQuery]) -> Result<Answers<TileCells>, Error> {
         unsupported("first-cell")
     }
 

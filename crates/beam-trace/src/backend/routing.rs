@@ -12,7 +12,7 @@ use super::query::{
 };
 use super::traits::{Backend, Prepared, Queries};
 use crate::error::Error;
-use crate::frustum::FirstCell;
+use crate::frustum::TileCells;
 use crate::plan::{Pass, PixelBeams, Plan, Primary};
 use crate::root::RootResult;
 use crate::sample::Hit;
@@ -194,7 +194,7 @@ impl Queries for Routed<'_> {
     fn beams(&self, q: &[BeamQuery]) -> Result<Answers<Classified>, Error> {
         self.to(QueryKind::Beams).beams(q)
     }
-    fn first_cells(&self, q: &[CellQuery]) -> Result<Answers<Vec<Option<FirstCell>>>, Error> {
+    fn first_cells(&self, q: &[CellQuery]) -> Result<Answers<TileCells>, Error> {
         self.to(QueryKind::Cells).first_cells(q)
     }
     fn roots(&self, q: &[RayQuery]) -> Result<Answers<RootResult>, Error> {

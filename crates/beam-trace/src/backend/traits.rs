@@ -7,7 +7,7 @@ use super::query::{
     ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use crate::error::Error;
-use crate::frustum::FirstCell;
+use crate::frustum::TileCells;
 use crate::plan::Plan;
 use crate::root::RootResult;
 use crate::sample::Hit;
@@ -27,10 +27,10 @@ pub trait Queries: Sync {
     /// `T_final`; else [`BoxClass::Undecided`](crate::beam::BoxClass::Undecided) with the first range not rejected.
     fn beams(&self, queries: &[BeamQuery]) -> Result<Answers<Classified>, Error>;
 
-    /// The first cell of the frustum octree of each pixel of each tile, row by row: where
-    /// the pixel's rays may first meet a surface, none before ([`crate::frustum`]); `None`
-    /// for a pixel none of whose rays meets one.
-    fn first_cells(&self, queries: &[CellQuery]) -> Result<Answers<Vec<Option<FirstCell>>>, Error>;
+    /// The first cells of the frustum octree of each tile's pixels that have one
+    /// ([`TileCells`]): where the pixel's rays may first meet a surface, none before
+    /// ([`crate::frustum`]); a pixel without one has no ray that meets a surface.
+    fn first_cells(&self, queries: &[CellQuery]) -> Result<Answers<TileCells>, Error>;
 
     /// The first root of each ray in its window.
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error>;

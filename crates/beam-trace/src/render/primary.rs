@@ -13,7 +13,7 @@ use crate::beam::{BeamScope, BoxClass};
 use crate::beam::{child_window, forward};
 use crate::camera::{Camera, RayTable};
 use crate::error::Error;
-use crate::frustum::{FirstCell, Traced};
+use crate::frustum::Traced;
 use crate::plan::{Pass, Plan, Primary};
 use crate::progress::Progress;
 use crate::ray::Ray;
@@ -35,7 +35,7 @@ pub(super) type PixelClasses = Vec<Option<(BoxClass, bool)>>;
 pub(super) type PixelScopes = Vec<Option<BeamScope>>;
 
 /// What the search of each of a pixel's rays proved past its first cell, for each pixel
-/// the frustum octree traced ([`FirstCell::traced`]), by increasing pixel index (few pixels
+/// the frustum octree traced ([`FirstCell::traced`](crate::frustum::FirstCell::traced)), by increasing pixel index (few pixels
 /// have them: the silhouette's); empty after the screen box structure.
 pub(super) type PixelTraces = Vec<(u32, Vec<Traced>)>;
 
@@ -95,16 +95,21 @@ fn octree(
         let answers = q.first_cells(&queries)?;
         c.search.add(&answers.search);
         for (tile, firsts) in band.iter().zip(answers.values) {
-            for ((x, y), first) in tile.pixels().zip(firsts) {
+            // The pixels without a first cell are proven missed.
+            for (x, y) in tile.pixels() {
+                classes[(y * w + x) as usize] = Some((BoxClass::Miss, false));
+            }
+            c.add_pixels(&BoxClass::Miss, tile.area() - firsts.len() as u64);
+            let width = tile.x1 - tile.x0;
+            for (k, f) in firsts {
+                let (x, y) = (tile.x0 + k % width, tile.y0 + k / width);
                 let i = (y * w + x) as usize;
-                let class = first.as_ref().map_or(BoxClass::Miss, FirstCell::class);
+                let class = f.class();
                 c.add_pixels(&class, 1);
                 classes[i] = Some((class, false));
-                if let Some(f) = first {
-                    scopes[i] = f.scope;
-                    if !f.traced.is_empty() {
-                        traced.push((i as u32, f.traced));
-                    }
+                scopes[i] = f.scope;
+                if !f.traced.is_empty() {
+                    traced.push((i as u32, f.traced));
                 }
             }
         }

@@ -22,7 +22,7 @@ use super::query::{
 use super::traits::{Backend, Prepared, Queries};
 use crate::aa::{LightSource, shading_variation};
 use crate::error::Error;
-use crate::frustum::FirstCell;
+use crate::frustum::TileCells;
 use crate::grid::Grid;
 use crate::plan::{Pass, Plan};
 use crate::ray::Ray;
@@ -100,7 +100,7 @@ impl Queries for CpuQueries<'_> {
         Ok(self.map(queries, true, |ev, q, c| self.classify(ev, q, c)))
     }
 
-    fn first_cells(&self, queries: &[CellQuery]) -> Result<Answers<Vec<Option<FirstCell>>>, Error> {
+    fn first_cells(&self, queries: &[CellQuery]) -> Result<Answers<TileCells>, Error> {
         // A tile is much work: one per piece.
         Ok(self.map_pieces(queries, 1, true, |ev, q, c| self.cells(ev, q, c)))
     }

@@ -14,7 +14,7 @@ use crate::beam::{
     BeamScope, BoxClass, Extent, Inherited, child_window, evaluate_box_within, forward,
 };
 use crate::free_ranges::BeamKey;
-use crate::frustum::{FirstCell, first_cells};
+use crate::frustum::{TileCells, first_cells};
 use crate::grid::{Grid, GridEval};
 use crate::plan::Plan;
 use crate::ray::{Beam, BeamEval, Precision, Ray};
@@ -191,7 +191,7 @@ impl CpuQueries<'_> {
         ev: &mut Evals,
         query: &CellQuery,
         c: &mut RootCounters,
-    ) -> Vec<Option<FirstCell>> {
+    ) -> TileCells {
         let cam = &self.scene.camera;
         let r = query.tile;
         let beam = cam.beam(
