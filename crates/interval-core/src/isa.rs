@@ -2,8 +2,8 @@
 //!
 //! A loop worth it (the tape walks of `implicit-expr`, for example) is compiled twice on
 //! x86-64: for the baseline instruction set every x86-64 CPU has (SSE2), and for x86-64-v3
-//! (AVX2, FMA, BMI1/2, LZCNT: the CPUs sold since about 2015), and each run takes the second
-//! where [`x86_64_v3`] says the CPU has those features. The directed rounding of the interval
+//! (AVX2, FMA, BMI1/2, LZCNT: the CPUs sold since about 2015) by [`dispatch`], and each run
+//! takes the second where [`x86_64_v3`] says the CPU has those features. The directed rounding of the interval
 //! operations rests on error-free transformations whose products take a fused
 //! multiply-add: without FMA in the instruction set it is a call to the C library inside
 //! the loop; with it, one instruction. The cheap operations of [`Interval`](crate::Interval)
@@ -83,6 +83,35 @@ pub fn set_limit(limit: Isa) -> Isa {
     let isa = limit.min(detected());
     ACTIVE.store(isa as u8, Ordering::Relaxed);
     isa
+}
+
+/// Runs `f` in code compiled for the instruction set in use: for x86-64-v3 where
+/// [`x86_64_v3`] says so, else for the baseline. `f` and what it calls inline (mark the
+/// loop's functions `#[inline(always)]`) are compiled twice, once into each version; what
+/// they call out of line stays in the crate's own instruction set.
+///
+/// ```
+/// let sum = interval_core::isa::dispatch(
+///     #[inline(always)]
+///     || (1..=10).map(f64::from).sum::<f64>(),
+/// );
+/// assert_eq!(sum, 55.0);
+/// ```
+#[inline(always)]
+pub fn dispatch<R>(f: impl FnOnce() -> R) -> R {
+    #[cfg(target_arch = "x86_64")]
+    if x86_64_v3() {
+        // SAFETY: `x86_64_v3` checked that the CPU has the features `in_v3` is compiled for.
+        return unsafe { in_v3(f) };
+    }
+    f()
+}
+
+/// `f()` compiled for x86-64-v3.
+#[cfg(target_arch = "x86_64")]
+#[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt")]
+fn in_v3<R>(f: impl FnOnce() -> R) -> R {
+    f()
 }
 
 /// Whether the x86-64-v3 versions of the loops may run: the CPU has the features (the

@@ -271,25 +271,10 @@ fn run<N: Number, const TRACE: bool, const CHECK: u8, const SIDE: u8>(
     trace: &mut Vec<Choice>,
     undecided: &mut u32,
 ) -> Decoration {
-    #[cfg(target_arch = "x86_64")]
-    if isa::x86_64_v3() {
-        // SAFETY: `isa::x86_64_v3` checked that the CPU has the features `run_v3` is compiled for.
-        return unsafe { run_v3::<N, TRACE, CHECK, SIDE>(instrs, regs, vars, trace, undecided) };
-    }
-    walk::<N, TRACE, CHECK, SIDE>(instrs, regs, vars, trace, undecided)
-}
-
-/// [`walk`] compiled for x86-64-v3.
-#[cfg(target_arch = "x86_64")]
-#[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt")]
-fn run_v3<N: Number, const TRACE: bool, const CHECK: u8, const SIDE: u8>(
-    instrs: &[Instr],
-    regs: &mut [N],
-    vars: &[N],
-    trace: &mut Vec<Choice>,
-    undecided: &mut u32,
-) -> Decoration {
-    walk::<N, TRACE, CHECK, SIDE>(instrs, regs, vars, trace, undecided)
+    isa::dispatch(
+        #[inline(always)]
+        || walk::<N, TRACE, CHECK, SIDE>(instrs, regs, vars, trace, undecided),
+    )
 }
 
 /// The body of [`run`].
@@ -494,23 +479,14 @@ impl<N: Number> SliceEvaluator<N> {
 /// One pass of `instrs` over `n` inputs starting at `start`, in the loop compiled for the
 /// instruction set in use ([`interval_core::isa`]).
 fn pass<N: Number>(instrs: &[Instr], regs: &mut [N], vars: &[&[N]], start: usize, n: usize) {
-    #[inline(always)]
-    fn body<N: Number>(instrs: &[Instr], regs: &mut [N], vars: &[&[N]], start: usize, n: usize) {
-        for ins in instrs {
-            step(ins, regs, vars, start, n);
-        }
-    }
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt")]
-    fn v3<N: Number>(instrs: &[Instr], regs: &mut [N], vars: &[&[N]], start: usize, n: usize) {
-        body(instrs, regs, vars, start, n);
-    }
-    #[cfg(target_arch = "x86_64")]
-    if isa::x86_64_v3() {
-        // SAFETY: `isa::x86_64_v3` checked that the CPU has the features `v3` is compiled for.
-        return unsafe { v3(instrs, regs, vars, start, n) };
-    }
-    body(instrs, regs, vars, start, n);
+    isa::dispatch(
+        #[inline(always)]
+        || {
+            for ins in instrs {
+                step(ins, regs, vars, start, n);
+            }
+        },
+    );
 }
 
 /// [`pass`] recording choices and definedness per input (see [`step_traced`]).
@@ -522,37 +498,14 @@ fn pass_traced<N: Number>(
     lanes: &mut [Vec<Choice>],
     defined: &mut [bool; SLICE_CHUNK],
 ) {
-    #[inline(always)]
-    fn body<N: Number>(
-        instrs: &[Instr],
-        regs: &mut [N],
-        vars: &[&[N]],
-        (start, n): (usize, usize),
-        lanes: &mut [Vec<Choice>],
-        defined: &mut [bool; SLICE_CHUNK],
-    ) {
-        for ins in instrs {
-            step_traced(ins, regs, vars, start, n, lanes, defined);
-        }
-    }
-    #[cfg(target_arch = "x86_64")]
-    #[target_feature(enable = "avx2,fma,bmi1,bmi2,lzcnt")]
-    fn v3<N: Number>(
-        instrs: &[Instr],
-        regs: &mut [N],
-        vars: &[&[N]],
-        at: (usize, usize),
-        lanes: &mut [Vec<Choice>],
-        defined: &mut [bool; SLICE_CHUNK],
-    ) {
-        body(instrs, regs, vars, at, lanes, defined);
-    }
-    #[cfg(target_arch = "x86_64")]
-    if isa::x86_64_v3() {
-        // SAFETY: `isa::x86_64_v3` checked that the CPU has the features `v3` is compiled for.
-        return unsafe { v3(instrs, regs, vars, (start, n), lanes, defined) };
-    }
-    body(instrs, regs, vars, (start, n), lanes, defined);
+    isa::dispatch(
+        #[inline(always)]
+        || {
+            for ins in instrs {
+                step_traced(ins, regs, vars, start, n, lanes, defined);
+            }
+        },
+    );
 }
 
 /// One instruction over `n` inputs starting at `start`.
