@@ -241,3 +241,111 @@ pub fn shadow_origins(
         .all(|x| !x.is_empty() && x.inf().is_finite() && x.sup().is_finite())
         .then_some((origins, side))
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The box `[c - r, c + r]` on each axis.
+    fn around(c: DVec3, r: f64) -> IBox {
+        std::array::from_fn(|i| Interval::new(c[i] - r, c[i] + r).expect("ordered bounds"))
+    }
+
+    proptest! {
+        /// On the unit sphere (`g = |p|² − 1`, gradient `2p`, enclosed over a box by `2·box`)
+        /// seen from outside, over a box around a point of it: the box of origins holds
+        /// every point of the sphere in the box moved along its normal by some lift between
+        /// `offset` and `offset` plus the box's widths (the function's lift), and it lies
+        /// further from the centre than the box itself by at least half the offset.
+        #[test]
+        fn origins_hold_the_lifted_points_and_leave_the_solid(
+            theta in 0.2f64..2.9,
+            phi in 0.0f64..6.2,
+            r in 0.0f64..0.05,
+            offset in 1e-6f64..1e-2,
+        ) {
+            let p = DVec3::new(theta.sin() * phi.cos(), theta.sin() * phi.sin(), theta.cos());
+            let eye = (p * 10.0).to_array().map(ipoint);
+            let region = around(p, r);
+            let gradient: IBox = std::array::from_fn(|i| ipoint(2.0) * region[i]);
+            let (origins, side) = shadow_origins(&gradient, &region, &eye, offset)
+                .expect("the sphere faces the eye over a small box");
+            prop_assert_eq!(side, 1.0);
+            // Every point of the sphere in the box, moved along its normal by the lift,
+            // lies in the origins; the lift is at least `offset`.
+            let extent: f64 = region.iter().map(|x| x.wid()).sum();
+            for k in 0..16 {
+                let u = DVec3::new(
+                    f64::from(k % 2) - 0.5,
+                    f64::from(k / 2 % 2) - 0.5,
+                    f64::from(k / 4 % 2) - 0.5,
+                ) * r;
+                let q = (p + u).normalize();
+                let inside = |x: DVec3| (0..3).all(|i| region[i].contains(x[i]));
+                if !inside(q) {
+                    continue;
+                }
+                let moved = |lift: f64| q + q * lift;
+                let held = |x: DVec3| (0..3).all(|i| origins[i].contains(x[i]));
+                // The lift lies between the offset and the offset plus the box's widths.
+                prop_assert!(
+                    (0..=32).any(|j| held(moved(offset + extent * f64::from(j) / 32.0))),
+                    "no lift of {q:?} in {origins:?}"
+                );
+            }
+            // Moved outwards: the nearest point to the centre is further off.
+            let nearest = |b: &IBox| -> f64 {
+                (0..3)
+                    .map(|i| {
+                        let x = b[i];
+                        if x.inf() > 0.0 {
+                            x.inf()
+                        } else if x.sup() < 0.0 {
+                            -x.sup()
+                        } else {
+                            0.0
+                        }
+                    })
+                    .map(|d| d * d)
+                    .sum::<f64>()
+                    .sqrt()
+            };
+            prop_assert!(
+                nearest(&origins) > nearest(&region) + 0.5 * offset,
+                "origins {origins:?} not moved out of {region:?}"
+            );
+        }
+    }
+
+    /// A flat piece of the floor `z = 0` seen from above through a box that reaches below
+    /// it: the origins lie above the floor by at least the offset (the lift clears the
+    /// box's own depth), and a box whose normal may face either way gives none.
+    #[test]
+    fn a_floor_box_is_lifted_clear_of_the_floor() {
+        let region = [
+            Interval::new(-0.1, 0.1).unwrap(),
+            Interval::new(0.3, 0.4).unwrap(),
+            Interval::new(-0.02, 0.02).unwrap(),
+        ];
+        let gradient = [ipoint(0.0), ipoint(0.0), ipoint(1.0)];
+        let eye = [ipoint(0.0), ipoint(-5.0), ipoint(5.0)];
+        let (origins, side) = shadow_origins(&gradient, &region, &eye, 1e-3).unwrap();
+        assert_eq!(side, 1.0);
+        assert!(
+            origins[2].inf() >= 1e-3 - 0.02 + 0.04 * (1.0 - 1e-12),
+            "{origins:?}"
+        );
+        // Seen from below, the facing normal points down: the origins go below.
+        let below = [ipoint(0.0), ipoint(-5.0), ipoint(-5.0)];
+        let (under, side) = shadow_origins(&gradient, &region, &below, 1e-3).unwrap();
+        assert_eq!(side, -1.0);
+        assert!(
+            under[2].sup() <= -1e-3 + 0.02 - 0.04 * (1.0 - 1e-12),
+            "{under:?}"
+        );
+        // An eye in the floor's plane: the normal may face either way.
+        let level = [ipoint(0.0), ipoint(-5.0), Interval::new(-0.5, 0.5).unwrap()];
+        assert!(shadow_origins(&gradient, &region, &level, 1e-3).is_none());
+    }
+}
