@@ -195,6 +195,13 @@ pub fn shading_variation(
     }
 }
 
+/// The products `∇g · (to − p)` of the gradients `gradient` with the directions from the
+/// points `region` to the points `to`, over the region: where they keep one sign, every
+/// normal of the region turns the same way with respect to `to` (towards it where positive).
+pub fn facing(gradient: &IBox, region: &IBox, to: &IBox) -> Interval<f64> {
+    (0..3).fold(ipoint(0.0), |d, i| d + gradient[i] * (to[i] - region[i]))
+}
+
 /// The box of the points of `region` (a box holding hit points) each moved along its unit
 /// normal turned towards the eye by `offset` plus the box's extent along that normal (the
 /// largest `Σ |n_i| · wid(region_i)`): a box of a flat piece of surface holds points up to
@@ -214,8 +221,7 @@ pub fn shadow_origins(
     eye: &IBox,
     offset: f64,
 ) -> Option<(IBox, f64)> {
-    let towards: IBox = std::array::from_fn(|i| eye[i] - region[i]);
-    let facing = (0..3).fold(ipoint(0.0), |d, i| d + gradient[i] * towards[i]);
+    let facing = facing(gradient, region, eye);
     let side = if facing.inf() > 0.0 {
         1.0
     } else if facing.sup() < 0.0 {

@@ -150,8 +150,8 @@ impl FirstCell {
 /// costs what its surface does, not a record per pixel.
 pub type TileCells = Vec<(u32, FirstCell)>;
 
-/// The first cell of each pixel of `tile` that has one ([`TileCells`]), searched in the parameter range
-/// `range` (where the tile's beam lies in the scene bounds `bounds`), with `g` the scene
+/// The first cell of each pixel of `tile` that has one ([`TileCells`]), searched in the
+/// parameter range `range` (where the tile's beam lies in the scene bounds `bounds`), with `g` the scene
 /// function of the camera's beams; leaves are no longer than `epsilon` or the pixel's
 /// cross-section. With `traced_rays` more than 0, the rays of each pixel whose first cell
 /// is undecided, at the stratified positions of that many, are searched on from there

@@ -3,11 +3,12 @@
 //! A loop worth it (the tape walks of `implicit-expr`, for example) is compiled twice on
 //! x86-64: for the baseline instruction set every x86-64 CPU has (SSE2), and for x86-64-v3
 //! (AVX2, FMA, BMI1/2, LZCNT: the CPUs sold since about 2015) by [`dispatch`], and each run
-//! takes the second where [`x86_64_v3`] says the CPU has those features. The directed rounding of the interval
-//! operations rests on error-free transformations whose products take a fused
-//! multiply-add: without FMA in the instruction set it is a call to the C library inside
-//! the loop; with it, one instruction. The cheap operations of [`Interval`](crate::Interval)
-//! are always inlined so that they are compiled into such a loop's instruction set.
+//! takes the second where [`x86_64_v3`] says the CPU has those features. The directed
+//! rounding of the interval operations rests on error-free transformations whose products
+//! take a fused multiply-add: without FMA in the instruction set it is a call to the C
+//! library inside the loop; with it, one instruction. The cheap operations of
+//! [`Interval`](crate::Interval) are always inlined so that they are compiled into such a
+//! loop's instruction set.
 //!
 //! Both versions give **bit-identical** results: the same operations in the same order, each
 //! correctly rounded (a fused multiply-add is exact before its one rounding, in hardware and
@@ -36,7 +37,11 @@ impl Isa {
     }
 
     fn from_u8(v: u8) -> Self {
-        if v == 1 { Isa::X86_64V3 } else { Isa::Baseline }
+        if v == Isa::X86_64V3 as u8 {
+            Isa::X86_64V3
+        } else {
+            Isa::Baseline
+        }
     }
 }
 

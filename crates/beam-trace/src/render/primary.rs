@@ -35,8 +35,9 @@ pub(super) type PixelClasses = Vec<Option<(BoxClass, bool)>>;
 pub(super) type PixelScopes = Vec<Option<BeamScope>>;
 
 /// What the search of each of a pixel's rays proved past its first cell, for each pixel
-/// the frustum octree traced ([`FirstCell::traced`](crate::frustum::FirstCell::traced)), by increasing pixel index (few pixels
-/// have them: the silhouette's); empty after the screen box structure.
+/// the frustum octree traced
+/// ([`FirstCell::traced`](crate::frustum::FirstCell::traced)), by increasing pixel index
+/// (few pixels have them: the silhouette's); empty after the screen box structure.
 pub(super) type PixelTraces = Vec<(u32, Vec<Traced>)>;
 
 /// The traces of pixel `p`'s rays in `traces` (empty where it has none).

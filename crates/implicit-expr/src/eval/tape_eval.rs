@@ -273,79 +273,69 @@ fn run<N: Number, const TRACE: bool, const CHECK: u8, const SIDE: u8>(
 ) -> Decoration {
     isa::dispatch(
         #[inline(always)]
-        || walk::<N, TRACE, CHECK, SIDE>(instrs, regs, vars, trace, undecided),
+        || {
+            // `regs.len()` is a power of two above every register index of the tape, so
+            // masking changes no index and proves to the compiler that none is out of bounds.
+            debug_assert!(regs.len().is_power_of_two());
+            let mask = regs.len() - 1;
+            let mut dec = Decoration::Com;
+            for ins in instrs {
+                let (a, b) = (ins.a as usize & mask, ins.b as usize & mask);
+                let v = match ins.op {
+                    Opcode::Var => vars[ins.a as usize],
+                    Opcode::Const | Opcode::Copy => regs[a],
+                    Opcode::Unary(op) => {
+                        // The local decoration is needed of the operations that can fail
+                        // (partial or step functions); traced runs ask only whether they are
+                        // defined, which step functions always are.
+                        if (CHECK != NO_CHECK && (!op.is_total() || op.is_discontinuous()))
+                            || (TRACE && !op.is_total())
+                        {
+                            dec = dec.min(N::decoration_unary(op, regs[a]));
+                        }
+                        N::unary(op, regs[a])
+                    }
+                    Opcode::Binary(BinaryOp::Min) if TRACE => {
+                        let (v, c) = N::min_choice(regs[a], regs[b]);
+                        trace.push(c);
+                        v
+                    }
+                    Opcode::Binary(BinaryOp::Max) if TRACE => {
+                        let (v, c) = N::max_choice(regs[a], regs[b]);
+                        trace.push(c);
+                        v
+                    }
+                    Opcode::Binary(BinaryOp::Domain) if SIDE != NO_SIDE => {
+                        let (v, open) = N::domain_side(regs[a], regs[b], SIDE == INSIDE);
+                        *undecided += u32::from(open);
+                        v
+                    }
+                    Opcode::Binary(op) => {
+                        if (CHECK != NO_CHECK || TRACE) && !op.is_total() {
+                            dec = dec.min(N::decoration_binary(op, regs[a], regs[b]));
+                        }
+                        N::binary(op, regs[a], regs[b])
+                    }
+                    Opcode::Pown => {
+                        if (CHECK != NO_CHECK || TRACE) && (ins.b as i32) < 0 {
+                            dec = dec.min(N::decoration_pown(regs[a], ins.b as i32));
+                        }
+                        N::pown(regs[a], ins.b as i32)
+                    }
+                };
+                if CHECK == DECORATION {
+                    dec = dec.min(v.value_decoration());
+                }
+                regs[ins.out as usize & mask] = v;
+            }
+            if TRACE && dec < Decoration::Def {
+                // Somewhere in the region the formula is undefined: a pruned tape would be defined
+                // there (it drops the undefined branch), so nothing may be pruned.
+                trace.fill(Choice::Both);
+            }
+            dec
+        },
     )
-}
-
-/// The body of [`run`].
-#[inline(always)]
-fn walk<N: Number, const TRACE: bool, const CHECK: u8, const SIDE: u8>(
-    instrs: &[Instr],
-    regs: &mut [N],
-    vars: &[N],
-    trace: &mut Vec<Choice>,
-    undecided: &mut u32,
-) -> Decoration {
-    // `regs.len()` is a power of two above every register index of the tape, so masking
-    // changes no index and proves to the compiler that none is out of bounds.
-    debug_assert!(regs.len().is_power_of_two());
-    let mask = regs.len() - 1;
-    let mut dec = Decoration::Com;
-    for ins in instrs {
-        let (a, b) = (ins.a as usize & mask, ins.b as usize & mask);
-        let v = match ins.op {
-            Opcode::Var => vars[ins.a as usize],
-            Opcode::Const | Opcode::Copy => regs[a],
-            Opcode::Unary(op) => {
-                // The local decoration is needed of the operations that can fail (partial or
-                // step functions); traced runs ask only whether they are defined, which step
-                // functions always are.
-                if (CHECK != NO_CHECK && (!op.is_total() || op.is_discontinuous()))
-                    || (TRACE && !op.is_total())
-                {
-                    dec = dec.min(N::decoration_unary(op, regs[a]));
-                }
-                N::unary(op, regs[a])
-            }
-            Opcode::Binary(BinaryOp::Min) if TRACE => {
-                let (v, c) = N::min_choice(regs[a], regs[b]);
-                trace.push(c);
-                v
-            }
-            Opcode::Binary(BinaryOp::Max) if TRACE => {
-                let (v, c) = N::max_choice(regs[a], regs[b]);
-                trace.push(c);
-                v
-            }
-            Opcode::Binary(BinaryOp::Domain) if SIDE != NO_SIDE => {
-                let (v, open) = N::domain_side(regs[a], regs[b], SIDE == INSIDE);
-                *undecided += u32::from(open);
-                v
-            }
-            Opcode::Binary(op) => {
-                if (CHECK != NO_CHECK || TRACE) && !op.is_total() {
-                    dec = dec.min(N::decoration_binary(op, regs[a], regs[b]));
-                }
-                N::binary(op, regs[a], regs[b])
-            }
-            Opcode::Pown => {
-                if (CHECK != NO_CHECK || TRACE) && (ins.b as i32) < 0 {
-                    dec = dec.min(N::decoration_pown(regs[a], ins.b as i32));
-                }
-                N::pown(regs[a], ins.b as i32)
-            }
-        };
-        if CHECK == DECORATION {
-            dec = dec.min(v.value_decoration());
-        }
-        regs[ins.out as usize & mask] = v;
-    }
-    if TRACE && dec < Decoration::Def {
-        // Somewhere in the region the formula is undefined: a pruned tape would be defined
-        // there (it drops the undefined branch), so nothing may be pruned.
-        trace.fill(Choice::Both);
-    }
-    dec
 }
 
 /// Number of inputs a [`SliceEvaluator`] processes per pass over the tape.

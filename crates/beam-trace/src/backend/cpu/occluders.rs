@@ -5,7 +5,7 @@ use glam::DVec3;
 use interval_core::Interval;
 
 use super::queries::{CpuQueries, Evals};
-use crate::aa::shadow_origins;
+use crate::aa::{facing, shadow_origins};
 use crate::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
 use crate::ibox::{IBox, ipoint};
 use crate::ray::{Beam, Ray, point_box};
@@ -130,8 +130,7 @@ impl CpuQueries<'_> {
             let to = point_box(light);
             // The facing normal's product with the direction to the light, over the region:
             // at most zero everywhere, and no sample casts a segment.
-            let facing = (0..3).fold(ipoint(0.0), |d, i| d + gradient[i] * (to[i] - region[i]));
-            if (ipoint(side) * facing).sup() <= 0.0 {
+            if (ipoint(side) * facing(gradient, region, &to)).sup() <= 0.0 {
                 return true;
             }
             let beam = Beam {
