@@ -6,11 +6,15 @@
 //!
 //! ```text
 //! aa-cost [SCENE.toml] [--width W --height H] [--reference N] [--modes M,M,...] [--out FILE.md]
+//!         [--images DIR]
 //! ```
 //!
 //! `--modes` measures only the anti-aliasing modes listed (as the render command's `--aa`
 //! takes them: `none`, `ss:N`, `iaa:D:T:M`, ...; `screen-rays` for the thesis's 9 point
 //! rays), after the default mode, which every ratio refers to.
+//!
+//! `--images DIR` writes the reference, each mode's image and a map of its error over the
+//! edge pixels into `DIR`, to see where each mode's error lies.
 //!
 //! Prints (and with `--out` writes) a markdown table: per mode the render time, the time
 //! ratio to the default mode, the RMSE and the largest error over the edge pixels (the
@@ -47,6 +51,11 @@ struct Args {
     /// Where to write the report too.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// A directory to write images into: the reference, each mode's image and its error
+    /// over the edge pixels (`<mode>-error.png`, 8 times the largest channel difference,
+    /// white at 1/8 or more; the other pixels dark blue).
+    #[arg(long)]
+    images: Option<PathBuf>,
 }
 
 /// The default mode, then the modes `names` (see [`Args::modes`]).
@@ -125,6 +134,37 @@ fn timed(scene: &Scene, primary: PrimaryMode, aa: AaMode) -> Result<(Image, f64)
     Ok((out.image, t0.elapsed().as_secs_f64()))
 }
 
+/// `name` made safe as a file name: characters other than letters, digits and `-` become `_`.
+fn file_name(name: &str) -> String {
+    name.chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
+/// The error map of `errors` over the pixels `edges` of an image of the reference's size:
+/// grey levels of 8 times the error (white from 1/8 on), the other pixels dark blue.
+fn error_image(reference: &Image, errors: &[f64], edges: &[usize]) -> Image {
+    let mut img = Image::new(reference.width, reference.height, [0.0, 0.0, 0.15]);
+    for &i in edges {
+        let v = (8.0 * errors[i]).min(1.0) as f32;
+        img.pixels[i] = [v; 3];
+    }
+    img
+}
+
+/// Writes `img` as `dir/name.png`.
+fn save(img: &Image, dir: &Path, name: &str) -> Result<(), String> {
+    let path = dir.join(format!("{name}.png"));
+    img.write_png(&path)
+        .map_err(|e| format!("{}: {e}", path.display()))
+}
+
 /// The largest channel difference of each pixel.
 fn errors(a: &Image, b: &Image) -> Vec<f64> {
     a.pixels
@@ -169,6 +209,10 @@ fn run(args: &Args) -> Result<(), String> {
     if edges.is_empty() {
         return Err("the scene has no edge pixels: nothing to anti-alias".into());
     }
+    if let Some(dir) = &args.images {
+        std::fs::create_dir_all(dir).map_err(|e| format!("{}: {e}", dir.display()))?;
+        save(&reference, dir, "reference")?;
+    }
     let mut rows = Vec::new();
     for (name, primary, aa) in modes {
         let (img, t) = timed(&scene, primary, aa)?;
@@ -176,6 +220,15 @@ fn run(args: &Args) -> Result<(), String> {
         let on_edges: Vec<f64> = edges.iter().map(|&i| e[i]).collect();
         let rmse = (on_edges.iter().map(|x| x * x).sum::<f64>() / on_edges.len() as f64).sqrt();
         let max = on_edges.iter().copied().fold(0.0, f64::max);
+        if let Some(dir) = &args.images {
+            let stem = file_name(&name);
+            save(&img, dir, &stem)?;
+            save(
+                &error_image(&reference, &e, &edges),
+                dir,
+                &format!("{stem}-error"),
+            )?;
+        }
         eprintln!("{name}: {t:.3} s, edge RMSE {rmse:.4}, max {max:.3}");
         rows.push((name, t, rmse, max));
     }
