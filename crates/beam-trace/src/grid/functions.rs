@@ -24,7 +24,7 @@
 //! symbolic differentiation) when a ray or beam first needs it, so cells that no search
 //! reaches cost one interval evaluation each.
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap;
 use std::sync::OnceLock;
 
 use implicit_expr::{RayFunction, Tape};
@@ -98,7 +98,7 @@ impl CellFunctions {
         full: Tape,
         full_ray: &RayFunction,
     ) -> (Self, Vec<u32>) {
-        let mut by_tape: HashMap<Tape, u32> = HashMap::new();
+        let mut by_tape: FxHashMap<Tape, u32> = FxHashMap::default();
         let mut functions: Vec<CellFunction> = Vec::new();
         let mut cells = vec![EMPTY; reduced.len()];
         let mut cell_instrs = 0_u64;

@@ -13,11 +13,11 @@
 //! functions are shared by content, and each thread remembers the last one it used (the
 //! rays of one box come one after the other).
 
-use std::collections::HashMap;
 use std::sync::{Arc, RwLock};
 
 use implicit_expr::{RayFunction, Tape};
 use interval_core::Interval;
+use rustc_hash::FxHashMap;
 
 use crate::beam::BeamScope;
 use crate::grid::Grid;
@@ -30,10 +30,13 @@ const SCOPED_MAX_LEN: usize = 64;
 /// The instructions a ray form adds to a formula in `x y z` (`c + t·d` per axis).
 const RAY_FORM: usize = 6;
 
-/// The ray functions of the scopes rays were searched with, by tape content.
+/// The ray functions of the scopes rays were searched with, by tape content. A lookup
+/// hashes the whole tape, once per ray whose scope differs from its thread's last one (the
+/// undecided pixels of the frustum octree each have their own): Fx hashing, not SipHash,
+/// whose resistance to chosen keys a cache of the renderer's own tapes does not need.
 #[derive(Debug)]
 pub(super) struct ScopedFunctions {
-    map: RwLock<HashMap<Tape, Option<Arc<RayFunction>>>>,
+    map: RwLock<FxHashMap<Tape, Option<Arc<RayFunction>>>>,
     /// The longest scope searched instead of the grid's cells.
     max_len: usize,
 }
