@@ -310,6 +310,9 @@ pub struct BeamEval {
     point: RayEvaluator<f64>,
     /// The mean-value form of double-double evaluations over beams (made on first use).
     centred: Option<Box<Centred>>,
+    /// The widest box of points over which an `f64` enclosure holding 0 is narrowed by
+    /// the mean-value form (`None`: never; [`BeamEval::set_centred_fallback`]).
+    centred_fallback: Option<f64>,
 }
 
 /// A parameter interval as a double-double interval (exact).
@@ -342,6 +345,59 @@ impl BeamEval {
             interval_dd: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
             point: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
             centred: None,
+            centred_fallback: None,
+        }
+    }
+
+    /// With `widest`, an `f64` interval evaluation of `g` over a beam ([`RayFn::g`],
+    /// [`RayFn::g_checked`]) whose natural enclosure holds 0 is intersected with the
+    /// mean-value form over the box of the beam's points ([`Centred::enclose_f64`]) where
+    /// `g` is proven continuous there and the box is at most `widest` wide on every axis.
+    /// Both enclose `g`'s values, so the result does too; it decides more beams where the
+    /// natural extension of a formula with dependent terms (a torus' quartic seen along a
+    /// beam) is several times wider than `g` varies, at the cost of a gradient evaluation
+    /// where it is tried. Over wide boxes the form is as wide as `g` varies there and
+    /// rarely decides anything, hence the limit. `None` (the default): never.
+    pub fn set_centred_fallback(&mut self, widest: Option<f64>) {
+        self.centred_fallback = widest;
+    }
+
+    /// `natural`, the `f64` enclosure of `g` over the beam set for `t`, narrowed by the
+    /// mean-value form where [`set_centred_fallback`](Self::set_centred_fallback) asks it,
+    /// `natural` holds 0 and a beam (not a ray) is set; `continuous` says `g` is proven
+    /// continuous over the region.
+    fn narrowed(
+        &mut self,
+        t: Interval<f64>,
+        natural: Interval<f64>,
+        continuous: bool,
+    ) -> Interval<f64> {
+        let Some(widest) = self.centred_fallback else {
+            return natural;
+        };
+        if natural.is_empty() || natural.inf() > 0.0 || natural.sup() < 0.0 || !self.is_beam() {
+            return natural;
+        }
+        let points = Beam {
+            origin: self.origin,
+            dir: self.dir,
+        }
+        .points(t);
+        if points.iter().any(|x| !(x.wid() <= widest)) {
+            return natural;
+        }
+        let tape = self.interval.scope().clone();
+        let continuous = continuous || tape.is_continuous_everywhere();
+        let centred = self
+            .centred
+            .get_or_insert_with(|| Box::new(Centred::new(&tape)))
+            .enclose_f64(&tape, &points, continuous);
+        match centred {
+            Some(c) => {
+                let both = natural.intersection(c);
+                if both.is_empty() { natural } else { both }
+            }
+            None => natural,
         }
     }
 
@@ -493,7 +549,10 @@ impl RayFn for BeamEval {
     #[inline]
     fn g(&mut self, t: Interval<f64>) -> Interval<f64> {
         match self.precision {
-            Precision::F64 => self.interval.g(t),
+            Precision::F64 => {
+                let natural = self.interval.g(t);
+                self.narrowed(t, natural, false)
+            }
             Precision::F32 => self.interval32.g(t.cast()).cast(),
             Precision::Dd => {
                 let natural = self.interval_dd.g(dd(t));
@@ -520,7 +579,10 @@ impl RayFn for BeamEval {
     #[inline]
     fn g_checked(&mut self, t: Interval<f64>) -> (Interval<f64>, bool) {
         match self.precision {
-            Precision::F64 => self.interval.g_checked(t),
+            Precision::F64 => {
+                let (natural, continuous) = self.interval.g_checked(t);
+                (self.narrowed(t, natural, continuous), continuous)
+            }
             Precision::F32 => {
                 let (g, ok) = self.interval32.g_checked(t.cast());
                 (g.cast(), ok)

@@ -12,6 +12,14 @@ use crate::ray::{Beam, Ray, point_box};
 use crate::root::{Proof, RootCounters, RootFinder, RootResult};
 use crate::sample::SHADOW_OFFSET;
 use crate::shadow::beam::shadow_beam_settings;
+
+/// Pieces of a shadow beam asked to prove both ways (free or blocked) try the mean-value
+/// form where their natural enclosure holds 0 ([`crate::ray::BeamEval::set_centred_fallback`])
+/// up to `1/CENTRED_PIECES` of the scene's diagonal wide. Counted on
+/// `scenes/soft-shadows.toml` with `certified:0.5`: of the pieces tried between 1/100 and
+/// 1/50 of the diagonal a third were decided by the form, between 1/50 and 1/25 1.5 %,
+/// wider ones none (120 k tries, a fifth of all, for nothing).
+const CENTRED_PIECES: f64 = 64.0;
 use crate::shadow::hard::segment_visibility;
 use crate::shadow::{Occluders, Occlusion, Patch};
 
@@ -167,14 +175,23 @@ impl CpuQueries<'_> {
             return BoxClass::Miss;
         }
         ev.geo.beam.set_beam(beam);
-        if !inclusion {
-            return rejection_search(&mut ev.geo.beam, &ranges, settings, c);
-        }
-        let bounds = self.scene.geometry.bounds();
-        let extent = Extent {
-            beam,
-            bounds: &bounds,
+        // A beam asked to prove both ways (free or blocked) is decided by the mean-value
+        // form where the natural enclosure is loose ([`CENTRED_PIECES`]).
+        let widest = self.scene.geometry.diagonal() / CENTRED_PIECES;
+        ev.geo
+            .beam
+            .set_centred_fallback(inclusion.then_some(widest));
+        let class = if inclusion {
+            let bounds = self.scene.geometry.bounds();
+            let extent = Extent {
+                beam,
+                bounds: &bounds,
+            };
+            evaluate_box(&mut ev.geo.beam, &ranges, Some(&extent), settings, c)
+        } else {
+            rejection_search(&mut ev.geo.beam, &ranges, settings, c)
         };
-        evaluate_box(&mut ev.geo.beam, &ranges, Some(&extent), settings, c)
+        ev.geo.beam.set_centred_fallback(None);
+        class
     }
 }
