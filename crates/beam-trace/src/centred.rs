@@ -74,8 +74,8 @@ impl Centred {
             return None;
         }
         self.grad.set_tape(tape);
-        for i in 0..3 {
-            self.grad_vars[i] = Grad::var(b[i], i);
+        for (i, (v, &x)) in self.grad_vars.iter_mut().zip(b).enumerate() {
+            *v = Grad::var(x, i);
         }
         if !continuous {
             self.value.set_tape(tape);
@@ -106,8 +106,8 @@ impl Centred {
     ) -> Option<Interval<f64>> {
         let (m, slope) = self.slope(tape, b, continuous)?;
         self.centre64.set_tape(tape);
-        for i in 0..3 {
-            self.centre64_vars[i] = Interval::new_unchecked(m[i], m[i]);
+        for (v, &c) in self.centre64_vars.iter_mut().zip(&m) {
+            *v = Interval::new_unchecked(c, c);
         }
         let mut acc = self.centre64.eval(&self.centre64_vars).ok()?;
         for i in 0..3 {
@@ -123,8 +123,8 @@ impl Centred {
     pub fn enclose(&mut self, tape: &Tape, b: &IBox) -> Option<DdInterval> {
         let (m, slope) = self.slope(tape, b, false)?;
         self.centre.set_tape(tape);
-        for i in 0..3 {
-            self.centre_vars[i] = DdInterval::point(m[i]);
+        for (v, &c) in self.centre_vars.iter_mut().zip(&m) {
+            *v = DdInterval::point(c);
         }
         let mut acc = self.centre.eval(&self.centre_vars).ok()?;
         for i in 0..3 {

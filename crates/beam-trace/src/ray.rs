@@ -8,6 +8,7 @@
 //! [`RayFn`] is `g(t) = f(origin + t · dir)` and `g'(t)` of one ray or beam, all that the
 //! root finders see; [`BeamEval`] implements it over a scene function.
 
+use std::cmp::Ordering;
 use std::fmt;
 use std::str::FromStr;
 
@@ -383,7 +384,14 @@ impl BeamEval {
             dir: self.dir,
         }
         .points(t);
-        if points.iter().any(|x| !(x.wid() <= widest)) {
+        // A box of points that cannot be measured (NaN width) is not tried either.
+        let within = |x: &Interval<f64>| {
+            matches!(
+                x.wid().partial_cmp(&widest),
+                Some(Ordering::Less | Ordering::Equal)
+            )
+        };
+        if !points.iter().all(within) {
             return natural;
         }
         let tape = self.interval.scope().clone();
