@@ -153,6 +153,45 @@ mod tests {
         std::array::from_fn(|i| Interval::new(lo[i], hi[i]).expect("ordered"))
     }
 
+    /// A xorshift generator of numbers in `[0, 1)` from `seed`.
+    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64
+        }
+    }
+
+    /// A random box in `[-1.2, 1.5]³` of side at most 0.3, mostly much less.
+    fn random_box(next: &mut impl FnMut() -> f64) -> IBox {
+        let lo: [f64; 3] = std::array::from_fn(|_| 2.4 * next() - 1.2);
+        let w = 0.3 * next() * next();
+        ibox(lo, lo.map(|v| v + w))
+    }
+
+    /// Asserts that `e` meets the double-double enclosure of `f`'s value (`point`
+    /// evaluates its tape) at 20 random points of `b`; returns how many were checked.
+    fn assert_meets_values(
+        (formula, e, b): (&str, Interval<f64>, &IBox),
+        point: &mut Evaluator<DdInterval>,
+        next: &mut impl FnMut() -> f64,
+    ) -> usize {
+        for _ in 0..20 {
+            let p: [f64; 3] = std::array::from_fn(|i| b[i].inf() + b[i].wid() * next());
+            let mut vars = vec![DdInterval::point(0.0); RAY_SLOTS];
+            for (v, &x) in vars.iter_mut().zip(&p) {
+                *v = DdInterval::point(x);
+            }
+            let v = point.eval(&vars).expect("evaluates").to_interval();
+            assert!(
+                !v.intersection(e).is_empty(),
+                "{formula}: f{p:?} in {v:?}, outside the form {e:?} over {b:?}"
+            );
+        }
+        20
+    }
+
     #[test]
     fn cancelling_sphere_is_as_narrow_as_the_plain_one() {
         let tape = ray_tape("(x + 1e11)^2 - 2e11*x - 1e22 + y^2 + z^2 - 1");
@@ -210,39 +249,19 @@ mod tests {
             .collect();
         formulas.push("(x + 1e6)^2 - 2e6*x - 1e12 + y^2 + z^2 - 1".into());
         formulas.push("(x + 1e11)*(x - 1e11) + 1e22 + y^2 + z^2 - 1".into());
-        let mut seed = 0x9e37_79b9_7f4a_7c15_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(0x9e37_79b9_7f4a_7c15);
         let mut checked = 0;
         for formula in &formulas {
             let tape = ray_tape(formula);
             let mut c = Centred::new(&tape);
             let mut point = Evaluator::<DdInterval>::new(&tape);
             for _ in 0..40 {
-                let lo: [f64; 3] = std::array::from_fn(|_| 2.4 * next() - 1.2);
-                let w = 0.3 * next() * next();
-                let b = ibox(lo, lo.map(|v| v + w));
+                let b = random_box(&mut next);
                 let Some(e) = c.enclose(&tape, &b) else {
                     continue;
                 };
-                let e = e.to_interval();
-                for _ in 0..20 {
-                    let p: [f64; 3] = std::array::from_fn(|i| b[i].inf() + b[i].wid() * next());
-                    let mut vars = vec![DdInterval::point(0.0); RAY_SLOTS];
-                    for i in 0..3 {
-                        vars[i] = DdInterval::point(p[i]);
-                    }
-                    let v = point.eval(&vars).expect("evaluates").to_interval();
-                    assert!(
-                        !v.intersection(e).is_empty(),
-                        "{formula}: f{p:?} in {v:?}, outside the form {e:?} over {b:?}"
-                    );
-                    checked += 1;
-                }
+                checked +=
+                    assert_meets_values((formula, e.to_interval(), &b), &mut point, &mut next);
             }
         }
         assert!(checked > 1000, "only {checked} points checked");
@@ -259,13 +278,7 @@ mod tests {
             .map(|s| s.formula.to_string())
             .chain(["(x^2 + y^2 + z^2 + 0.4275)^2 - 1.96 * (x^2 + y^2)".to_string()])
             .collect();
-        let mut seed = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = move || {
-            seed ^= seed << 13;
-            seed ^= seed >> 7;
-            seed ^= seed << 17;
-            (seed >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut next = uniform(0x2545_f491_4f6c_dd1d);
         let (mut checked, mut narrower) = (0, 0);
         for formula in &formulas {
             let tape = ray_tape(formula);
@@ -274,9 +287,7 @@ mod tests {
             let mut natural = Evaluator::<Interval<f64>>::new(&tape);
             let mut point = Evaluator::<DdInterval>::new(&tape);
             for k in 0..40 {
-                let lo: [f64; 3] = std::array::from_fn(|_| 2.4 * next() - 1.2);
-                let w = 0.3 * next() * next();
-                let b = ibox(lo, lo.map(|v| v + w));
+                let b = random_box(&mut next);
                 let Some(e) = c.enclose_f64(&tape, &b, by_form && k % 2 == 0) else {
                     continue;
                 };
@@ -284,19 +295,7 @@ mod tests {
                 vars[..3].copy_from_slice(&b);
                 let n = natural.eval(&vars).expect("evaluates");
                 narrower += usize::from(e.wid() < n.wid());
-                for _ in 0..20 {
-                    let p: [f64; 3] = std::array::from_fn(|i| b[i].inf() + b[i].wid() * next());
-                    let mut vars = vec![DdInterval::point(0.0); RAY_SLOTS];
-                    for i in 0..3 {
-                        vars[i] = DdInterval::point(p[i]);
-                    }
-                    let v = point.eval(&vars).expect("evaluates").to_interval();
-                    assert!(
-                        !v.intersection(e).is_empty(),
-                        "{formula}: f{p:?} in {v:?}, outside the f64 form {e:?} over {b:?}"
-                    );
-                    checked += 1;
-                }
+                checked += assert_meets_values((formula, e, &b), &mut point, &mut next);
             }
         }
         assert!(checked > 1000, "only {checked} points checked");
