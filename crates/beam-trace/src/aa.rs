@@ -202,16 +202,50 @@ pub fn facing(gradient: &IBox, region: &IBox, to: &IBox) -> Interval<f64> {
     (0..3).fold(ipoint(0.0), |d, i| d + gradient[i] * (to[i] - region[i]))
 }
 
-/// The box of the points of `region` (a box holding hit points) each moved along its unit
-/// normal turned towards the eye by `offset` plus the box's extent along that normal (the
-/// largest `Σ |n_i| · wid(region_i)`): a box of a flat piece of surface holds points up to
-/// that far inside the solid, and a shadow ray's origin must lie outside it, `offset` off
-/// the surface as [`Hit::shadow_origin`](crate::sample::Hit::shadow_origin) places a
-/// sample's. The normals are the directions of `gradient` (an enclosure of the scene
-/// function's gradient over the region), turned by the sign of their product with the
-/// directions to the viewpoints `eye`, in interval arithmetic rounded outward. Returns the
-/// box and that sign (`1.0` or `-1.0`: the facing normals are the gradients' directions
-/// times it).
+/// Where the shadow rays of a region's points start, and how far along them the region's
+/// own slab reaches: see [`shadow_origins`].
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ShadowStarts {
+    /// Holds each point's shadow ray origin: the point moved `offset` along its unit
+    /// normal turned towards the eye, as
+    /// [`Hit::shadow_origin`](crate::sample::Hit::shadow_origin) places a sample's.
+    pub origins: IBox,
+    /// The unit normals turned towards the eye, over the region.
+    pub normals: IBox,
+    /// The region's extent along its normals (the largest `Σ |n_i| · wid(region_i)`): a
+    /// box of a flat piece of surface holds points up to that far on either side of it.
+    pub lift: f64,
+    /// The sign that turns the gradients' directions into `normals` (`1.0` or `-1.0`).
+    pub side: f64,
+}
+
+impl ShadowStarts {
+    /// The parameter from which every ray `o + t·d` (`o` in the origins, `d` in `dirs`)
+    /// has risen by at least [`lift`](Self::lift) along every normal of the region: past
+    /// the region's own slab, where the surface of the region cannot block it. `None` where
+    /// some direction may not rise (it grazes or leaves the surface), or the rays do not
+    /// clear the slab before `t = 1` (the light lies inside it).
+    pub fn clear_from(&self, dirs: &IBox) -> Option<f64> {
+        let rise = (0..3).fold(ipoint(0.0), |d, i| d + self.normals[i] * dirs[i]);
+        if rise.is_empty() || rise.inf() <= 0.0 {
+            return None;
+        }
+        let t = (ipoint(self.lift) / ipoint(rise.inf())).sup();
+        (t < 1.0).then_some(t)
+    }
+}
+
+/// The shadow-ray starts of the points of `region` (a box holding hit points), each moved
+/// along its unit normal turned towards the eye by `offset`, with the region's extent
+/// along those normals ([`ShadowStarts`]). The normals are the directions of `gradient` (an
+/// enclosure of the scene function's gradient over the region), turned by the sign of their
+/// product with the directions to the viewpoints `eye`, in interval arithmetic rounded
+/// outward.
+///
+/// A box of a flat piece of surface holds points on both sides of it, so rays from some of
+/// its origins start inside the solid; a shadow beam over the region is searched from
+/// [`ShadowStarts::clear_from`] on, where every ray has left the region's slab. Its rays are
+/// the samples' own shadow rays (the same lines), without their first stretch.
 ///
 /// `None` where that sign is not one over the region (a silhouette may cross it), the
 /// gradient may vanish, or the enclosures are unbounded.
@@ -220,7 +254,7 @@ pub fn shadow_origins(
     region: &IBox,
     eye: &IBox,
     offset: f64,
-) -> Option<(IBox, f64)> {
+) -> Option<ShadowStarts> {
     let facing = facing(gradient, region, eye);
     let side = if facing.inf() > 0.0 {
         1.0
@@ -235,17 +269,23 @@ pub fn shadow_origins(
     if length.is_empty() || length.inf() <= 0.0 || !length.sup().is_finite() {
         return None;
     }
-    let normal: IBox = std::array::from_fn(|i| gradient[i] / length);
-    let extent = (0..3).fold(ipoint(0.0), |d, i| {
-        d + normal[i].abs() * ipoint(region[i].wid())
-    });
-    let offset = (ipoint(offset) + extent).sup();
-    let step = ipoint(side * offset);
-    let origins: IBox = std::array::from_fn(|i| region[i] + step * normal[i]);
-    origins
-        .iter()
-        .all(|x| !x.is_empty() && x.inf().is_finite() && x.sup().is_finite())
-        .then_some((origins, side))
+    let normals: IBox = std::array::from_fn(|i| ipoint(side) * gradient[i] / length);
+    let lift = (0..3)
+        .fold(ipoint(0.0), |d, i| {
+            d + normals[i].abs() * ipoint(region[i].wid())
+        })
+        .sup();
+    let origins: IBox = std::array::from_fn(|i| region[i] + ipoint(offset) * normals[i]);
+    let bounded = |b: &IBox| {
+        b.iter()
+            .all(|x| !x.is_empty() && x.inf().is_finite() && x.sup().is_finite())
+    };
+    (bounded(&origins) && bounded(&normals) && lift.is_finite()).then_some(ShadowStarts {
+        origins,
+        normals,
+        lift,
+        side,
+    })
 }
 
 #[cfg(test)]
@@ -260,12 +300,12 @@ mod tests {
 
     proptest! {
         /// On the unit sphere (`g = |p|² − 1`, gradient `2p`, enclosed over a box by `2·box`)
-        /// seen from outside, over a box around a point of it: the box of origins holds
-        /// every point of the sphere in the box moved along its normal by some lift between
-        /// `offset` and `offset` plus the box's widths (the function's lift), and it lies
-        /// further from the centre than the box itself by at least half the offset.
+        /// seen from outside, over a box around a point of it: the origins hold every point
+        /// of the sphere in the box moved `offset` along its normal (its own shadow ray's
+        /// start), and rays from them to a light outside along the normal have left the
+        /// sphere from [`ShadowStarts::clear_from`] on.
         #[test]
-        fn origins_hold_the_lifted_points_and_leave_the_solid(
+        fn origins_hold_the_shadow_starts_and_the_rays_clear_the_solid(
             theta in 0.2f64..2.9,
             phi in 0.0f64..6.2,
             r in 0.0f64..0.05,
@@ -275,12 +315,10 @@ mod tests {
             let eye = (p * 10.0).to_array().map(ipoint);
             let region = around(p, r);
             let gradient: IBox = std::array::from_fn(|i| ipoint(2.0) * region[i]);
-            let (origins, side) = shadow_origins(&gradient, &region, &eye, offset)
+            let starts = shadow_origins(&gradient, &region, &eye, offset)
                 .expect("the sphere faces the eye over a small box");
-            prop_assert_eq!(side, 1.0);
-            // Every point of the sphere in the box, moved along its normal by the lift,
-            // lies in the origins; the lift is at least `offset`.
-            let extent: f64 = region.iter().map(|x| x.wid()).sum();
+            prop_assert_eq!(starts.side, 1.0);
+            let held = |b: &IBox, x: DVec3| (0..3).all(|i| b[i].contains(x[i]));
             for k in 0..16 {
                 let u = DVec3::new(
                     f64::from(k % 2) - 0.5,
@@ -288,47 +326,39 @@ mod tests {
                     f64::from(k / 4 % 2) - 0.5,
                 ) * r;
                 let q = (p + u).normalize();
-                let inside = |x: DVec3| (0..3).all(|i| region[i].contains(x[i]));
-                if !inside(q) {
+                if !held(&region, q) {
                     continue;
                 }
-                let moved = |lift: f64| q + q * lift;
-                let held = |x: DVec3| (0..3).all(|i| origins[i].contains(x[i]));
-                // The lift lies between the offset and the offset plus the box's widths.
-                prop_assert!(
-                    (0..=32).any(|j| held(moved(offset + extent * f64::from(j) / 32.0))),
-                    "no lift of {q:?} in {origins:?}"
-                );
+                prop_assert!(held(&starts.origins, q + q * offset), "{q:?} in {starts:?}");
             }
-            // Moved outwards: the nearest point to the centre is further off.
-            let nearest = |b: &IBox| -> f64 {
-                (0..3)
-                    .map(|i| {
-                        let x = b[i];
-                        if x.inf() > 0.0 {
-                            x.inf()
-                        } else if x.sup() < 0.0 {
-                            -x.sup()
-                        } else {
-                            0.0
-                        }
-                    })
-                    .map(|d| d * d)
-                    .sum::<f64>()
-                    .sqrt()
-            };
-            prop_assert!(
-                nearest(&origins) > nearest(&region) + 0.5 * offset,
-                "origins {origins:?} not moved out of {region:?}"
-            );
+            let light = (p * 3.0).to_array().map(ipoint);
+            let dirs: IBox = std::array::from_fn(|i| light[i] - starts.origins[i]);
+            let t = starts.clear_from(&dirs).expect("a light along the normal clears the slab");
+            // Every point of the rays at `t` lies outside the sphere.
+            let at: IBox = std::array::from_fn(|i| starts.origins[i] + ipoint(t) * dirs[i]);
+            let nearest = (0..3)
+                .map(|i| {
+                    let x = at[i];
+                    if x.inf() > 0.0 {
+                        x.inf()
+                    } else if x.sup() < 0.0 {
+                        -x.sup()
+                    } else {
+                        0.0
+                    }
+                })
+                .map(|d| d * d)
+                .sum::<f64>();
+            prop_assert!(nearest > 1.0, "rays at {t} still meet the sphere: {at:?}");
         }
     }
 
     /// A flat piece of the floor `z = 0` seen from above through a box that reaches below
-    /// it: the origins lie above the floor by at least the offset (the lift clears the
-    /// box's own depth), and a box whose normal may face either way gives none.
+    /// it: the origins are the box moved up by the offset, the rays to a light above clear
+    /// the box's top from `clear_from` on, a light below or in the slab gives none, and a
+    /// box whose normal may face either way gives no starts.
     #[test]
-    fn a_floor_box_is_lifted_clear_of_the_floor() {
+    fn rays_from_a_floor_box_clear_its_slab() {
         let region = [
             Interval::new(-0.1, 0.1).unwrap(),
             Interval::new(0.3, 0.4).unwrap(),
@@ -336,20 +366,24 @@ mod tests {
         ];
         let gradient = [ipoint(0.0), ipoint(0.0), ipoint(1.0)];
         let eye = [ipoint(0.0), ipoint(-5.0), ipoint(5.0)];
-        let (origins, side) = shadow_origins(&gradient, &region, &eye, 1e-3).unwrap();
-        assert_eq!(side, 1.0);
-        assert!(
-            origins[2].inf() >= 1e-3 - 0.02 + 0.04 * (1.0 - 1e-12),
-            "{origins:?}"
-        );
+        let starts = shadow_origins(&gradient, &region, &eye, 1e-3).unwrap();
+        assert_eq!(starts.side, 1.0);
+        assert!(starts.origins[2].inf() <= -0.02 + 1e-3 && starts.origins[2].sup() >= 0.021);
+        assert!(starts.lift >= 0.04);
+        let dirs_to = |light: [f64; 3]| -> IBox {
+            std::array::from_fn(|i| ipoint(light[i]) - starts.origins[i])
+        };
+        let up = dirs_to([1.0, 2.0, 5.0]);
+        let t = starts.clear_from(&up).unwrap();
+        let z = starts.origins[2] + ipoint(t) * up[2];
+        assert!(z.inf() >= region[2].sup(), "{z:?} at {t}");
+        assert!(starts.clear_from(&dirs_to([1.0, 2.0, -5.0])).is_none());
+        assert!(starts.clear_from(&dirs_to([0.0, 0.35, 0.01])).is_none());
         // Seen from below, the facing normal points down: the origins go below.
         let below = [ipoint(0.0), ipoint(-5.0), ipoint(-5.0)];
-        let (under, side) = shadow_origins(&gradient, &region, &below, 1e-3).unwrap();
-        assert_eq!(side, -1.0);
-        assert!(
-            under[2].sup() <= -1e-3 + 0.02 - 0.04 * (1.0 - 1e-12),
-            "{under:?}"
-        );
+        let under = shadow_origins(&gradient, &region, &below, 1e-3).unwrap();
+        assert_eq!(under.side, -1.0);
+        assert!(under.origins[2].sup() <= 0.02 - 1e-3 + 1e-12, "{under:?}");
         // An eye in the floor's plane: the normal may face either way.
         let level = [ipoint(0.0), ipoint(-5.0), Interval::new(-0.5, 0.5).unwrap()];
         assert!(shadow_origins(&gradient, &region, &level, 1e-3).is_none());

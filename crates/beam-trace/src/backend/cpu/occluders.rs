@@ -117,16 +117,16 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
 impl CpuQueries<'_> {
     /// Whether the shadow of every point light at `lights` is judged the same over a hit
     /// region (`gradient`, the points `region`, seen from `eye`), so that one sample's
-    /// shadow query may stand for all of them: the shadow beam from the region's points,
-    /// lifted off the surface, to the light is proven free or proven blocked, or the light
-    /// is behind the surface at every point (no sample asks). The region's box holds
-    /// points on both sides of the surface (its rays over the whole section `T_final`), and
-    /// rays from those inside the solid would be blocked by the surface itself; so the
-    /// origins are the box's points moved along their facing normals by the renderer's
-    /// shadow offset plus the box's extent along them ([`shadow_origins`]), above a flat
-    /// region's surface. An estimate for deciding splits: an occluder nearer the surface than that
-    /// is not seen (each sample's own segment still decides its shade). `false` where the
-    /// origins cannot be bounded (the normal may turn either way over the region).
+    /// shadow query may stand for all of them: the shadow beam of the region's samples'
+    /// own shadow rays to the light is proven free or proven blocked, or the light is
+    /// behind the surface at every point (no sample asks). The region's box holds points on
+    /// both sides of the surface (its rays over the whole section `T_final`), and rays from
+    /// those inside the solid would be blocked by the surface itself; so the beam is
+    /// searched from where every ray has left the region's slab ([`shadow_origins`],
+    /// [`ShadowStarts::clear_from`](crate::aa::ShadowStarts::clear_from)). An estimate for
+    /// deciding splits: an occluder inside that slab is not seen (each sample's own segment
+    /// still decides its shade). `false` where the origins cannot be bounded (the normal
+    /// may turn either way over the region) or some ray may not leave the slab.
     pub(super) fn hard_shadows_uniform(
         &self,
         ev: &mut Evals,
@@ -139,20 +139,26 @@ impl CpuQueries<'_> {
         }
         let diagonal = self.scene.geometry.diagonal();
         let offset = SHADOW_OFFSET * diagonal;
-        let Some((origins, side)) = shadow_origins(gradient, region, eye, offset) else {
+        let Some(starts) = shadow_origins(gradient, region, eye, offset) else {
             return false;
         };
+        let origins = starts.origins;
         let centre = DVec3::from_array(std::array::from_fn(|i| origins[i].mid()));
         lights.iter().all(|&light| {
             let to = point_box(light);
             // The facing normal's product with the direction to the light, over the region:
             // at most zero everywhere, and no sample casts a segment.
-            if (ipoint(side) * facing(gradient, region, &to)).sup() <= 0.0 {
+            if (ipoint(starts.side) * facing(gradient, region, &to)).sup() <= 0.0 {
                 return true;
             }
             let beam = Beam {
                 origin: origins,
                 dir: std::array::from_fn(|i| to[i] - origins[i]),
+            };
+            // The samples' own shadow rays, searched past the region's slab; where they may
+            // not leave it (a grazing light), the shadow is not judged uniform.
+            let Some(start) = starts.clear_from(&beam.dir) else {
+                return false;
             };
             let patch = Patch {
                 corner: light,
@@ -161,7 +167,7 @@ impl CpuQueries<'_> {
             };
             let settings = shadow_beam_settings(&self.plan.beam, diagonal, centre, &patch);
             !matches!(
-                self.shadow_beam(ev, &beam, (0.0, true), &settings, c),
+                self.shadow_beam(ev, &beam, (start, true), &settings, c),
                 BoxClass::Undecided { .. }
             )
         })
