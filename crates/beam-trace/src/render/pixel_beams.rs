@@ -413,43 +413,49 @@ fn shade_parts(
     }
     let answers = q.roots(&queries)?;
     c.search.add(&answers.search);
-    // Each shaded part's ray to shade, its root, and the share of its rays that met a
-    // surface (or may have).
-    let found: Vec<(Ray, RootResult, f32)> = shaded
+    // Each shaded part's rays to shade with their roots (every one of its rays that met a
+    // surface, or may have; its central ray where none did), and the share of its rays
+    // that met one.
+    let found: Vec<(Vec<(Ray, RootResult)>, f32)> = shaded
         .iter()
         .enumerate()
         .map(|(i, &k)| {
             let (query, _) = done[k].ray.as_ref().expect("a shaded part");
             pixel_cost[done[k].pixel] += answers.cost[first[i]..first[i + 1]].iter().sum::<f32>();
             if let Some(r) = known(k) {
-                return (query.ray, r, 1.0);
+                return (vec![(query.ray, r)], 1.0);
             }
             let roots = &answers.values[first[i]..first[i + 1]];
-            let met = |r: &RootResult| !matches!(r, RootResult::NoRoot);
-            let hits = roots.iter().filter(|r| met(r)).count();
-            let share = hits as f32 / roots.len().max(1) as f32;
-            match roots.iter().position(met) {
-                Some(j) => (queries[first[i] + j].ray, roots[j], share),
-                None => (query.ray, RootResult::NoRoot, share),
+            let met: Vec<(Ray, RootResult)> = roots
+                .iter()
+                .enumerate()
+                .filter(|(_, r)| !matches!(r, RootResult::NoRoot))
+                .map(|(j, &r)| (queries[first[i] + j].ray, r))
+                .collect();
+            let share = met.len() as f32 / roots.len().max(1) as f32;
+            if met.is_empty() {
+                (vec![(query.ray, RootResult::NoRoot)], share)
+            } else {
+                (met, share)
             }
         })
         .collect();
-    let hit_queries: Vec<HitQuery> = shaded
-        .iter()
-        .zip(&found)
-        .filter_map(|(&k, &(ray, r, _))| {
-            let (query, fallback) = done[k].ray.as_ref()?;
-            let t = match r {
+    // Part `i`'s shading points are `hits.values[first_hit[i]..first_hit[i + 1]]`.
+    let mut first_hit = Vec::with_capacity(shaded.len() + 1);
+    first_hit.push(0);
+    let mut hit_queries: Vec<HitQuery> = Vec::new();
+    for (&k, (rays, _)) in shaded.iter().zip(&found) {
+        let (query, fallback) = done[k].ray.as_ref().expect("a shaded part");
+        hit_queries.extend(rays.iter().map(|&(ray, r)| HitQuery {
+            ray,
+            t: match r {
                 RootResult::Root { t, .. } | RootResult::Undecided { t } => t,
                 RootResult::NoRoot => *fallback,
-            };
-            Some(HitQuery {
-                ray,
-                t,
-                scope: query.scope.clone(),
-            })
-        })
-        .collect();
+            },
+            scope: query.scope.clone(),
+        }));
+        first_hit.push(hit_queries.len());
+    }
     let hits = q.hit_points(&hit_queries)?;
     c.search.add(&hits.search);
     let mut parts: Vec<(usize, u64, Sample)> = done
@@ -466,33 +472,54 @@ fn shade_parts(
             )
         })
         .collect();
-    for (((&k, hit), t), &(_, _, met)) in shaded.iter().zip(hits.values).zip(&hits.cost).zip(&found)
-    {
-        parts[k].2.hit = Some(hit);
-        pixel_cost[done[k].pixel] += t;
-        if done[k].area == Area::Unknown {
-            // An undecided part at the limit: its surface's share of it is unknown, but
-            // neither all nor none of it is proven, so the share kept is inside (0, 1).
-            // With `m²` stratified rays (m = 1: the central ray) of which a share `met`
-            // meets the surface, `met` estimates the share, kept [`UNKNOWN_SHARE_FLOOR`]
-            // of a ray's share inside (0, 1): a part whose rays all miss a feature its
-            // beam may meet still shows it, with little bias where the beam's enclosure
-            // is merely loose.
+    for (i, (&k, &(_, met))) in shaded.iter().zip(&found).enumerate() {
+        let range = first_hit[i]..first_hit[i + 1];
+        pixel_cost[done[k].pixel] += hits.cost[range.clone()].iter().sum::<f32>();
+        let part_hits = &hits.values[range];
+        let (pixel, path) = (done[k].pixel, done[k].path);
+        // An undecided part at the limit: its surface's share of it is unknown, but
+        // neither all nor none of it is proven, so the share kept is inside (0, 1). With
+        // `m²` stratified rays (m = 1: the central ray) of which a share `met` meets a
+        // surface, `met` estimates the share, kept [`UNKNOWN_SHARE_FLOOR`] of a ray's share
+        // inside (0, 1): a part whose rays all miss a feature its beam may meet still
+        // shows it, with little bias where the beam's enclosure is merely loose. The share
+        // is split evenly among the rays that met a surface, each shaded where it met its
+        // own (a part across a silhouette sees two surfaces).
+        let share = if done[k].area == Area::Unknown {
             let m2 = done[k].probes.len().max(1) as f32;
             let floor = UNKNOWN_SHARE_FLOOR / m2;
-            let share = met.clamp(floor, 1.0 - floor);
-            let (pixel, path, sample) = &mut parts[k];
-            let background = Sample {
-                weight: sample.weight * (1.0 - share),
-                hit: None,
-                area: Area::Unknown,
-            };
-            sample.weight *= share;
-            let (pixel, path) = (*pixel, *path);
-            parts.push((pixel, path, background));
+            met.clamp(floor, 1.0 - floor)
+        } else {
+            1.0
+        };
+        let weight = parts[k].2.weight;
+        let each = weight * share / part_hits.len() as f32;
+        parts[k].2.hit = Some(part_hits[0]);
+        parts[k].2.weight = each;
+        for &hit in &part_hits[1..] {
+            parts.push((
+                pixel,
+                path,
+                Sample {
+                    weight: each,
+                    hit: Some(hit),
+                    area: done[k].area,
+                },
+            ));
+        }
+        if done[k].area == Area::Unknown {
+            parts.push((
+                pixel,
+                path,
+                Sample {
+                    weight: weight * (1.0 - share),
+                    hit: None,
+                    area: Area::Unknown,
+                },
+            ));
         }
     }
-    // Stable: a part's surface sample stays before its background sample.
+    // Stable: a part's surface samples stay before its background sample.
     parts.sort_by_key(|&(pixel, path, _)| (pixel, path));
     let mut counts = vec![0; n];
     for &(pixel, _, _) in &parts {
