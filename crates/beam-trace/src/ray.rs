@@ -172,6 +172,13 @@ impl Beam {
         std::array::from_fn(|i| self.origin[i] + t * self.dir[i])
     }
 
+    /// The largest width of the beam's directions over the length of the longest: about
+    /// the angle it spans, in radians (NaN for a beam without length).
+    pub fn angular_spread(&self) -> f64 {
+        self.dir.iter().map(|d| d.wid()).fold(0.0, f64::max)
+            / self.dir.iter().map(|d| d.mag()).fold(0.0, f64::max)
+    }
+
     /// The slab test on one axis: an enclosure, rounded outward, of the parameters `t ∈ t`
     /// at which some ray of the beam has its coordinate on `axis` in `slab`. Empty when no
     /// ray of the beam reaches the slab for `t ∈ t`.
@@ -328,6 +335,15 @@ fn box_dd(b: &IBox) -> [DdInterval; 3] {
     b.map(DdInterval::from_interval)
 }
 
+/// `natural` narrowed by `centred`, two enclosures of `g`'s values over one region (which
+/// has some where `natural` is not empty, so they meet); `natural` should rounding say
+/// otherwise.
+#[inline]
+fn meet(natural: Interval<f64>, centred: Interval<f64>) -> Interval<f64> {
+    let both = natural.intersection(centred);
+    if both.is_empty() { natural } else { both }
+}
+
 /// A box rounded outward to `f32` (each `f32` interval contains the `f64` one).
 #[inline]
 fn box32(b: &IBox) -> [Interval<f32>; 3] {
@@ -379,11 +395,7 @@ impl BeamEval {
         if natural.is_empty() || natural.inf() > 0.0 || natural.sup() < 0.0 || !self.is_beam() {
             return natural;
         }
-        let points = Beam {
-            origin: self.origin,
-            dir: self.dir,
-        }
-        .points(t);
+        let points = self.points(t);
         // A box of points that cannot be measured (NaN width) is not tried either.
         let within = |x: &Interval<f64>| {
             matches!(
@@ -400,13 +412,16 @@ impl BeamEval {
             .centred
             .get_or_insert_with(|| Box::new(Centred::new(&tape)))
             .enclose_f64(&tape, &points, continuous);
-        match centred {
-            Some(c) => {
-                let both = natural.intersection(c);
-                if both.is_empty() { natural } else { both }
-            }
-            None => natural,
+        centred.map_or(natural, |c| meet(natural, c))
+    }
+
+    /// The box of the points of the beam set, for the parameters `t`.
+    fn points(&self, t: Interval<f64>) -> IBox {
+        Beam {
+            origin: self.origin,
+            dir: self.dir,
         }
+        .points(t)
     }
 
     /// An evaluator for `f` whose interval evaluations run in `precision`.
@@ -497,25 +512,14 @@ impl BeamEval {
             return natural;
         }
         let tape = self.interval_dd.scope().clone();
-        match self.centred_form(&tape, t) {
-            Some(c) => {
-                // Both enclose g's values over the beam (which has some: natural is not
-                // empty), so they meet; keep natural should rounding say otherwise.
-                let both = natural.intersection(c.to_interval());
-                if both.is_empty() { natural } else { both }
-            }
-            None => natural,
-        }
+        self.centred_form(&tape, t)
+            .map_or(natural, |c| meet(natural, c.to_interval()))
     }
 
     /// The centred form ([`Centred::enclose`]) of `tape`, a restriction of `g` valid on the
     /// beam over `t`, over the box of the beam's points for `t`.
     fn centred_form(&mut self, tape: &Tape, t: Interval<f64>) -> Option<DdInterval> {
-        let points = Beam {
-            origin: self.origin,
-            dir: self.dir,
-        }
-        .points(t);
+        let points = self.points(t);
         self.centred
             .get_or_insert_with(|| Box::new(Centred::new(tape)))
             .enclose(tape, &points)

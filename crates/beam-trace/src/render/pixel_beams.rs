@@ -413,47 +413,44 @@ fn shade_parts(
     }
     let answers = q.roots(&queries)?;
     c.search.add(&answers.search);
-    // Each shaded part's rays to shade with their roots (every one of its rays that met a
-    // surface, or may have; its central ray where none did), and the share of its rays
-    // that met one.
-    let found: Vec<(Vec<(Ray, RootResult)>, f32)> = shaded
-        .iter()
-        .enumerate()
-        .map(|(i, &k)| {
-            let (query, _) = done[k].ray.as_ref().expect("a shaded part");
-            pixel_cost[done[k].pixel] += answers.cost[first[i]..first[i + 1]].iter().sum::<f32>();
-            if let Some(r) = known(k) {
-                return (vec![(query.ray, r)], 1.0);
-            }
-            let roots = &answers.values[first[i]..first[i + 1]];
-            let met: Vec<(Ray, RootResult)> = roots
-                .iter()
-                .enumerate()
-                .filter(|(_, r)| !matches!(r, RootResult::NoRoot))
-                .map(|(j, &r)| (queries[first[i] + j].ray, r))
-                .collect();
-            let share = met.len() as f32 / roots.len().max(1) as f32;
-            if met.is_empty() {
-                (vec![(query.ray, RootResult::NoRoot)], share)
-            } else {
-                (met, share)
-            }
-        })
-        .collect();
-    // Part `i`'s shading points are `hits.values[first_hit[i]..first_hit[i + 1]]`.
+    // Each shaded part's shading queries (every one of its rays that met a surface, or may
+    // have; its central ray in the enclosure to shade where none did) are
+    // `hit_queries[first_hit[i]..first_hit[i + 1]]`, and `met[i]` the share of its rays that
+    // met one.
+    let mut hit_queries: Vec<HitQuery> = Vec::with_capacity(shaded.len());
     let mut first_hit = Vec::with_capacity(shaded.len() + 1);
+    let mut met = Vec::with_capacity(shaded.len());
     first_hit.push(0);
-    let mut hit_queries: Vec<HitQuery> = Vec::new();
-    for (&k, (rays, _)) in shaded.iter().zip(&found) {
+    for (i, &k) in shaded.iter().enumerate() {
         let (query, fallback) = done[k].ray.as_ref().expect("a shaded part");
-        hit_queries.extend(rays.iter().map(|&(ray, r)| HitQuery {
+        let rays = first[i]..first[i + 1];
+        pixel_cost[done[k].pixel] += answers.cost[rays.clone()].iter().sum::<f32>();
+        let hit = |ray, r: RootResult| HitQuery {
             ray,
             t: match r {
                 RootResult::Root { t, .. } | RootResult::Undecided { t } => t,
                 RootResult::NoRoot => *fallback,
             },
             scope: query.scope.clone(),
-        }));
+        };
+        if let Some(r) = known(k) {
+            hit_queries.push(hit(query.ray, r));
+            met.push(1.0);
+        } else {
+            let roots = &answers.values[rays.clone()];
+            let before = hit_queries.len();
+            hit_queries.extend(
+                (rays.clone())
+                    .zip(roots)
+                    .filter(|(_, r)| !matches!(r, RootResult::NoRoot))
+                    .map(|(j, &r)| hit(queries[j].ray, r)),
+            );
+            let meeting = hit_queries.len() - before;
+            met.push(meeting as f32 / roots.len().max(1) as f32);
+            if meeting == 0 {
+                hit_queries.push(hit(query.ray, RootResult::NoRoot));
+            }
+        }
         first_hit.push(hit_queries.len());
     }
     let hits = q.hit_points(&hit_queries)?;
@@ -472,7 +469,7 @@ fn shade_parts(
             )
         })
         .collect();
-    for (i, (&k, &(_, met))) in shaded.iter().zip(&found).enumerate() {
+    for (i, (&k, &met)) in shaded.iter().zip(&met).enumerate() {
         let range = first_hit[i]..first_hit[i + 1];
         pixel_cost[done[k].pixel] += hits.cost[range.clone()].iter().sum::<f32>();
         let part_hits = &hits.values[range];

@@ -12,6 +12,8 @@ use crate::ray::{Beam, Ray, point_box};
 use crate::root::{Proof, RootCounters, RootFinder, RootResult};
 use crate::sample::SHADOW_OFFSET;
 use crate::shadow::beam::shadow_beam_settings;
+use crate::shadow::hard::segment_visibility;
+use crate::shadow::{Occluders, Occlusion, Patch};
 
 /// Pieces of a shadow beam asked to prove both ways (free or blocked) try the mean-value
 /// form where their natural enclosure holds 0 ([`crate::ray::BeamEval::set_centred_fallback`])
@@ -29,8 +31,6 @@ const CENTRED_PIECES: f64 = 64.0;
 /// and 12.3 s without one (every beam), 1.9, 5.8 and 8.2 s with 0.03, and 7.4, 9.0 and 11.9
 /// s with no mean-value form at all.
 const CENTRED_MIN_SPREAD: f64 = 0.01;
-use crate::shadow::hard::segment_visibility;
-use crate::shadow::{Occluders, Occlusion, Patch};
 
 /// The scene's occluders as the shadow methods see them: the CPU queries and one thread's
 /// evaluators.
@@ -193,8 +193,7 @@ impl CpuQueries<'_> {
         // A beam asked to prove both ways (free or blocked) is decided by the mean-value
         // form where the natural enclosure is loose ([`CENTRED_PIECES`],
         // [`CENTRED_MIN_SPREAD`]).
-        let spread = beam.dir.iter().map(|d| d.wid()).fold(0.0, f64::max)
-            / beam.dir.iter().map(|d| d.mag()).fold(0.0, f64::max);
+        let spread = beam.angular_spread();
         let widest = self.scene.geometry.diagonal() / CENTRED_PIECES;
         ev.geo
             .beam
