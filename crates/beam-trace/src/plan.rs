@@ -185,7 +185,7 @@ impl Plan {
     /// The plan for `scene`.
     pub fn for_scene(scene: &Scene) -> Plan {
         let s = &scene.settings;
-        let primary = match s.aa {
+        let primary = match s.aa_mode() {
             AaMode::Iaa {
                 max_depth,
                 threshold,

@@ -112,11 +112,14 @@ fn cases() -> Vec<(String, Scene)> {
         edit(&mut s);
         out.push((name.to_string(), s));
     };
+    variant("default+none", "default.toml", &|s| {
+        s.settings.aa = Some(beam_trace::scene::AaMode::None);
+    });
     variant("default+iaa", "default.toml", &|s| {
-        s.settings.aa = "iaa".parse().unwrap();
+        s.settings.aa = Some("iaa".parse().unwrap());
     });
     variant("default+ss:2", "default.toml", &|s| {
-        s.settings.aa = "ss:2".parse().unwrap();
+        s.settings.aa = Some("ss:2".parse().unwrap());
     });
     variant("default+per-pixel", "default.toml", &|s| {
         s.settings.primary = beam_trace::scene::PrimaryMode::PerPixel;
@@ -156,7 +159,7 @@ fn cases() -> Vec<(String, Scene)> {
         );
     }
     variant("soft-shadows+iaa", "soft-shadows.toml", &|s| {
-        s.settings.aa = "iaa".parse().unwrap();
+        s.settings.aa = Some("iaa".parse().unwrap());
     });
     out
 }

@@ -623,7 +623,7 @@ fn crosscap_and_steiner_singular_lines() {
         let roots = check_miss_pixels_by_sampling(name, &scene, &out);
         assert!(roots > 100, "{name}: only {roots} rays with a proven root");
         let mut iaa = scene.clone();
-        iaa.settings.aa = "iaa".parse().unwrap();
+        iaa.settings.aa = Some("iaa".parse().unwrap());
         let out_iaa = run(&iaa);
         assert_finite(name, &out_iaa);
         // IAA loses nothing that 1 ray per pixel finds.
@@ -893,9 +893,9 @@ fn scene_translated_by_1e6() {
 
     // The same with interval anti-aliasing.
     let mut near_iaa = near.clone();
-    near_iaa.settings.aa = "iaa".parse().unwrap();
+    near_iaa.settings.aa = Some("iaa".parse().unwrap());
     let mut far_iaa = far.clone();
-    far_iaa.settings.aa = "iaa".parse().unwrap();
+    far_iaa.settings.aa = Some("iaa".parse().unwrap());
     let a = foreground(&near_iaa, &run(&near_iaa));
     let b = foreground(&far_iaa, &run(&far_iaa));
     let differ: BTreeSet<_> = a.symmetric_difference(&b).copied().collect();
@@ -1133,7 +1133,7 @@ fn huge_and_tiny_coefficients() {
     let fg_unit = foreground(&unit, &out_unit);
     let edge = silhouette(&unit.camera, DVec3::ZERO);
     let mut unit_iaa = unit.clone();
-    unit_iaa.settings.aa = "iaa".parse().unwrap();
+    unit_iaa.settings.aa = Some("iaa".parse().unwrap());
     let fg_iaa = foreground(&unit_iaa, &run(&unit_iaa));
     // Pixels with a ray through the sphere (all of whose rays hit, or on the silhouette).
     let fg_inside: BTreeSet<_> = fg_unit.union(&edge).copied().collect();
@@ -1156,7 +1156,7 @@ fn huge_and_tiny_coefficients() {
         // Interval anti-aliasing: the shading-variation estimator sees gradients of 1e150
         // and 1e-150.
         let mut iaa = scene.clone();
-        iaa.settings.aa = "iaa".parse().unwrap();
+        iaa.settings.aa = Some("iaa".parse().unwrap());
         let out = run(&iaa);
         assert_finite(name, &out);
         let fg = foreground(&iaa, &out);

@@ -94,7 +94,8 @@ fn default_scene_loads() {
     assert_eq!((s.camera.width(), s.camera.height()), (640, 480));
     assert_eq!(s.lights.len(), 1);
     assert!(s.settings.shadows);
-    assert_eq!(s.settings.aa, AaMode::None);
+    assert_eq!(s.settings.aa, None);
+    assert_eq!(s.settings.aa_mode(), AaMode::DEFAULT);
     assert_eq!(s.settings.root_finder, RootMethod::NewtonAlefeldHansen);
     let names: Vec<&str> = s
         .geometry
@@ -434,11 +435,11 @@ shadows = false
     assert_eq!((r.root.epsilon, r.root.max_steps), (1e-8, 77));
     assert_eq!(
         r.aa,
-        AaMode::Iaa {
+        Some(AaMode::Iaa {
             max_depth: 3,
             threshold: 0.2,
             limit_rays: 3,
-        }
+        })
     );
     assert_eq!(r.primary, PrimaryMode::PerPixel);
     assert_eq!((r.rays_per_undecided, r.rays_per_pixel), (16, 4));
@@ -448,7 +449,7 @@ shadows = false
     );
     let ss = load_str("[camera]\n[[surfaces]]\ncatalog = \"sphere\"\n[render]\naa = \"ss:3\"\n")
         .unwrap();
-    assert_eq!(ss.settings.aa, AaMode::Supersample(3));
+    assert_eq!(ss.settings.aa, Some(AaMode::Supersample(3)));
 }
 
 #[test]
@@ -544,7 +545,7 @@ fn an_iaa_mode_keeps_its_settings_where_no_iaa_key_sets_them() {
              name = \"ball\"\ncatalog = \"sphere\"\n[render]\naa = \"iaa:2:0.3:4\"\n{extra}"
         )
     };
-    let aa = |extra: &str| load_str(&text(extra)).unwrap().settings.aa;
+    let aa = |extra: &str| load_str(&text(extra)).unwrap().settings.aa_mode();
     assert_eq!(
         aa(""),
         AaMode::Iaa {

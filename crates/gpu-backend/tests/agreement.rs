@@ -78,11 +78,11 @@ fn suite() -> Vec<(String, Scene)> {
         out.push((method.to_string(), scene(method)));
     }
     let mut iaa = scene("beam:2");
-    iaa.settings.aa = AaMode::Iaa {
+    iaa.settings.aa = Some(AaMode::Iaa {
         max_depth: 2,
         threshold: AaMode::IAA_THRESHOLD,
         limit_rays: AaMode::IAA_LIMIT_RAYS,
-    };
+    });
     out.push(("iaa".into(), iaa));
     let mut per_pixel = scene("minkowski:stochastic:8");
     per_pixel.settings.primary = PrimaryMode::PerPixel;
@@ -170,11 +170,11 @@ fn the_gpu_routing_names_what_runs_on_the_cpu() {
     let Some(gpu) = Gpu::for_tests() else { return };
     let backend = GpuBackend::new(gpu);
     let mut s = scene("stochastic:8:cache");
-    s.settings.aa = AaMode::Iaa {
+    s.settings.aa = Some(AaMode::Iaa {
         max_depth: 2,
         threshold: AaMode::IAA_THRESHOLD,
         limit_rays: AaMode::IAA_LIMIT_RAYS,
-    };
+    });
     let plan = beam_trace::Plan::for_scene(&s);
     let routing = Routing::new(&backend, &s, &plan).to_string();
     for line in [

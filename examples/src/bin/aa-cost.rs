@@ -6,18 +6,21 @@
 //!
 //! ```text
 //! aa-cost [SCENE.toml] [--width W --height H] [--reference N] [--modes M,M,...] [--out FILE.md]
-//!         [--images DIR]
+//!         [--images DIR] [--runs N]
 //! ```
 //!
 //! `--modes` measures only the anti-aliasing modes listed (as the render command's `--aa`
 //! takes them: `none`, `ss:N`, `iaa:D:T:M`, ...; `screen-rays` for the thesis's 9 point
-//! rays), after the default mode, which every ratio refers to.
+//! rays), after the render without anti-aliasing (`none`, screen boxes), which every ratio
+//! refers to.
+//!
+//! Each time is the median of `--runs` renders (default 3), taken in rounds over all modes.
 //!
 //! `--images DIR` writes the reference, each mode's image and a map of its error over the
 //! edge pixels into `DIR`, to see where each mode's error lies.
 //!
 //! Prints (and with `--out` writes) a markdown table: per mode the render time, the time
-//! ratio to the default mode, the RMSE and the largest error over the edge pixels (the
+//! ratio to `none`, the RMSE and the largest error over the edge pixels (the
 //! largest channel difference per pixel), and whether the mode is on the Pareto front of
 //! time against RMSE.
 
@@ -44,13 +47,17 @@ struct Args {
     /// Rays per pixel side of the reference (N × N stratified rays).
     #[arg(long, default_value_t = 16, value_parser = clap::value_parser!(u32).range(2..=16))]
     reference: u32,
-    /// Only these modes after the default one (comma-separated, as `--aa` takes them, or
+    /// Only these modes after `none` (comma-separated, as `--aa` takes them, or
     /// `screen-rays`); all of the built-in list when absent.
     #[arg(long, value_delimiter = ',')]
     modes: Vec<String>,
     /// Where to write the report too.
     #[arg(long)]
     out: Option<PathBuf>,
+    /// Renders per mode: each time reported is the median of this many, taken in rounds
+    /// over all modes so that a slow spell of the machine slows every mode alike.
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=99))]
+    runs: u32,
     /// A directory to write images into: the reference, each mode's image and its error
     /// over the edge pixels (`<mode>-error.png`, 8 times the largest channel difference,
     /// white at 1/8 or more; the other pixels dark blue).
@@ -58,10 +65,10 @@ struct Args {
     images: Option<PathBuf>,
 }
 
-/// The default mode, then the modes `names` (see [`Args::modes`]).
+/// `none`, then the modes `names` (see [`Args::modes`]).
 fn chosen(names: &[String]) -> Result<Vec<(String, PrimaryMode, AaMode)>, String> {
     let mut out = vec![(
-        "default (screen-boxes)".to_string(),
+        "none (screen-boxes)".to_string(),
         PrimaryMode::ScreenBoxes,
         AaMode::None,
     )];
@@ -88,7 +95,7 @@ fn modes() -> Vec<(&'static str, PrimaryMode, AaMode)> {
     };
     vec![
         (
-            "default (screen-boxes)",
+            "none (screen-boxes)",
             PrimaryMode::ScreenBoxes,
             AaMode::None,
         ),
@@ -104,7 +111,11 @@ fn modes() -> Vec<(&'static str, PrimaryMode, AaMode)> {
         ("iaa:1:0.1:1", PrimaryMode::ScreenBoxes, iaa(1, 0.1, 1)),
         ("iaa:2:0.1:1", PrimaryMode::ScreenBoxes, iaa(2, 0.1, 1)),
         ("iaa:4:0.1:1", PrimaryMode::ScreenBoxes, iaa(4, 0.1, 1)),
-        ("iaa:1:0.1:2", PrimaryMode::ScreenBoxes, iaa(1, 0.1, 2)),
+        (
+            "iaa:1:0.1:2 (default)",
+            PrimaryMode::ScreenBoxes,
+            AaMode::DEFAULT,
+        ),
         ("iaa:2:0.1:2", PrimaryMode::ScreenBoxes, iaa(2, 0.1, 2)),
         ("iaa:3:0.1:2", PrimaryMode::ScreenBoxes, iaa(3, 0.1, 2)),
         ("iaa:4:0.1:2", PrimaryMode::ScreenBoxes, iaa(4, 0.1, 2)),
@@ -128,7 +139,7 @@ fn load(path: Option<&Path>, w: u32, h: u32) -> Result<Scene, String> {
 fn timed(scene: &Scene, primary: PrimaryMode, aa: AaMode) -> Result<(Image, f64), String> {
     let mut s = scene.clone();
     s.settings.primary = primary;
-    s.settings.aa = aa;
+    s.settings.aa = Some(aa);
     let t0 = Instant::now();
     let out = render(&s, &NoProgress).map_err(|e| e.to_string())?;
     Ok((out.image, t0.elapsed().as_secs_f64()))
@@ -214,14 +225,16 @@ fn run(args: &Args) -> Result<(), String> {
         save(&reference, dir, "reference")?;
     }
     let mut rows = Vec::new();
-    for (name, primary, aa) in modes {
-        let (img, t) = timed(&scene, primary, aa)?;
+    let mut times: Vec<Vec<f64>> = Vec::new();
+    for (name, primary, aa) in &modes {
+        let (img, t) = timed(&scene, *primary, *aa)?;
+        times.push(vec![t]);
         let e = errors(&img, &reference);
         let on_edges: Vec<f64> = edges.iter().map(|&i| e[i]).collect();
         let rmse = (on_edges.iter().map(|x| x * x).sum::<f64>() / on_edges.len() as f64).sqrt();
         let max = on_edges.iter().copied().fold(0.0, f64::max);
         if let Some(dir) = &args.images {
-            let stem = file_name(&name);
+            let stem = file_name(name);
             save(&img, dir, &stem)?;
             save(
                 &error_image(&reference, &e, &edges),
@@ -230,16 +243,27 @@ fn run(args: &Args) -> Result<(), String> {
             )?;
         }
         eprintln!("{name}: {t:.3} s, edge RMSE {rmse:.4}, max {max:.3}");
-        rows.push((name, t, rmse, max));
+        rows.push((name.clone(), t, rmse, max));
+    }
+    for round in 1..args.runs {
+        eprintln!("timing round {} of {}", round + 1, args.runs);
+        for ((_, primary, aa), t) in modes.iter().zip(&mut times) {
+            t.push(timed(&scene, *primary, *aa)?.1);
+        }
+    }
+    for (row, t) in rows.iter_mut().zip(&mut times) {
+        t.sort_by(f64::total_cmp);
+        row.1 = t[t.len() / 2];
     }
     let base = rows[0].1;
     let mut md = format!(
-        "Scene `{}` at {} × {}; reference {n} × {n} stratified rays per pixel ({t_ref:.1} s); {} edge pixels (reference and one central ray differ by more than 1/255).\n\n\
-         | mode | time (s) | time / default | edge RMSE | edge max error | Pareto |\n|---|---:|---:|---:|---:|:---:|\n",
+        "Scene `{}` at {} × {}; reference {n} × {n} stratified rays per pixel ({t_ref:.1} s); {} edge pixels (reference and one central ray differ by more than 1/255); times are medians of {} runs.\n\n\
+         | mode | time (s) | time / none | edge RMSE | edge max error | Pareto |\n|---|---:|---:|---:|---:|:---:|\n",
         scene.name,
         args.width,
         args.height,
         edges.len(),
+        args.runs,
         n = args.reference
     );
     for (name, t, rmse, max) in &rows {

@@ -57,7 +57,8 @@ struct Args {
     epsilon: Option<f64>,
     /// Anti-aliasing: none, iaa, iaa:D (depth D), iaa:D:T (and shading-variation threshold
     /// T), iaa:D:T:M (and M × M rays in a part left undecided at depth D, default 2), or
-    /// ss:N (N × N rays per pixel).
+    /// ss:N (N × N rays per pixel). Default: the scene's, else iaa:1:0.1:2 in the
+    /// screen-boxes primary mode and none in the others.
     #[arg(long)]
     aa: Option<AaMode>,
     /// Primary visibility: screen-boxes (Undecided pixels resolved by their beams),
@@ -206,7 +207,7 @@ fn apply(args: &Args, mut scene: Scene) -> Result<Scene, String> {
         s.root.epsilon = e;
     }
     if let Some(aa) = args.aa {
-        s.aa = aa;
+        s.aa = Some(aa);
     }
     if let Some(p) = args.primary {
         s.primary = p;

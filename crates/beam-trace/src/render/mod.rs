@@ -260,8 +260,15 @@ pub fn render_on<'a>(
     drop(queries);
 
     Ok(RenderOutput {
-        classification: classification_image(w, h, &classes),
-        box_classes: classes.par_iter().map(|c| c.map(|c| c.0)).collect(),
+        classification: classification_image(
+            w,
+            h,
+            &classes
+                .iter()
+                .map(|c| c.map(|c| (c.class, c.edge)))
+                .collect::<Vec<_>>(),
+        ),
+        box_classes: classes.par_iter().map(|c| c.map(|c| c.class)).collect(),
         coverage,
         cost_map: cost_image(w, h, &cost),
         shadows,
@@ -298,7 +305,7 @@ pub(crate) fn screen_box_pass(
     let (queries, mut passes) = routing.prepare(&Cpu, scene, plan)?;
     let (classes, _, _, stats) = primary::structure(&queries, scene, plan, progress)?;
     passes.push(stats);
-    Ok((passes, classes.iter().map(|c| c.map(|c| c.0)).collect()))
+    Ok((passes, classes.iter().map(|c| c.map(|c| c.class)).collect()))
 }
 
 /// Rows of pixels a pass hands the backend per batch: batches big enough to keep every

@@ -80,6 +80,9 @@ struct Part {
     scope: Option<BeamScope>,
     /// Its own class when already known (a whole pixel classified by the screen boxes).
     known: Option<BoxClass>,
+    /// Whether its shading is already proven to vary by at most the threshold (a pixel
+    /// its screen box proved so): it is shaded once.
+    smooth: bool,
 }
 
 impl Part {
@@ -107,6 +110,7 @@ impl Part {
                 parent: Some(class),
                 scope: scope.clone(),
                 known: None,
+                smooth: false,
             })
     }
 }
@@ -221,7 +225,10 @@ pub(super) fn pixel_beams(
         let mut pixel_cost = vec![0f32; n];
         // With anti-aliasing a Hit pixel's own beam is classified inside its box's
         // `T_final`: its own, narrower section is the region whose shading is judged.
-        let class = |k: usize| classes[first + k].map(|c| c.0);
+        let class = |k: usize| classes[first + k].map(|c| c.class);
+        // A pixel of a Hit box whose shading the screen boxes judged smooth keeps the
+        // box's class and is shaded once.
+        let smooth = |k: usize| classes[first + k].is_some_and(|c| c.smooth);
         // A pixel its screen box proved missed is background with no part (counted as
         // rejected); the others start as whole-pixel parts.
         let missed = |k: usize| matches!(class(k), Some(BoxClass::Miss));
@@ -239,8 +246,11 @@ pub(super) fn pixel_beams(
                     parent: class(k),
                     scope: scopes[first + k].clone(),
                     known: class(k).filter(|c| {
-                        refine.threshold.is_none() || !matches!(c, BoxClass::Hit { .. })
+                        refine.threshold.is_none()
+                            || smooth(k)
+                            || !matches!(c, BoxClass::Hit { .. })
                     }),
+                    smooth: smooth(k),
                 }
             })
             .collect();
@@ -281,9 +291,16 @@ fn subdivide(
         let smooth = match threshold {
             Some(limit) => {
                 let judged: Vec<usize> = (0..level.len())
-                    .filter(|&j| open(j) && matches!(classes[j], BoxClass::Hit { .. }))
+                    .filter(|&j| {
+                        open(j) && !level[j].smooth && matches!(classes[j], BoxClass::Hit { .. })
+                    })
                     .collect();
-                smooth_hits(q, (cam, &level), &classes, &judged, limit, pixel_cost)?
+                let mut smooth =
+                    smooth_hits(q, (cam, &level), &classes, &judged, limit, pixel_cost)?;
+                for (s, p) in smooth.iter_mut().zip(&level) {
+                    *s |= p.smooth;
+                }
+                smooth
             }
             None => vec![true; level.len()],
         };

@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::pixels::{self, Pixels, owners};
 use super::{PixelSamples, RowBatch, row_batches};
-use crate::backend::{BeamQuery, CellQuery, HitQuery, Queries, RayQuery};
+use crate::backend::{BeamQuery, CellQuery, HitQuery, Queries, RayQuery, VariationQuery};
 use crate::beam::{BeamScope, BoxClass};
 use crate::beam::{child_window, forward};
 use crate::camera::{Camera, RayTable};
@@ -27,8 +27,33 @@ use crate::stats::counters::{PrimaryRayCounters, ScreenBoxCounters};
 /// Side of the tiles the screen box structure starts from.
 const TILE: u32 = 32;
 
-/// Each pixel's screen box class, and whether the pixel lies on its box's top or left edge.
-pub(super) type PixelClasses = Vec<Option<(BoxClass, bool)>>;
+/// What the first primary pass proved of a pixel.
+#[derive(Copy, Clone, Debug)]
+pub(super) struct BoxPixel {
+    /// Its box's class.
+    pub(super) class: BoxClass,
+    /// Whether the pixel lies on its box's top or left edge (the classification image's
+    /// outlines).
+    pub(super) edge: bool,
+    /// Whether its box is a Hit whose shading was proven to vary by at most the
+    /// anti-aliasing threshold, hard shadows included: the pixel is shaded once, in the
+    /// box's `T_final`, with no beam of its own.
+    pub(super) smooth: bool,
+}
+
+impl BoxPixel {
+    /// A pixel of a box of class `class`, not judged smooth.
+    fn of(class: BoxClass, edge: bool) -> Self {
+        Self {
+            class,
+            edge,
+            smooth: false,
+        }
+    }
+}
+
+/// What the first primary pass proved of each pixel (`None`: nothing, no box classified it).
+pub(super) type PixelClasses = Vec<Option<BoxPixel>>;
 
 /// The backend's scope of the box of each pixel that is not a Miss ([`BeamScope`]), for
 /// the parts of the pixel; `None` elsewhere.
@@ -98,7 +123,7 @@ fn octree(
         for (tile, firsts) in band.iter().zip(answers.values) {
             // The pixels without a first cell are proven missed.
             for (x, y) in tile.pixels() {
-                classes[(y * w + x) as usize] = Some((BoxClass::Miss, false));
+                classes[(y * w + x) as usize] = Some(BoxPixel::of(BoxClass::Miss, false));
             }
             c.add_pixels(&BoxClass::Miss, tile.area() - firsts.len() as u64);
             let width = tile.x1 - tile.x0;
@@ -107,7 +132,7 @@ fn octree(
                 let i = (y * w + x) as usize;
                 let class = f.class();
                 c.add_pixels(&class, 1);
-                classes[i] = Some((class, false));
+                classes[i] = Some(BoxPixel::of(class, false));
                 scopes[i] = f.scope;
                 if !f.traced.is_empty() {
                     traced.push((i as u32, f.traced));
@@ -144,6 +169,10 @@ fn screen_boxes(
     let mut classes: PixelClasses = vec![None; w as usize * h as usize];
     let mut scopes: PixelScopes = vec![None; w as usize * h as usize];
     let mut c = ScreenBoxCounters::default();
+    // With anti-aliasing, the Hit boxes of more than one pixel whose shading is judged
+    // once for all their pixels.
+    let judge = plan.primary.pixel_beams().and_then(|p| p.threshold);
+    let mut judged: Vec<(PixelRect, VariationQuery)> = Vec::new();
     // Each box with the class and the backend's scope of the box it was split from.
     let mut level: Vec<(PixelRect, Option<BoxClass>, Option<BeamScope>)> = tiles(w, h, TILE)
         .into_iter()
@@ -167,7 +196,8 @@ fn screen_boxes(
         c.beams += queries.len() as u64;
         c.search.add(&answers.search);
         let mut next = Vec::new();
-        for ((rect, _, _), answer) in level.iter().zip(answers.values) {
+        for ((rect, _, _), (query, answer)) in level.iter().zip(queries.iter().zip(answers.values))
+        {
             let class = answer.class;
             if needs_split(rect, &class, plan.t_final_width) {
                 next.extend(
@@ -178,9 +208,21 @@ fn screen_boxes(
                 continue;
             }
             c.add_pixels(&class, rect.area());
+            if let (Some(threshold), BoxClass::Hit { t_final }) = (judge, class)
+                && rect.area() > 1
+            {
+                judged.push((
+                    *rect,
+                    VariationQuery {
+                        beam: query.beam,
+                        t_final,
+                        threshold,
+                    },
+                ));
+            }
             for (x, y) in rect.pixels() {
                 let edge = x == rect.x0 || y == rect.y0;
-                classes[(y * w + x) as usize] = Some((class, edge));
+                classes[(y * w + x) as usize] = Some(BoxPixel::of(class, edge));
                 if !matches!(class, BoxClass::Miss) {
                     scopes[(y * w + x) as usize] = answer.scope.clone();
                 }
@@ -189,12 +231,44 @@ fn screen_boxes(
         }
         level = next;
     }
+    mark_smooth(q, &judged, w, &mut classes, &mut c)?;
     progress.end();
     Ok((
         classes,
         scopes,
         PassStats::of(Pass::ScreenBoxes, t0.elapsed(), &c),
     ))
+}
+
+/// The pixels of each box of `judged` whose shading is proven to vary by at most the
+/// threshold over the box's hit region (and each point light's shadow proven the same over
+/// it), marked smooth: every ray of a pixel is a ray of its box, so what the box's
+/// judgement bounds holds for the pixel, and the pixel needs no beam of its own.
+fn mark_smooth(
+    q: &dyn Queries,
+    judged: &[(PixelRect, VariationQuery)],
+    w: u32,
+    classes: &mut PixelClasses,
+    c: &mut ScreenBoxCounters,
+) -> Result<(), Error> {
+    if judged.is_empty() {
+        return Ok(());
+    }
+    let queries: Vec<VariationQuery> = judged.iter().map(|&(_, v)| v).collect();
+    let variation = q.shading_variation(&queries)?;
+    for ((rect, v), spread) in judged.iter().zip(variation.values) {
+        if spread > v.threshold {
+            continue;
+        }
+        c.smooth_boxes += 1;
+        c.smooth_pixels += rect.area();
+        for (x, y) in rect.pixels() {
+            if let Some(p) = &mut classes[(y * w + x) as usize] {
+                p.smooth = true;
+            }
+        }
+    }
+    Ok(())
 }
 
 /// The rays of the primary-rays pass: through each pixel's centre and through its `k × k`
@@ -282,8 +356,8 @@ pub(super) enum RayStart {
 
 /// What is proven about the share of a pixel of box class `class` that one of its samples
 /// stands for.
-fn sample_area(class: Option<(BoxClass, bool)>) -> Area {
-    match class.map(|c| c.0) {
+fn sample_area(class: Option<BoxPixel>) -> Area {
+    match class.map(|c| c.class) {
         Some(BoxClass::Miss) => Area::Missed,
         Some(BoxClass::Hit { .. }) => Area::Covered,
         Some(BoxClass::Undecided { .. }) | None => Area::Unknown,
@@ -292,8 +366,8 @@ fn sample_area(class: Option<(BoxClass, bool)>) -> Area {
 
 /// The number of rays of a pixel of box class `class`: the central ray in a Hit box;
 /// `stratified` rays in an Undecided box (or without a box); none in a Miss box.
-fn ray_count(class: Option<(BoxClass, bool)>, stratified: usize) -> usize {
-    match class.map(|c| c.0) {
+fn ray_count(class: Option<BoxPixel>, stratified: usize) -> usize {
+    match class.map(|c| c.class) {
         Some(BoxClass::Miss) => 0,
         Some(BoxClass::Hit { .. }) => 1,
         Some(BoxClass::Undecided { .. }) | None => stratified,
@@ -311,7 +385,7 @@ fn pixel_ray(
     (rays, start, narrow): (&PixelRays, RayStart, bool),
     i: usize,
     w: u32,
-    (class, scope, traced): (Option<(BoxClass, bool)>, &Option<BeamScope>, &[Traced]),
+    (class, scope, traced): (Option<BoxPixel>, &Option<BeamScope>, &[Traced]),
     r: usize,
 ) -> PixelRay {
     let (x, y) = (i as u32 % w, i as u32 / w);
@@ -353,7 +427,7 @@ fn pixel_ray(
             },
         };
     }
-    match class.map(|c| c.0) {
+    match class.map(|c| c.class) {
         Some(BoxClass::Hit { t_final }) => PixelRay {
             weight: 1.0,
             query: RayQuery {

@@ -243,7 +243,8 @@ impl Scene {
     /// root_finder = "newton-alefeld-hansen"
     /// epsilon = 1e-6
     /// max_steps = 100000
-    /// aa = "none"                       # none | iaa | iaa:D | iaa:D:T | iaa:D:T:M | ss:N (N × N rays per pixel, N ≤ 16)
+    /// aa = "iaa:1:0.1:2"                # none | iaa | iaa:D | iaa:D:T | iaa:D:T:M | ss:N (N × N rays per pixel, N ≤ 16);
+    ///                                   # default iaa:1:0.1:2 with primary = "screen-boxes", none with the others
     /// iaa_depth = 4
     /// iaa_threshold = 0.05
     /// iaa_limit_rays = 2                # iaa: M × M rays in a part left undecided at the depth limit
@@ -317,8 +318,12 @@ impl Scene {
     ///
     /// **`[render]`**: `root_finder` (a [`RootMethod`] name), `epsilon` (positive),
     /// `max_steps` (at least 1), `sampling_step` (in `(0, 1]`) and `lipschitz` (positive) for
-    /// the unreliable baselines, `aa` (see [`AaMode`]'s [`FromStr`]), `iaa_depth` (1 to 8),
-    /// `iaa_threshold` (positive) and `iaa_limit_rays` (1 to 16) for `aa = "iaa"`, `primary` (see [`PrimaryMode`]'s
+    /// the unreliable baselines, `aa` (see [`AaMode`]'s [`FromStr`]; where absent,
+    /// [`AaMode::DEFAULT`](super::AaMode::DEFAULT) in the screen-boxes primary mode and none
+    /// in the others; where set, it decides the primary pass: IAA resolves the screen boxes'
+    /// pixels by their beams, `ss:N` traces `N × N` rays per pixel), `iaa_depth` (1 to 8),
+    /// `iaa_threshold` (positive) and `iaa_limit_rays` (1 to 16) for the IAA mode the render
+    /// uses, `primary` (see [`PrimaryMode`]'s
     /// [`FromStr`]), `undecided_depth` (0 to 8), `rays_per_undecided` and `rays_per_pixel`
     /// (square numbers 1 to 256),
     /// `t_final_width` (positive), `grid` (0 to 256; 0: no grid), `shadows`,

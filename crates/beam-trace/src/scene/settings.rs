@@ -61,11 +61,17 @@ pub(super) fn render_settings(doc: &Doc<'_>, r: &RawRender) -> Result<RenderSett
     if let Some(v) = r.lipschitz {
         s.root.lipschitz = doc.positive("render.lipschitz", v)?;
     }
-    if let Some(a) = &r.aa {
-        s.aa = a.parse().map_err(|m| doc.err("render.aa", m))?;
+    if let Some(p) = &r.primary {
+        s.primary = p.parse().map_err(|m| doc.err("render.primary", m))?;
     }
-    // The `iaa_*` keys are checked whatever the mode, and set what they name of an IAA
-    // mode; the others keep the mode's.
+    if let Some(v) = r.undecided_depth {
+        s.undecided_depth = doc.int_in("render.undecided_depth", v, 0, 8)?;
+    }
+    if let Some(a) = &r.aa {
+        s.aa = Some(a.parse().map_err(|m| doc.err("render.aa", m))?);
+    }
+    // The `iaa_*` keys are checked whatever the mode, and set what they name of the IAA
+    // mode the render uses (the default one too); the others keep the mode's.
     let depth = r
         .iaa_depth
         .map(|v| doc.int_in("render.iaa_depth", v, 1, 8))
@@ -89,20 +95,17 @@ pub(super) fn render_settings(doc: &Doc<'_>, r: &RawRender) -> Result<RenderSett
         max_depth,
         threshold,
         limit_rays,
-    } = &mut s.aa
+    } = s.aa_mode()
+        && (depth.is_some() || threshold_key.is_some() || rays.is_some())
     {
-        *max_depth = depth.unwrap_or(*max_depth);
-        *threshold = threshold_key.unwrap_or(*threshold);
-        *limit_rays = rays.unwrap_or(*limit_rays);
-    }
-    if let Some(p) = &r.primary {
-        s.primary = p.parse().map_err(|m| doc.err("render.primary", m))?;
+        s.aa = Some(AaMode::Iaa {
+            max_depth: depth.unwrap_or(max_depth),
+            threshold: threshold_key.unwrap_or(threshold),
+            limit_rays: rays.unwrap_or(limit_rays),
+        });
     }
     if let Some(v) = r.rays_per_undecided {
         s.rays_per_undecided = doc.square("render.rays_per_undecided", v)?;
-    }
-    if let Some(v) = r.undecided_depth {
-        s.undecided_depth = doc.int_in("render.undecided_depth", v, 0, 8)?;
     }
     if let Some(v) = r.rays_per_pixel {
         s.rays_per_pixel = doc.square("render.rays_per_pixel", v)?;

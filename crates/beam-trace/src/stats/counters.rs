@@ -99,6 +99,11 @@ counters! {
         hit_pixels,
         /// Pixels in undecided boxes.
         undecided_pixels,
+        /// Hit boxes of more than one pixel whose shading was proven to vary by at most
+        /// the anti-aliasing threshold (interval anti-aliasing only).
+        smooth_boxes,
+        /// The pixels of those boxes, shaded once each with no beam of their own.
+        smooth_pixels,
     }
     search: search
 }

@@ -1,6 +1,7 @@
 //! The pixel cases, shared by every backend's test suite (beam-trace's `tests/pixels.rs`
 //! for the CPU, gpu-backend's for the GPU): a feature the beams see is never lost in the
-//! default primary mode, and each pixel's coverage bounds contain its true coverage
+//! default primary mode (with its default anti-aliasing, and without any), and each pixel's
+//! coverage bounds contain its true coverage
 //! (computed analytically for thin cylinders and a sphere smaller than a pixel, by dense
 //! point sampling for the drop's neck). Each case takes the renderer to test.
 
@@ -302,7 +303,7 @@ pub fn the_drops_neck_is_kept_wherever_dense_rays_see_it(run: Render<'_>) {
     ours.background = [0.0; 3];
     let colour = ours.geometry.leaves()[0].material.color[0];
     let mut dense = ours.clone();
-    dense.settings.aa = AaMode::Supersample(8);
+    dense.settings.aa = Some(AaMode::Supersample(8));
     let ours = run(&ours);
     let dense = run(&dense);
     let mut seen = 0;

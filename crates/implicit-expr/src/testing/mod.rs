@@ -1,7 +1,7 @@
 //! Helpers for property tests of code that evaluates formulas over boxes: a soundness check
 //! of an interval value against the formula's value at a point, computed in higher
 //! precision ([`check_value_in`], [`check_sound`], [`assert_sound`]), and, with the
-//! `proptest` cargo feature, [`strategy`]: random expressions over every operation, and
+//! `proptest` cargo feature, the module `strategy`: random expressions over every operation, and
 //! random regions with points inside.
 //!
 //! The reference is the formula's value at the point enclosed in double-double interval
