@@ -9,6 +9,7 @@
 
 use std::path::Path;
 
+use beam_trace::scene::AaMode;
 use beam_trace::shadow::ShadowSpec;
 use beam_trace::{NoProgress, Scene, render};
 use criterion::Criterion;
@@ -28,6 +29,8 @@ fn scene() -> Scene {
     let file = Path::new(env!("CARGO_MANIFEST_DIR")).join("../scenes/soft-shadows.toml");
     let mut s = Scene::load(&file).expect("the scene loads");
     s.camera = s.camera.resized(64, 48).expect("a valid size");
+    // The soft-shadow methods are measured, one sample per Hit pixel.
+    s.settings.aa = Some(AaMode::None);
     s
 }
 

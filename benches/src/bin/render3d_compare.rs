@@ -272,6 +272,7 @@ fn scene(path: &Path, size: u32, o: &Options) -> Result<Scene, String> {
          material = {{ color = [1.0, 1.0, 1.0] }}\n\
          [render]\n\
          primary = \"{}\"\n\
+         aa = \"none\"\n\
          rays_per_undecided = 1\n\
          precision = \"{}\"\n",
         toml_string(&path.to_string_lossy()),

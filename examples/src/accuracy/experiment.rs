@@ -3,6 +3,7 @@
 
 use std::path::Path;
 
+use beam_trace::scene::AaMode;
 use beam_trace::shadow::ShadowSpec;
 use beam_trace::{Image, NoProgress, RenderOutput, Scene, render};
 
@@ -39,6 +40,9 @@ pub(crate) fn print_run(r: &RunResult) {
 
 pub(crate) fn load_scene(path: &Path, width: u32, height: u32) -> Result<Scene, String> {
     let mut scene = Scene::load(path).map_err(|e| format!("{}: {e}", path.display()))?;
+    // One sample per Hit pixel: each pixel's visible fraction is one shading point's,
+    // compared point for point with the reference's (anti-aliasing would average it).
+    scene.settings.aa.get_or_insert(AaMode::None);
     scene.camera = scene
         .camera
         .resized(width, height)

@@ -242,7 +242,13 @@ whose reference fraction is above 0; there must be none, and the program fails i
 is one.
 
 The reference is itself an estimate: a stochastic error of order `1/sqrt(N)` per pixel \
-remains in it, so errors much below that level measure the reference as much as the method.";
+remains in it, so errors much below that level measure the reference as much as the method.
+
+Every render here takes one sample per Hit pixel (`aa = \"none\"`), so that a pixel's \
+fraction is one shading point's. What anti-aliasing accuracy costs in time (every primary \
+and anti-aliasing mode against 16 × 16 rays per pixel over the edge pixels, with the \
+Pareto front) is the sibling report [`anti-aliasing.md`](anti-aliasing.md), made by \
+`aa-cost`.";
 
 pub(crate) const READING: &str = "\
 - **Noise against bias.** The stochastic methods are unbiased but noisy: their RMSE falls \

@@ -16,6 +16,7 @@ use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
 
+use beam_trace::scene::AaMode;
 use beam_trace::shadow::ShadowSpec;
 use beam_trace::{NoProgress, Scene, render, render_on};
 use clap::Parser;
@@ -74,8 +75,12 @@ fn run(args: Args) -> Result<(), String> {
     eprintln!("adapter: {}", gpu.gpu().name());
     for name in &args.surfaces {
         for &size in &args.sizes {
-            let hard = Scene::catalog(name, size, size).map_err(|e| e.to_string())?;
+            let mut hard = Scene::catalog(name, size, size).map_err(|e| e.to_string())?;
             let mut soft = catalog_with_area_light(name, size, 0.1)?;
+            // The backends' queries are compared, one sample per Hit pixel (interval
+            // anti-aliasing judges its pixels on the CPU whatever the backend).
+            hard.settings.aa = Some(AaMode::None);
+            soft.settings.aa = Some(AaMode::None);
             soft.settings.shadow_method = "beam:7".parse::<ShadowSpec>()?;
             for (label, scene) in [("no", &hard), ("beam:7", &soft)] {
                 let (cpu, gpu_wall, gpu_own) = time_both(&gpu, scene)?;
