@@ -2,7 +2,8 @@
 //!
 //! Primary visibility always runs; normals and shading only when the scene has lights;
 //! hard shadow rays only for point lights and soft-shadow beams only for area lights, with
-//! shadows on; anti-aliasing only when asked.
+//! shadows on; interval anti-aliasing by default in the screen-boxes mode
+//! ([`RenderSettings::aa_mode`](crate::scene::RenderSettings::aa_mode)).
 //! A pass that is not planned costs nothing: its statistics stay zero.
 
 use std::fmt;
@@ -294,6 +295,11 @@ impl Plan {
                     nearest first, rejection tests on tapes pruned per cell; each pixel's first \
                     cell (Miss; Hit where its inclusion test passes; else Undecided)"
                     .to_string(),
+                Primary::Iaa { .. } => {
+                    "beams over screen boxes: rejection + inclusion tests (Miss / Hit / \
+                     Undecided); the shading of each Hit box of more than one pixel judged once"
+                        .to_string()
+                }
                 _ => {
                     "beams over screen boxes: rejection + inclusion tests (Miss / Hit / Undecided)"
                         .to_string()

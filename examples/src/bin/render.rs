@@ -66,7 +66,8 @@ struct Args {
     /// (each pixel's first cell of a frustum octree, then rays from there).
     #[arg(long)]
     primary: Option<PrimaryMode>,
-    /// Largest subdivision depth of an Undecided pixel's beam in screen-boxes mode (0 to 8).
+    /// Largest subdivision depth of an Undecided pixel's beam in screen-boxes mode (0 to 8),
+    /// also the depth limit of the default anti-aliasing (none at 0).
     #[arg(long, value_parser = clap::value_parser!(u32).range(0..=8))]
     undecided_depth: Option<u32>,
     /// Rays per pixel in per-pixel mode (a square number).

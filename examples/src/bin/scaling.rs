@@ -159,6 +159,8 @@ fn scene_text(args: &Args, n: usize) -> String {
             );
         }
     }
+    // One sample per Hit pixel: how the passes grow with `N`, without the anti-aliasing.
+    t.push_str("\n[render]\naa = \"none\"\n");
     t
 }
 

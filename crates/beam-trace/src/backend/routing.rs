@@ -30,6 +30,8 @@ pub fn pass_queries(pass: Pass, plan: &Plan) -> &'static [QueryKind] {
         Pass::Grid => &[],
         Pass::ScreenBoxes => match plan.primary {
             Primary::Octree { .. } => &[QueryKind::Cells],
+            // With anti-aliasing the Hit boxes' shading is judged there too.
+            Primary::Iaa { .. } => &[QueryKind::Beams, QueryKind::ShadingVariation],
             _ => &[QueryKind::Beams],
         },
         Pass::PrimaryRays => &[QueryKind::Roots, QueryKind::HitPoints],

@@ -301,6 +301,12 @@ pub(crate) fn screen_box_pass(
     if !plan.runs(Pass::ScreenBoxes) {
         return Ok((Vec::new(), Vec::new()));
     }
+    // The classes alone: the Hit boxes' shading is not judged.
+    let mut plan = plan.clone();
+    if let Primary::Iaa { max_depth, .. } = plan.primary {
+        plan.primary = Primary::ScreenBoxes { max_depth };
+    }
+    let plan = &plan;
     let routing = Routing::new(&Cpu, scene, plan);
     let (queries, mut passes) = routing.prepare(&Cpu, scene, plan)?;
     let (classes, _, _, stats) = primary::structure(&queries, scene, plan, progress)?;

@@ -35,9 +35,12 @@ pub(super) struct BoxPixel {
     /// Whether the pixel lies on its box's top or left edge (the classification image's
     /// outlines).
     pub(super) edge: bool,
-    /// Whether its box is a Hit whose shading was proven to vary by at most the
-    /// anti-aliasing threshold, hard shadows included: the pixel is shaded once, in the
-    /// box's `T_final`, with no beam of its own.
+    /// Whether its box is a Hit whose shading was judged to vary by at most the
+    /// anti-aliasing threshold, hard shadows included ([`shading_variation`]: a bound up to
+    /// the rounding of its cone angles): the pixel is shaded once, in the box's `T_final`,
+    /// with no beam of its own.
+    ///
+    /// [`shading_variation`]: crate::aa::shading_variation
     pub(super) smooth: bool,
 }
 
@@ -240,7 +243,7 @@ fn screen_boxes(
     ))
 }
 
-/// The pixels of each box of `judged` whose shading is proven to vary by at most the
+/// The pixels of each box of `judged` whose shading is judged to vary by at most the
 /// threshold over the box's hit region (and each point light's shadow proven the same over
 /// it), marked smooth: every ray of a pixel is a ray of its box, so what the box's
 /// judgement bounds holds for the pixel, and the pixel needs no beam of its own.
@@ -256,8 +259,12 @@ fn mark_smooth(
     }
     let queries: Vec<VariationQuery> = judged.iter().map(|&(_, v)| v).collect();
     let variation = q.shading_variation(&queries)?;
+    c.search.add(&variation.search);
     for ((rect, v), spread) in judged.iter().zip(variation.values) {
-        if spread > v.threshold {
+        // As the pixels' own judgement: anything but a spread within the threshold (NaN
+        // included) is not smooth.
+        let smooth = spread <= v.threshold;
+        if !smooth {
             continue;
         }
         c.smooth_boxes += 1;

@@ -244,7 +244,8 @@ impl Scene {
     /// epsilon = 1e-6
     /// max_steps = 100000
     /// aa = "iaa:1:0.1:2"                # none | iaa | iaa:D | iaa:D:T | iaa:D:T:M | ss:N (N × N rays per pixel, N ≤ 16);
-    ///                                   # default iaa:1:0.1:2 with primary = "screen-boxes", none with the others
+    ///                                   # default iaa:D:0.1:2 with primary = "screen-boxes" (D: undecided_depth;
+    ///                                   # none at 0), none with the other primary modes
     /// iaa_depth = 4
     /// iaa_threshold = 0.05
     /// iaa_limit_rays = 2                # iaa: M × M rays in a part left undecided at the depth limit

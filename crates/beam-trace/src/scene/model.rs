@@ -92,7 +92,7 @@ pub enum AaMode {
         threshold: f64,
         /// Rays per side of an undecided part at the depth limit: the share of the part
         /// its surface covers is estimated from `limit_rays²` stratified rays (1: from its
-        /// central ray, 3/4 or 1/4).
+        /// central ray, 15/16 or 1/16).
         limit_rays: u32,
     },
     /// `n × n` stratified rays per pixel (point-sampling supersampling).
@@ -302,10 +302,12 @@ impl Default for RenderSettings {
 impl RenderSettings {
     /// The anti-aliasing the render uses: [`aa`](Self::aa) where it is set, else the
     /// default interval anti-aliasing to [`undecided_depth`](Self::undecided_depth)
-    /// ([`AaMode::default_to`]; [`AaMode::DEFAULT`] at the default depth) in the
-    /// screen-boxes primary mode, and none in the others, which trace their own rays.
+    /// ([`AaMode::default_to`]; [`AaMode::DEFAULT`] at the default depth; none at depth 0)
+    /// in the screen-boxes primary mode, and none in the others, which trace their own rays.
     pub fn aa_mode(&self) -> AaMode {
         self.aa.unwrap_or(match self.primary {
+            // Depth 0 splits nothing: the screen boxes' pixels as they are.
+            PrimaryMode::ScreenBoxes if self.undecided_depth == 0 => AaMode::None,
             PrimaryMode::ScreenBoxes => AaMode::default_to(self.undecided_depth),
             PrimaryMode::ScreenRays | PrimaryMode::PerPixel | PrimaryMode::Octree => AaMode::None,
         })
