@@ -290,21 +290,21 @@ impl Plan {
                 "regular grid, {} cells on the longest side",
                 self.grid.unwrap_or(0)
             ),
-            Pass::ScreenBoxes => match self.primary {
-                Primary::Octree { .. } => "frustum octree: cells of pixels x parameter ranges, \
-                    nearest first, rejection tests on tapes pruned per cell; each pixel's first \
-                    cell (Miss; Hit where its inclusion test passes; else Undecided)"
-                    .to_string(),
-                Primary::Iaa { .. } => {
-                    "beams over screen boxes: rejection + inclusion tests (Miss / Hit / \
-                     Undecided); the shading of each Hit box of more than one pixel judged once"
-                        .to_string()
+            Pass::ScreenBoxes => {
+                let boxes =
+                    "beams over screen boxes: rejection + inclusion tests (Miss / Hit / Undecided)";
+                match self.primary {
+                    Primary::Octree { .. } => "frustum octree: cells of pixels x parameter \
+                        ranges, nearest first, rejection tests on tapes pruned per cell; each \
+                        pixel's first cell (Miss; Hit where its inclusion test passes; else \
+                        Undecided)"
+                        .to_string(),
+                    Primary::Iaa { .. } => format!(
+                        "{boxes}; the shading of each Hit box of more than one pixel judged once"
+                    ),
+                    _ => boxes.to_string(),
                 }
-                _ => {
-                    "beams over screen boxes: rejection + inclusion tests (Miss / Hit / Undecided)"
-                        .to_string()
-                }
-            },
+            }
             Pass::PrimaryRays => match self.primary {
                 Primary::ScreenRays { rays_per_undecided } => format!(
                     "1 ray per pixel in Hit boxes (search in T_final), {rays_per_undecided} per pixel in Undecided ones; root finder {}, epsilon {:e}",

@@ -67,11 +67,8 @@ struct Args {
 
 /// `none`, then the modes `names` (see [`Args::modes`]).
 fn chosen(names: &[String]) -> Result<Vec<(String, PrimaryMode, AaMode)>, String> {
-    let mut out = vec![(
-        "none (screen-boxes)".to_string(),
-        PrimaryMode::ScreenBoxes,
-        AaMode::None,
-    )];
+    let (name, primary, aa) = modes()[0];
+    let mut out = vec![(name.to_string(), primary, aa)];
     for name in names {
         let (primary, aa) = if name == "screen-rays" {
             (PrimaryMode::ScreenRays, AaMode::None)
@@ -86,7 +83,8 @@ fn chosen(names: &[String]) -> Result<Vec<(String, PrimaryMode, AaMode)>, String
     Ok(out)
 }
 
-/// The modes measured: a name, the primary mode and the anti-aliasing mode.
+/// The modes measured: a name, the primary mode and the anti-aliasing mode; the first,
+/// `none`, is the one every ratio refers to.
 fn modes() -> Vec<(&'static str, PrimaryMode, AaMode)> {
     let iaa = |d, t, m| AaMode::Iaa {
         max_depth: d,

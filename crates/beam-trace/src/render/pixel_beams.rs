@@ -194,7 +194,8 @@ fn smooth_hits(
         })
         .collect();
     let variation = q.shading_variation(&queries)?;
-    let mut smooth = vec![false; level.len()];
+    // A part already proven smooth (by its screen box) is not judged again.
+    let mut smooth: Vec<bool> = level.iter().map(|p| p.smooth).collect();
     for ((&j, v), t) in judged.iter().zip(variation.values).zip(&variation.cost) {
         smooth[j] = v <= threshold;
         pixel_cost[level[j].pixel] += t;
@@ -295,12 +296,7 @@ fn subdivide(
                         open(j) && !level[j].smooth && matches!(classes[j], BoxClass::Hit { .. })
                     })
                     .collect();
-                let mut smooth =
-                    smooth_hits(q, (cam, &level), &classes, &judged, limit, pixel_cost)?;
-                for (s, p) in smooth.iter_mut().zip(&level) {
-                    *s |= p.smooth;
-                }
-                smooth
+                smooth_hits(q, (cam, &level), &classes, &judged, limit, pixel_cost)?
             }
             None => vec![true; level.len()],
         };

@@ -104,7 +104,7 @@ impl AaMode {
     /// the default `undecided_depth` of 1: `iaa:1:0.1:2`, interval anti-aliasing with Hit
     /// pixels split once where their shaded colour may spread by more than 0.1, and `2 × 2`
     /// rays in each part left undecided at the limit. On the default scene it takes about
-    /// 1.8 times the time of the render without anti-aliasing, with a lower edge error than
+    /// 1.9 times the time of the render without anti-aliasing, with a lower edge error than
     /// supersampling at that time (`docs/anti-aliasing.md`, made by `aa-cost`).
     pub const DEFAULT: AaMode = AaMode::default_to(1);
 
@@ -117,6 +117,7 @@ impl AaMode {
             limit_rays: 2,
         }
     }
+
     /// Default IAA depth limit of `iaa` (thesis 5.5.2: 4).
     pub const IAA_DEPTH: u32 = 4;
     /// Default IAA shading-variation threshold (a spread of the colour, channels in `[0, 1]`).
