@@ -556,6 +556,11 @@ impl Search<'_> {
         let far_positive = if shallow {
             let mut all = true;
             for q in r.quadrants() {
+                if self.filled.all(q) {
+                    // Both halves would return at once (not proven positive): no beam.
+                    all = false;
+                    continue;
+                }
                 let quadrant = Column::of(&self.beams, q);
                 let middle = self.visit(&quadrant, near, near_positive);
                 all &= self.visit(&quadrant, far, middle);
