@@ -14,6 +14,8 @@
 //! classification wherever interval evaluation is inclusion-monotone (it is, for every
 //! operation here); either way each one is proven over its cell.
 
+use std::collections::HashMap;
+
 use implicit_expr::{Evaluator, Tape};
 use interval_core::Interval;
 use rayon::prelude::*;
@@ -23,13 +25,78 @@ use super::cells::{cell as cell_of, index};
 use super::reduce::{C_NEG, C_POS, C_UNKNOWN, C_UNKNOWN_DEFINED, classify};
 use crate::ibox::IBox;
 
-/// The classes of every cell (`nused` per cell, in cell order), per cell the smallest
-/// mignitude over the cell of its leaves of proven sign (a lower bound), and the number of
-/// leaf evaluations spent.
+/// A class vector stored sparsely: the used leaves (by column) whose class is not
+/// [`C_POS`], in increasing column order, with their classes; every other leaf is proven
+/// positive. Far from a leaf's surface it is positive (an object is outside), so a cell's
+/// row holds the few objects near it, whatever the number of objects in the scene.
+pub(super) type Row = Vec<(u32, u8)>;
+
+/// The class of column `k` in `row`.
+pub(super) fn class_in(row: &[(u32, u8)], k: usize) -> u8 {
+    match row.binary_search_by_key(&(k as u32), |&(c, _)| c) {
+        Ok(i) => row[i].1,
+        Err(_) => C_POS,
+    }
+}
+
+/// Sets the class of column `k` in `row` to `c`.
+fn set_class(row: &mut Row, k: usize, c: u8) {
+    match row.binary_search_by_key(&(k as u32), |&(col, _)| col) {
+        Ok(i) if c == C_POS => {
+            row.remove(i);
+        }
+        Ok(i) => row[i].1 = c,
+        Err(_) if c == C_POS => {}
+        Err(i) => row.insert(i, (k as u32, c)),
+    }
+}
+
+/// A dense class vector as a [`Row`].
+fn sparse(dense: &[u8]) -> Row {
+    dense
+        .iter()
+        .enumerate()
+        .filter(|&(_, &c)| c != C_POS)
+        .map(|(k, &c)| (k as u32, c))
+        .collect()
+}
+
+/// The distinct class vectors of a classification, each stored once.
+#[derive(Default)]
+struct Rows {
+    rows: Vec<Row>,
+    index: HashMap<Row, u32>,
+}
+
+impl Rows {
+    /// The index of `row`, added if new.
+    fn intern(&mut self, row: Row) -> u32 {
+        if let Some(&i) = self.index.get(&row) {
+            return i;
+        }
+        self.rows.push(row.clone());
+        let i = (self.rows.len() - 1) as u32;
+        self.index.insert(row, i);
+        i
+    }
+}
+
+/// The classes of every cell: the distinct class vectors (`rows`, in the order first met),
+/// each cell's (`row_of`, in cell order), per cell the smallest mignitude over the cell of
+/// its leaves of proven sign (a lower bound), and the number of leaf evaluations spent.
 pub(super) struct Classes {
-    pub(super) classes: Vec<u8>,
+    pub(super) rows: Vec<Row>,
+    pub(super) row_of: Vec<u32>,
     pub(super) bound: Vec<f64>,
     pub(super) leaf_evals: u64,
+}
+
+impl Classes {
+    /// The class vector of cell `idx`.
+    #[cfg(test)]
+    fn row(&self, idx: usize) -> &[(u32, u8)] {
+        &self.rows[self.row_of[idx] as usize]
+    }
 }
 
 /// The leaves to classify: one tape with every used leaf as an output, and each leaf's own
@@ -79,20 +146,24 @@ impl Flat {
 /// every leaf.
 fn flat(t: &LeafTapes, ncells: usize, cell_box: &(dyn Fn(usize) -> IBox + Sync)) -> Classes {
     let nused = t.each.len();
-    let mut classes = vec![0_u8; ncells * nused];
-    let mut bound = vec![f64::INFINITY; ncells];
-    if nused > 0 {
-        classes
-            .par_chunks_mut(nused)
-            .zip(bound.par_iter_mut())
-            .enumerate()
-            .for_each_init(
-                || Flat::new(t),
-                |st, (idx, (out, bound))| st.classify(t, &cell_box(idx), out, bound),
-            );
-    }
+    let (cells, bound): (Vec<Row>, Vec<f64>) = (0..ncells)
+        .into_par_iter()
+        .map_init(
+            || (Flat::new(t), vec![0_u8; nused]),
+            |(st, dense), idx| {
+                let mut bound = f64::INFINITY;
+                if nused > 0 {
+                    st.classify(t, &cell_box(idx), dense, &mut bound);
+                }
+                (sparse(dense), bound)
+            },
+        )
+        .unzip();
+    let mut rows = Rows::default();
+    let row_of = cells.into_iter().map(|r| rows.intern(r)).collect();
     Classes {
-        classes,
+        rows: rows.rows,
+        row_of,
         bound,
         leaf_evals: (ncells * nused) as u64,
     }
@@ -126,7 +197,8 @@ pub(super) fn classify_cells(
     // The root: every leaf over the whole grid.
     let root = flat(t, 1, &|_| box_of([0; 3], n));
     let mut leaf_evals = root.leaf_evals;
-    let unknown = undecided(&root.classes)
+    let row = root.rows[root.row_of[0] as usize].clone();
+    let unknown = undecided(&row)
         .map(|k| {
             (
                 k,
@@ -137,11 +209,12 @@ pub(super) fn classify_cells(
     let mut level = vec![Node {
         lo: [0; 3],
         hi: n,
-        row: root.classes,
+        row,
         bound: root.bound[0],
         unknown,
     }];
-    let mut classes = vec![0_u8; ncells * nused];
+    let mut rows = Rows::default();
+    let mut row_of = vec![0_u32; ncells];
     let mut bound = vec![f64::INFINITY; ncells];
     // Level by level: each node's children, with the leaves still unknown evaluated over
     // each child; a child without unknown leaves, or of one cell, is final.
@@ -157,8 +230,9 @@ pub(super) fn classify_cells(
                 let mut unknown = Vec::new();
                 for (k, tape) in &parent.unknown {
                     let (f, defined) = eval.defined_on(tape, &b);
-                    row[*k] = classify(f, defined);
-                    if matches!(row[*k], C_POS | C_NEG) {
+                    let c = classify(f, defined);
+                    set_class(&mut row, *k, c);
+                    if matches!(c, C_POS | C_NEG) {
                         bound = bound.min(f.mig());
                     } else if !one_cell {
                         unknown.push((*k, eval.pruned(tape, &b)));
@@ -179,9 +253,10 @@ pub(super) fn classify_cells(
         for (node, evals) in children {
             leaf_evals += evals;
             if node.unknown.is_empty() {
+                let r = rows.intern(node.row.clone());
                 for c in node.cells() {
                     let idx = index(c, n);
-                    classes[idx * nused..(idx + 1) * nused].copy_from_slice(&node.row);
+                    row_of[idx] = r;
                     bound[idx] = node.bound;
                 }
             } else {
@@ -190,18 +265,18 @@ pub(super) fn classify_cells(
         }
     }
     Classes {
-        classes,
+        rows: rows.rows,
+        row_of,
         bound,
         leaf_evals,
     }
 }
 
 /// The leaves whose class in `row` is unknown (defined or not).
-fn undecided(row: &[u8]) -> impl Iterator<Item = usize> + '_ {
+fn undecided(row: &[(u32, u8)]) -> impl Iterator<Item = usize> + '_ {
     row.iter()
-        .enumerate()
-        .filter(|(_, c)| matches!(**c, C_UNKNOWN | C_UNKNOWN_DEFINED))
-        .map(|(k, _)| k)
+        .filter(|(_, c)| matches!(*c, C_UNKNOWN | C_UNKNOWN_DEFINED))
+        .map(|&(k, _)| k as usize)
 }
 
 /// A block of cells `lo..hi` of the classification: the classes proven over its box (every
@@ -210,7 +285,7 @@ fn undecided(row: &[u8]) -> impl Iterator<Item = usize> + '_ {
 struct Node {
     lo: [u32; 3],
     hi: [u32; 3],
-    row: Vec<u8>,
+    row: Row,
     bound: f64,
     unknown: Vec<(usize, Tape)>,
 }
@@ -302,7 +377,9 @@ mod tests {
                     )
                 })
             });
-            assert_eq!(tree.classes, flat.classes, "{n:?}");
+            for idx in 0..ncells {
+                assert_eq!(tree.row(idx), flat.row(idx), "{n:?}, cell {idx}");
+            }
             // The bound is a smallest mignitude over the cell's signed leaves: the octree's
             // comes from the box where each was proven, at most the cell's own.
             for (a, b) in tree.bound.iter().zip(&flat.bound) {

@@ -12,6 +12,7 @@ use std::collections::HashMap;
 use implicit_expr::{Context, NodeId, Tape};
 
 use super::cells::EMPTY;
+use super::classify::Row;
 use super::reduce::{C_NEG, C_POS};
 
 /// The candidate leaves of a cell: their tape (one output per candidate, in leaf order),
@@ -36,20 +37,28 @@ pub(super) struct CellLeaves {
 
 impl CellLeaves {
     /// The candidates of every cell that `non_empty` keeps: `rows` holds the distinct
-    /// class vectors (one class per used leaf, `used[k]` the leaf of class column `k`),
-    /// `row_of` each cell's, `bound` per cell the smallest mignitude of its leaves of proven
-    /// sign; `leaf_nodes` are the leaves' nodes in `ctx`. Each distinct vector is looked at
-    /// once. Returns `None` when a tape cannot be built (the full search is used then).
+    /// class vectors (sparse: the columns whose class is not positive, `used[k]` the leaf of
+    /// class column `k`), `row_of` each cell's, `bound` per cell the smallest mignitude of its
+    /// leaves of proven sign; `leaf_nodes` are the leaves' nodes in `ctx`. Each distinct
+    /// vector is looked at once. Returns `None` when a tape cannot be built (the full search
+    /// is used then).
     pub(super) fn build(
         ctx: &Context,
         leaf_nodes: &[NodeId],
         used: &[usize],
-        rows: &[&[u8]],
+        rows: &[Row],
         row_of: &[u32],
         bound: Vec<f64>,
         non_empty: impl Fn(usize) -> bool,
     ) -> Option<Self> {
-        let mut signed = vec![false; leaf_nodes.len()];
+        // Leaves no object uses have no class: always candidates.
+        let mut in_use = vec![false; leaf_nodes.len()];
+        for &i in used {
+            in_use[i] = true;
+        }
+        let unused: Vec<u32> = (0..leaf_nodes.len() as u32)
+            .filter(|&i| !in_use[i as usize])
+            .collect();
         let mut by_set: HashMap<Vec<u32>, u32> = HashMap::new();
         let mut sets = Vec::new();
         // Each distinct class vector's candidate set (EMPTY: none), built when first used.
@@ -64,13 +73,15 @@ impl CellLeaves {
                 *set = s;
                 continue;
             }
-            signed.fill(false);
-            for (k, &c) in rows[r].iter().enumerate() {
-                signed[used[k]] = matches!(c, C_POS | C_NEG);
-            }
-            let leaves: Vec<u32> = (0..leaf_nodes.len() as u32)
-                .filter(|&i| !signed[i as usize])
+            // The leaves not proven of one sign: the unused ones and the row's unknown
+            // and undefined ones (a leaf the row does not list is positive).
+            let mut leaves: Vec<u32> = rows[r]
+                .iter()
+                .filter(|&&(_, c)| !matches!(c, C_POS | C_NEG))
+                .map(|&(k, _)| used[k as usize] as u32)
+                .chain(unused.iter().copied())
                 .collect();
+            leaves.sort_unstable();
             *set = if leaves.is_empty() {
                 EMPTY
             } else {

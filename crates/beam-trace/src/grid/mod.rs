@@ -108,12 +108,12 @@ use crate::ibox::IBox;
 use crate::ray::{Beam, BeamEval, Precision, Ray, RayFn};
 use crate::root::{RootCounters, RootFinder, RootResult, RootSettings};
 use crate::scene::Geometry;
-use classify::{Classes, LeafTapes, classify_cells};
+use classify::{Classes, LeafTapes, class_in, classify_cells};
 use functions::{CellFunctions, SceneTapes};
 use leaves::CellLeaves;
 pub use leaves::LeafCandidates;
 use rayon::prelude::*;
-use reduce::{Reduced, Sign, combine, reduce};
+use reduce::{C_POS, Reduced, Sign, combine, reduce};
 
 pub use cells::EMPTY;
 
@@ -422,7 +422,8 @@ impl Grid {
 
         // Classify every cell (parallel; each cell's classes depend only on the cell).
         let Classes {
-            classes,
+            rows,
+            row_of,
             bound: signed_bound,
             leaf_evals,
         } = {
@@ -434,10 +435,6 @@ impl Grid {
         let mut fctx = ctx.clone();
         let leaf_nodes: Vec<NodeId> = leaves.iter().map(|l| l.node).collect();
         let mut by_node: HashMap<NodeId, u32> = HashMap::new();
-        let mut by_class: HashMap<&[u8], u32> = HashMap::new();
-        // The distinct class vectors, each one's function, and each cell's vector.
-        let mut rows: Vec<&[u8]> = Vec::new();
-        let mut row_of = vec![EMPTY; ncells];
         let mut reduced_nodes: Vec<NodeId> = Vec::new();
         let mut reduced = vec![EMPTY; ncells];
         let mut non_empty = 0_u64;
@@ -445,30 +442,52 @@ impl Grid {
         for (k, &i) in used.iter().enumerate() {
             position[i] = k;
         }
-        for (idx, row) in row_of.iter_mut().enumerate() {
-            let key = &classes[idx * nused..(idx + 1) * nused];
-            *row = *by_class.entry(key).or_insert_with(|| {
-                rows.push(key);
-                (rows.len() - 1) as u32
-            });
+        // A row lists the leaves not proven positive; an object whose leaves all are
+        // reduces as it does with every leaf positive, which in a union of objects drops it
+        // when that is positive. So a row's reduction needs only the objects of its listed
+        // leaves (and the objects that are not positive with every leaf positive), in object
+        // order: the same tree as reducing every object.
+        let objects = geometry.objects();
+        let all_positive = |_: usize| C_POS;
+        let always: Vec<usize> = (0..objects.len())
+            .filter(|&o| reduce(&objects[o], &all_positive).sign != Sign::Pos)
+            .collect();
+        let mut objects_of: Vec<Vec<usize>> = vec![Vec::new(); nused];
+        for (o, object) in objects.iter().enumerate() {
+            let mut own = Vec::new();
+            object.leaves(&mut own);
+            for leaf in own {
+                let column = &mut objects_of[position[leaf]];
+                if column.last() != Some(&o) {
+                    column.push(o);
+                }
+            }
         }
         // The reductions in parallel (each depends on its class vector only), the trees
         // added to the context in row order.
-        let tops: Vec<Reduced> = rows
+        let tops: Vec<Option<Reduced>> = rows
             .par_iter()
-            .map(|key| {
-                let class = |leaf: usize| key[position[leaf]];
-                let reds = geometry
-                    .objects()
+            .map(|row| {
+                let mut near: Vec<usize> = row
                     .iter()
-                    .map(|o| reduce(o, &class))
+                    .flat_map(|&(k, _)| objects_of[k as usize].iter().copied())
+                    .chain(always.iter().copied())
                     .collect();
-                combine(reds, true)
+                near.sort_unstable();
+                near.dedup();
+                let class = |leaf: usize| class_in(row, position[leaf]);
+                let reds: Vec<Reduced> =
+                    near.iter().map(|&o| reduce(&objects[o], &class)).collect();
+                // No object left: every one is proven positive, the cell is empty.
+                (!reds.is_empty()).then(|| combine(reds, true))
             })
             .collect();
         let row_function: Vec<u32> = tops
             .iter()
             .map(|top| {
+                let Some(top) = top else {
+                    return EMPTY;
+                };
                 if top.sign != Sign::Unknown {
                     return EMPTY;
                 }

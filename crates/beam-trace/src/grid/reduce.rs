@@ -20,7 +20,8 @@ pub(super) enum Sign {
     Unknown,
 }
 
-/// Leaf classes, one byte per used leaf and cell.
+/// Leaf classes, one byte per used leaf of a cell (stored sparsely: see
+/// [`super::classify::Row`]).
 pub(super) const C_UNDEFINED: u8 = 0;
 pub(super) const C_POS: u8 = 1;
 pub(super) const C_NEG: u8 = 2;
