@@ -638,7 +638,7 @@ fn the_grid_resolution_grows_with_the_scene_function_unless_set() {
     use beam_trace::scene::auto_grid_resolution;
     assert_eq!(auto_grid_resolution(16, 100), 16);
     assert_eq!(auto_grid_resolution(16, 1024), 32);
-    assert_eq!(auto_grid_resolution(16, 1 << 20), 64);
+    assert_eq!(auto_grid_resolution(16, 1 << 20), 128);
     assert_eq!(auto_grid_resolution(0, 1 << 20), 0);
     let long: Vec<String> = (0..40)
         .map(|i| {

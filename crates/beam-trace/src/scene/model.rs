@@ -216,13 +216,13 @@ pub const MAX_GRID_RESOLUTION: u32 = 256;
 const AUTO_GRID_INSTRS: usize = 128;
 
 /// The finest grid the automatic resolution chooses.
-const AUTO_GRID_MAX: u32 = 64;
+const AUTO_GRID_MAX: u32 = 128;
 
 /// The grid resolution for a scene function of `instrs` instructions, starting from `base`:
 /// `base` up to 128 instructions, then growing with the cube root of the
-/// length (a cell's pruned function shrinks with the cell), at most 64. With
-/// the grid classified block by block, a finer grid costs little to build; what it saves
-/// is the length of every ray's function.
+/// length (a cell's pruned function shrinks with the cell), at most 128. With
+/// the grid classified block by block and the classes stored sparsely, a finer grid costs
+/// little to build; what it saves is the length of every ray's function.
 pub fn auto_grid_resolution(base: u32, instrs: usize) -> u32 {
     if instrs <= AUTO_GRID_INSTRS || base == 0 {
         return base;
