@@ -44,6 +44,13 @@ const BLOCK: u32 = 4;
 /// reduced function.
 const PAYS: usize = 2;
 
+/// Side, in blocks, of the super-blocks whose tapes the blocks of a long reduced function
+/// prune from (see [`CellFunctions::build`]).
+const SUPER: u32 = 4;
+
+/// Reduced functions longer than this are pruned to the super-blocks first.
+const SUPER_MIN_LEN: usize = 256;
+
 /// One function of the grid: its formula in `x y z` and, once needed, its ray form.
 #[derive(Clone, Debug)]
 struct CellFunction {
@@ -90,7 +97,10 @@ impl CellFunctions {
     /// the hull of their boxes, and each cell prunes the block's tape: a `min`/`max` decided
     /// over the block is decided the same way over the cell, and the argument it forwards
     /// has exactly the operation's enclosure there, so the cell's tape is the one pruning the
-    /// reduced function over the cell gives, for the cost of evaluating a shorter one.
+    /// reduced function over the cell gives, for the cost of evaluating a shorter one. A
+    /// reduced function longer than [`SUPER_MIN_LEN`] is first pruned to super-blocks of
+    /// [`SUPER`]³ blocks, which its blocks prune from ([`super_tapes`]): the same tapes, the
+    /// long function evaluated once per super-block.
     pub(super) fn build(
         tapes: &[Tape],
         (reduced, n): (&[u32], [u32; 3]),
@@ -103,6 +113,8 @@ impl CellFunctions {
         let mut cells = vec![EMPTY; reduced.len()];
         let mut cell_instrs = 0_u64;
         let layer = n[0] as usize * n[1] as usize;
+        let (supers, span) = super_tapes(tapes, (reduced, n), &class_box);
+        let m = n.map(|k| k.div_ceil(span));
         // Slabs of `BLOCK` layers of cells (contiguous indices), their blocks in parallel.
         for z0 in (0..n[2]).step_by(BLOCK as usize) {
             let z1 = (z0 + BLOCK).min(n[2]);
@@ -130,9 +142,13 @@ impl CellFunctions {
                         let boxes: Vec<(usize, IBox)> =
                             mine.map(|idx| (idx, class_box(idx))).collect();
                         let block = boxes.iter().map(|(_, b)| *b).reduce(|a, b| hull(&a, &b));
+                        // A long function starts from its super-block's tape.
+                        let start = supers
+                            .get(&(index([x0, y0, z0].map(|k| k / span), m), r))
+                            .unwrap_or(tape);
                         let from = match block {
-                            Some(b) if boxes.len() > 1 => eval.pruned(tape, &b),
-                            _ => tape.clone(),
+                            Some(b) if boxes.len() > 1 => eval.pruned(start, &b),
+                            _ => start.clone(),
                         };
                         for (idx, b) in boxes {
                             let pruned = eval.pruned(&from, &b);
@@ -216,6 +232,53 @@ impl CellFunctions {
                 .unwrap_or_else(|_| self.fallback.clone())
         })
     }
+}
+
+/// The tapes of the reduced functions longer than [`SUPER_MIN_LEN`] pruned to each
+/// super-block of `SUPER`³ blocks whose non-empty cells use them, keyed by the super-block's
+/// index and the function's; and the super-blocks' side in cells. Each is equal to its
+/// function on the super-block's box, with the same enclosure over every part of it, so
+/// the blocks inside prune from it to the tapes they would prune from the whole function,
+/// evaluating the long function once per super-block instead of once per block.
+fn super_tapes(
+    tapes: &[Tape],
+    (reduced, n): (&[u32], [u32; 3]),
+    class_box: &(impl Fn(usize) -> IBox + Sync),
+) -> (FxHashMap<(usize, u32), Tape>, u32) {
+    let span = BLOCK * SUPER;
+    let m = n.map(|k| k.div_ceil(span));
+    if tapes.iter().all(|t| t.len() <= SUPER_MIN_LEN) {
+        return (FxHashMap::default(), span);
+    }
+    let count = m.iter().map(|&k| k as usize).product::<usize>();
+    let pruned: Vec<Vec<((usize, u32), Tape)>> = (0..count)
+        .into_par_iter()
+        .map_init(BoxEval::default, |eval, s| {
+            let sc = cell_of(s, m);
+            let lo = sc.map(|k| k * span);
+            let hi: [u32; 3] = std::array::from_fn(|a| ((sc[a] + 1) * span).min(n[a]));
+            let mut rs: Vec<u32> = (lo[2]..hi[2])
+                .flat_map(|z| {
+                    (lo[1]..hi[1]).flat_map(move |y| (lo[0]..hi[0]).map(move |x| [x, y, z]))
+                })
+                .map(|c| reduced[index(c, n)])
+                .filter(|&r| r != EMPTY && tapes[r as usize].len() > SUPER_MIN_LEN)
+                .collect();
+            rs.sort_unstable();
+            rs.dedup();
+            if rs.is_empty() {
+                return Vec::new();
+            }
+            let b = hull(
+                &class_box(index(lo, n)),
+                &class_box(index(hi.map(|k| k - 1), n)),
+            );
+            rs.into_iter()
+                .map(|r| ((s, r), eval.pruned(&tapes[r as usize], &b)))
+                .collect()
+        })
+        .collect();
+    (pruned.into_iter().flatten().collect(), span)
 }
 
 /// The scene function pruned to each cell, built when a cell is first asked for (normals
