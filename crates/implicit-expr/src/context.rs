@@ -6,7 +6,7 @@
 //! before their parents: node ids are a topological order, and every pass over the graph
 //! is a loop over ids, never a recursion (deep formulas cannot overflow the stack).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 use std::fmt;
 
 use crate::constant::Constant;
@@ -85,7 +85,7 @@ impl Context {
     pub fn new() -> Self {
         Self {
             nodes: Vec::new(),
-            index: HashMap::new(),
+            index: HashMap::default(),
             var_names: vec!["x".into(), "y".into(), "z".into()],
         }
     }
@@ -532,7 +532,8 @@ impl Context {
         root: NodeId,
         mut var: impl FnMut(&mut Context, Var) -> NodeId,
     ) -> NodeId {
-        let mut new: HashMap<NodeId, NodeId> = HashMap::with_capacity(nodes.len());
+        let mut new: HashMap<NodeId, NodeId> =
+            HashMap::with_capacity_and_hasher(nodes.len(), Default::default());
         for &(id, node) in nodes {
             let n = match node {
                 Node::Var(v) => var(self, v),
@@ -552,7 +553,8 @@ impl Context {
     /// Returns an error when `vars` is shorter than the number of variable slots used.
     pub fn eval<N: Number>(&self, root: NodeId, vars: &[N]) -> Result<N, Error> {
         let order = self.reachable(&[root]);
-        let mut values: HashMap<NodeId, N> = HashMap::with_capacity(order.len());
+        let mut values: HashMap<NodeId, N> =
+            HashMap::with_capacity_and_hasher(order.len(), Default::default());
         for id in order {
             let v = match *self.get(id) {
                 Node::Var(v) => *vars.get(v.index()).ok_or(Error::MissingVar {

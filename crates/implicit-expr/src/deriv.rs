@@ -10,7 +10,7 @@
 //!
 //! The pass is a loop over node ids (no recursion).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use crate::context::{Context, Node, NodeId, Var};
 use crate::op::{BinaryOp, UnaryOp};
@@ -21,7 +21,8 @@ impl Context {
         let order = self.reachable(&[f]);
         let zero = self.constant(0.0).expect("finite");
         let one = self.constant(1.0).expect("finite");
-        let mut d: HashMap<NodeId, NodeId> = HashMap::with_capacity(order.len());
+        let mut d: HashMap<NodeId, NodeId> =
+            HashMap::with_capacity_and_hasher(order.len(), Default::default());
         for id in order {
             let node = *self.get(id);
             let di = match node {

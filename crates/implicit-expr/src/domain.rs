@@ -23,7 +23,7 @@
 //! The poles of `1/a`, `a/b` and `tan` are points or surfaces, not regions: they stay as
 //! they are (a box around one is undefined, so no proof holds there).
 
-use std::collections::HashMap;
+use rustc_hash::FxHashMap as HashMap;
 
 use crate::context::{Context, Node, NodeId};
 use crate::op::{BinaryOp, UnaryOp};
@@ -45,7 +45,8 @@ impl Context {
         let one = self.constant(1.0).expect("finite");
         let minus_one = self.constant(-1.0).expect("finite");
         let tiny = self.constant(SMALLEST_ARGUMENT).expect("finite");
-        let mut total: HashMap<NodeId, NodeId> = HashMap::with_capacity(order.len());
+        let mut total: HashMap<NodeId, NodeId> =
+            HashMap::with_capacity_and_hasher(order.len(), Default::default());
         let mut tests = Vec::new();
         for id in order {
             let new = match *self.get(id) {
