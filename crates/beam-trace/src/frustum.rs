@@ -51,6 +51,7 @@
 
 use implicit_expr::Tape;
 use interval_core::Interval;
+use rustc_hash::FxHashMap;
 
 use crate::beam::{BeamScope, BoxClass, Extent, inclusion_test};
 use crate::camera::{Camera, EdgeBeams};
@@ -181,6 +182,7 @@ pub fn first_cells(
         filled: Filled::new(tile),
         counters,
         chain: Vec::new(),
+        columns: FxHashMap::default(),
     };
     if !range.is_empty() {
         let column = Column::of(&search.beams, tile);
@@ -191,6 +193,7 @@ pub fn first_cells(
 
 /// A rectangle of pixels with its beam and the beam's largest spread of directions (its
 /// cross-section at `t` is the spread times `t`: the origin is the eye).
+#[derive(Copy, Clone)]
 struct Column {
     r: PixelRect,
     beam: Beam,
@@ -285,9 +288,21 @@ struct Search<'a> {
     /// The restrictions of `g` of the cells holding the one searched, outermost first
     /// (each over its own cell, a part of the one before); empty: the whole `g`.
     chain: Vec<BeamScope>,
+    /// The columns made so far: a rectangle is split again in each range of its parent's
+    /// column that is split, and its beam (rounded sums per axis) is made once.
+    columns: FxHashMap<PixelRect, Column>,
 }
 
 impl Search<'_> {
+    /// The column of `r`, made on first use.
+    fn column(&mut self, r: PixelRect) -> Column {
+        let beams = &self.beams;
+        *self
+            .columns
+            .entry(r)
+            .or_insert_with(|| Column::of(beams, r))
+    }
+
     fn index(&self, x: u32, y: u32) -> usize {
         let width = (self.tile.x1 - self.tile.x0) as usize;
         (y - self.tile.y0) as usize * width + (x - self.tile.x0) as usize
@@ -561,7 +576,7 @@ impl Search<'_> {
                     all = false;
                     continue;
                 }
-                let quadrant = Column::of(&self.beams, q);
+                let quadrant = self.column(q);
                 let middle = self.visit(&quadrant, near, near_positive);
                 all &= self.visit(&quadrant, far, middle);
             }
