@@ -185,7 +185,7 @@ pub fn first_cells(
         columns: FxHashMap::default(),
     };
     if !range.is_empty() {
-        let column = Column::of(&search.beams, tile);
+        let column = search.column(tile);
         search.visit(&column, range, false);
     }
     search.first

@@ -14,11 +14,10 @@
 //! classification wherever interval evaluation is inclusion-monotone (it is, for every
 //! operation here); either way each one is proven over its cell.
 
-use std::collections::HashMap;
-
 use implicit_expr::{Evaluator, Tape};
 use interval_core::Interval;
 use rayon::prelude::*;
+use rustc_hash::FxHashMap;
 
 use super::box_eval::{BoxEval, with_thread_eval};
 use super::cells::{cell as cell_of, index};
@@ -31,17 +30,19 @@ use crate::ibox::IBox;
 /// row holds the few objects near it, whatever the number of objects in the scene.
 pub(super) type Row = Vec<(u32, u8)>;
 
+/// Where column `k` is in `row` (`Err`: where it would go, its class positive).
+fn find(row: &[(u32, u8)], k: usize) -> Result<usize, usize> {
+    row.binary_search_by_key(&(k as u32), |&(col, _)| col)
+}
+
 /// The class of column `k` in `row`.
 pub(super) fn class_in(row: &[(u32, u8)], k: usize) -> u8 {
-    match row.binary_search_by_key(&(k as u32), |&(c, _)| c) {
-        Ok(i) => row[i].1,
-        Err(_) => C_POS,
-    }
+    find(row, k).map_or(C_POS, |i| row[i].1)
 }
 
 /// Sets the class of column `k` in `row` to `c`.
 fn set_class(row: &mut Row, k: usize, c: u8) {
-    match row.binary_search_by_key(&(k as u32), |&(col, _)| col) {
+    match find(row, k) {
         Ok(i) if c == C_POS => {
             row.remove(i);
         }
@@ -65,19 +66,17 @@ fn sparse(dense: &[u8]) -> Row {
 #[derive(Default)]
 struct Rows {
     rows: Vec<Row>,
-    index: HashMap<Row, u32>,
+    index: FxHashMap<Row, u32>,
 }
 
 impl Rows {
     /// The index of `row`, added if new.
     fn intern(&mut self, row: Row) -> u32 {
-        if let Some(&i) = self.index.get(&row) {
-            return i;
-        }
-        self.rows.push(row.clone());
-        let i = (self.rows.len() - 1) as u32;
-        self.index.insert(row, i);
-        i
+        let next = self.rows.len() as u32;
+        *self.index.entry(row).or_insert_with_key(|r| {
+            self.rows.push(r.clone());
+            next
+        })
     }
 }
 
