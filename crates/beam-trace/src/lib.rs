@@ -90,6 +90,7 @@ pub mod screen;
 pub mod shading;
 pub mod shadow;
 pub mod stats;
+pub mod window;
 
 pub use backend::{Backend, Routing, cpu::Cpu};
 pub use camera::Camera;

@@ -28,5 +28,6 @@ pub use query::{
     Answers, BeamQuery, CellQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery,
     ShadeBatch, ShadeLight, ShadeSample, SoftAnswers, Support, VariationQuery,
 };
+pub(crate) use routing::Routed;
 pub use routing::Routing;
 pub use traits::{Backend, Prepared, Queries};

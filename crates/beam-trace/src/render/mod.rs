@@ -8,10 +8,15 @@
 //! ```
 //!
 //! Each answer depends on its query alone and counters are sums over queries, so images
-//! and counters do not depend on the thread count, nor on how a pass cuts its batches.
+//! and counters do not depend on the thread count, nor on how a pass cuts its batches,
+//! nor on how the image is cut into [`Window`]s rendered apart ([`Pipeline`]) and put
+//! together again.
 
+mod fingerprint;
 mod hard_shadows;
 mod images;
+mod piece;
+mod pipeline;
 mod pixel_beams;
 mod pixels;
 mod primary;
@@ -19,11 +24,8 @@ mod shading;
 mod soft_shadows;
 
 pub use images::{box_class_color, classification_image, cost_image, shadow_class_image};
-
-use std::time::Instant;
-
-use glam::DVec3;
-use rayon::prelude::*;
+pub use piece::{Piece, PieceShadows};
+pub use pipeline::Pipeline;
 
 use crate::backend::cpu::Cpu;
 use crate::backend::{Backend, Routing};
@@ -31,12 +33,13 @@ use crate::beam::BoxClass;
 use crate::error::Error;
 use crate::float_map::FloatMap;
 use crate::image::Image;
-use crate::plan::{Pass, PixelBeams, Plan, Primary};
+use crate::plan::{Pass, Plan, Primary};
 use crate::progress::Progress;
 use crate::sample::Coverage;
 use crate::scene::Scene;
 use crate::shadow::ShadowClass;
 use crate::stats::{PassStats, RenderStats};
+use crate::window::Window;
 use pixels::Pixels;
 
 /// What a render produces.
@@ -142,148 +145,12 @@ pub fn render(scene: &Scene, progress: &dyn Progress) -> Result<RenderOutput, Er
 /// # Errors
 ///
 /// [`Error::Backend`] when the backend cannot run the scene or fails.
-pub fn render_on<'a>(
-    scene: &'a Scene,
-    backend: &'a dyn Backend,
+pub fn render_on(
+    scene: &Scene,
+    backend: &dyn Backend,
     progress: &dyn Progress,
 ) -> Result<RenderOutput, Error> {
-    let start = Instant::now();
-    let plan = Plan::for_scene(scene);
-    let routing = Routing::new(backend, scene, &plan);
-    let (queries, mut passes) = routing.prepare(backend, scene, &plan)?;
-    let q = &queries;
-    let cam = &scene.camera;
-    let (w, h) = (cam.width(), cam.height());
-    let npix = w as usize * h as usize;
-
-    let (classes, scopes, traced) = if plan.runs(Pass::ScreenBoxes) {
-        let (classes, scopes, traced, stats) = primary::structure(q, scene, &plan, progress)?;
-        passes.push(stats);
-        (classes, scopes, traced)
-    } else {
-        passes.push(PassStats::skipped(Pass::ScreenBoxes.name()));
-        (vec![None; npix], vec![None; npix], Vec::new())
-    };
-
-    let (mut samples, cost) = match plan.primary {
-        Primary::ScreenBoxes { .. } | Primary::Iaa { .. } => {
-            let PixelBeams {
-                max_depth,
-                threshold,
-                limit_rays,
-            } = plan
-                .primary
-                .pixel_beams()
-                .expect("the beam modes resolve pixels by their beams");
-            let refine = pixel_beams::Refinement {
-                max_depth,
-                threshold,
-                narrow_hits: plan.narrow_hits,
-                limit_rays,
-            };
-            passes.push(PassStats::skipped(Pass::PrimaryRays.name()));
-            let (samples, cost, stats) =
-                pixel_beams::pixel_beams(q, scene, &classes, &scopes, refine, progress)?;
-            passes.push(stats);
-            (samples, cost)
-        }
-        Primary::ScreenRays { rays_per_undecided }
-        | Primary::Octree { rays_per_undecided }
-        | Primary::PerPixel {
-            rays_per_pixel: rays_per_undecided,
-        } => {
-            let start = match plan.primary {
-                Primary::Octree { .. } => primary::RayStart::FirstCell,
-                _ => primary::RayStart::BoxWindow,
-            };
-            let (samples, cost, stats) = primary::primary_rays(
-                q,
-                scene,
-                (&classes, &scopes, &traced),
-                (rays_per_undecided, start, plan.narrow_hits),
-                progress,
-            )?;
-            passes.push(stats);
-            passes.push(PassStats::skipped(Pass::PixelBeams.name()));
-            (samples, cost)
-        }
-    };
-    let coverage: Vec<Coverage> = (0..samples.len())
-        .into_par_iter()
-        .map(|p| Coverage::of(samples.pixel(p)))
-        .collect();
-
-    if plan.runs(Pass::Normals) {
-        passes.push(shading::normals(q, &mut samples, progress)?);
-    } else {
-        passes.push(PassStats::skipped(Pass::Normals.name()));
-    }
-
-    // The visible fraction of each light from each sample (1 without a shadow pass):
-    // sample-major, light-minor.
-    let nl = scene.lights.len();
-    let mut vis: Vec<f32> = vec![1.0; samples.samples.len() * nl];
-    if plan.runs(Pass::HardShadows) {
-        let points: Vec<Option<DVec3>> = scene
-            .lights
-            .iter()
-            .map(|l| l.as_point().map(|p| p.position))
-            .collect();
-        passes.push(hard_shadows::hard_shadows(
-            q, scene, &samples, &points, &mut vis, progress,
-        )?);
-    } else {
-        passes.push(PassStats::skipped(Pass::HardShadows.name()));
-    }
-    let mut light_stats = Vec::new();
-    let mut shadows = None;
-    if plan.runs(Pass::SoftShadows) {
-        let soft = soft_shadows::soft_shadows(q, scene, &plan, &samples, &mut vis, progress)?;
-        passes.push(soft.pass);
-        light_stats = soft.lights;
-        shadows = Some(ShadowMaps {
-            image: shadow_class_image(w, h, &soft.classes),
-            classes: soft.classes,
-            fractions: soft.fractions,
-            lower: soft.lower,
-            upper: soft.upper,
-            width: w,
-            height: h,
-        });
-    } else {
-        passes.push(PassStats::skipped(Pass::SoftShadows.name()));
-    }
-
-    let (pixels, stats) = shading::shading(q, scene, plan.runs(Pass::Shading), &samples, &vis)?;
-    passes.push(stats);
-    // The queries borrow the plan, which the output takes.
-    drop(queries);
-
-    Ok(RenderOutput {
-        classification: classification_image(
-            w,
-            h,
-            &classes
-                .iter()
-                .map(|c| c.map(|c| (c.class, c.edge)))
-                .collect::<Vec<_>>(),
-        ),
-        box_classes: classes.par_iter().map(|c| c.map(|c| c.class)).collect(),
-        coverage,
-        cost_map: cost_image(w, h, &cost),
-        shadows,
-        image: Image {
-            width: w,
-            height: h,
-            pixels,
-        },
-        stats: RenderStats {
-            passes,
-            lights: light_stats,
-            total: start.elapsed(),
-        },
-        plan,
-    })
+    pipeline::render_whole(scene, backend, progress)
 }
 
 /// The grid and screen-box passes alone, on the CPU, with `plan`: their statistics and
@@ -309,7 +176,8 @@ pub(crate) fn screen_box_pass(
     let plan = &plan;
     let routing = Routing::new(&Cpu, scene, plan);
     let (queries, mut passes) = routing.prepare(&Cpu, scene, plan)?;
-    let (classes, _, _, stats) = primary::structure(&queries, scene, plan, progress)?;
+    let window = Window::full(scene.camera.width(), scene.camera.height());
+    let (classes, _, _, stats) = primary::structure(&queries, scene, plan, &window, progress)?;
     passes.push(stats);
     Ok((passes, classes.iter().map(|c| c.map(|c| c.class)).collect()))
 }

@@ -35,6 +35,7 @@ use crate::sample::{Area, Sample};
 use crate::scene::Scene;
 use crate::stats::PassStats;
 use crate::stats::counters::PixelBeamCounters;
+use crate::window::Window;
 
 /// How far the pass splits: the depth limit, and the shading-variation threshold above
 /// which a Hit beam is split too (`None`: Hit beams are shaded once, no anti-aliasing).
@@ -203,23 +204,24 @@ fn smooth_hits(
     Ok(smooth)
 }
 
-/// The pixel-beams pass over every pixel: `classes` and `scopes` are the screen box
-/// structure's result per pixel (`None` where no screen box classified the pixel: its
+/// The pixel-beams pass over every pixel of `window`: `classes` and `scopes` are the screen
+/// box structure's result per pixel (`None` where no screen box classified the pixel: its
 /// beam is classified here).
 pub(super) fn pixel_beams(
     q: &dyn Queries,
     scene: &Scene,
+    window: &Window,
     classes: &PixelClasses,
     scopes: &PixelScopes,
     refine: Refinement,
     progress: &dyn Progress,
 ) -> Result<PixelSamples, Error> {
     let cam = &scene.camera;
-    let (w, h) = (cam.width(), cam.height());
+    let (w, h) = (window.width(), window.height());
     let t0 = Instant::now();
     progress.begin(Pass::PixelBeams.name(), u64::from(h));
     let mut c = PixelBeamCounters::default();
-    let npix = w as usize * h as usize;
+    let npix = window.len();
     let mut pixels = Pixels::new();
     let mut cost: Vec<f32> = Vec::with_capacity(npix);
     for RowBatch { rows, first, n } in row_batches(w, h) {
@@ -236,11 +238,11 @@ pub(super) fn pixel_beams(
         let level: Vec<Part> = (0..n)
             .filter(|&k| !missed(k))
             .map(|k| {
-                let i = (first + k) as u32;
+                let (x, y) = window.pixel(first + k);
                 Part {
                     pixel: k,
-                    x0: f64::from(i % w),
-                    y0: f64::from(i / w),
+                    x0: f64::from(x),
+                    y0: f64::from(y),
                     size: 1.0,
                     depth: 0,
                     path: 0,

@@ -20,9 +20,10 @@ use crate::ray::Ray;
 use crate::root::{Proof, RootResult};
 use crate::sample::{Area, Sample};
 use crate::scene::Scene;
-use crate::screen::{PixelRect, needs_split, stratified_offsets, stratified_side, tiles};
+use crate::screen::{PixelRect, needs_split, stratified_offsets, stratified_side};
 use crate::stats::PassStats;
 use crate::stats::counters::{PrimaryRayCounters, ScreenBoxCounters};
+use crate::window::Window;
 
 /// Side of the tiles the screen box structure starts from.
 const TILE: u32 = 32;
@@ -76,19 +77,20 @@ fn traces_of(traces: &PixelTraces, p: usize) -> &[Traced] {
     }
 }
 
-/// The first primary pass of `plan`: the frustum octree's first cells for
-/// [`Primary::Octree`], else the screen box structure.
+/// The first primary pass of `plan` over `window`'s pixels: the frustum octree's first
+/// cells for [`Primary::Octree`], else the screen box structure.
 pub(super) fn structure(
     q: &dyn Queries,
     scene: &Scene,
     plan: &Plan,
+    window: &Window,
     progress: &dyn Progress,
 ) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
     match plan.primary {
         // The octree traces each undecided pixel's rays.
-        Primary::Octree { rays_per_undecided } => octree(q, scene, rays_per_undecided, progress),
+        Primary::Octree { rays_per_undecided } => octree(q, window, rays_per_undecided, progress),
         _ => {
-            let (classes, scopes, stats) = screen_boxes(q, scene, plan, progress)?;
+            let (classes, scopes, stats) = screen_boxes(q, scene, plan, window, progress)?;
             Ok((classes, scopes, Vec::new(), stats))
         }
     }
@@ -103,19 +105,17 @@ const OCTREE_TILE: u32 = 64;
 /// or a Miss without one.
 fn octree(
     q: &dyn Queries,
-    scene: &Scene,
+    window: &Window,
     traced_rays: u32,
     progress: &dyn Progress,
 ) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
-    let cam = &scene.camera;
-    let (w, h) = (cam.width(), cam.height());
     let t0 = Instant::now();
-    progress.begin(Pass::ScreenBoxes.name(), u64::from(h));
-    let mut classes: PixelClasses = vec![None; w as usize * h as usize];
-    let mut scopes: PixelScopes = vec![None; w as usize * h as usize];
+    progress.begin(Pass::ScreenBoxes.name(), u64::from(window.height()));
+    let mut classes: PixelClasses = vec![None; window.len()];
+    let mut scopes: PixelScopes = vec![None; window.len()];
     let mut traced: PixelTraces = Vec::new();
     let mut c = ScreenBoxCounters::default();
-    let all = tiles(w, h, OCTREE_TILE);
+    let all = window.tiles(OCTREE_TILE);
     for band in all.chunk_by(|a, b| a.y0 / (4 * OCTREE_TILE) == b.y0 / (4 * OCTREE_TILE)) {
         let queries: Vec<CellQuery> = band
             .iter()
@@ -126,13 +126,13 @@ fn octree(
         for (tile, firsts) in band.iter().zip(answers.values) {
             // The pixels without a first cell are proven missed.
             for (x, y) in tile.pixels() {
-                classes[(y * w + x) as usize] = Some(BoxPixel::of(BoxClass::Miss, false));
+                classes[window.local(x, y)] = Some(BoxPixel::of(BoxClass::Miss, false));
             }
             c.add_pixels(&BoxClass::Miss, tile.area() - firsts.len() as u64);
             let width = tile.x1 - tile.x0;
             for (k, f) in firsts {
                 let (x, y) = (tile.x0 + k % width, tile.y0 + k / width);
-                let i = (y * w + x) as usize;
+                let i = window.local(x, y);
                 let class = f.class();
                 c.add_pixels(&class, 1);
                 classes[i] = Some(BoxPixel::of(class, false));
@@ -163,21 +163,22 @@ fn screen_boxes(
     q: &dyn Queries,
     scene: &Scene,
     plan: &Plan,
+    window: &Window,
     progress: &dyn Progress,
 ) -> Result<(PixelClasses, PixelScopes, PassStats), Error> {
     let cam = &scene.camera;
-    let (w, h) = (cam.width(), cam.height());
     let t0 = Instant::now();
-    progress.begin(Pass::ScreenBoxes.name(), u64::from(w) * u64::from(h));
-    let mut classes: PixelClasses = vec![None; w as usize * h as usize];
-    let mut scopes: PixelScopes = vec![None; w as usize * h as usize];
+    progress.begin(Pass::ScreenBoxes.name(), window.len() as u64);
+    let mut classes: PixelClasses = vec![None; window.len()];
+    let mut scopes: PixelScopes = vec![None; window.len()];
     let mut c = ScreenBoxCounters::default();
     // With anti-aliasing, the Hit boxes of more than one pixel whose shading is judged
     // once for all their pixels.
     let judge = plan.primary.pixel_beams().and_then(|p| p.threshold);
     let mut judged: Vec<(PixelRect, VariationQuery)> = Vec::new();
     // Each box with the class and the backend's scope of the box it was split from.
-    let mut level: Vec<(PixelRect, Option<BoxClass>, Option<BeamScope>)> = tiles(w, h, TILE)
+    let mut level: Vec<(PixelRect, Option<BoxClass>, Option<BeamScope>)> = window
+        .tiles(TILE)
         .into_iter()
         .map(|t| (t, None, None))
         .collect();
@@ -225,16 +226,16 @@ fn screen_boxes(
             }
             for (x, y) in rect.pixels() {
                 let edge = x == rect.x0 || y == rect.y0;
-                classes[(y * w + x) as usize] = Some(BoxPixel::of(class, edge));
+                classes[window.local(x, y)] = Some(BoxPixel::of(class, edge));
                 if !matches!(class, BoxClass::Miss) {
-                    scopes[(y * w + x) as usize] = answer.scope.clone();
+                    scopes[window.local(x, y)] = answer.scope.clone();
                 }
             }
             progress.advance(rect.area());
         }
         level = next;
     }
-    mark_smooth(q, &judged, w, &mut classes, &mut c)?;
+    mark_smooth(q, &judged, window, &mut classes, &mut c)?;
     progress.end();
     Ok((
         classes,
@@ -250,7 +251,7 @@ fn screen_boxes(
 fn mark_smooth(
     q: &dyn Queries,
     judged: &[(PixelRect, VariationQuery)],
-    w: u32,
+    window: &Window,
     classes: &mut PixelClasses,
     c: &mut ScreenBoxCounters,
 ) -> Result<(), Error> {
@@ -270,7 +271,7 @@ fn mark_smooth(
         c.smooth_boxes += 1;
         c.smooth_pixels += rect.area();
         for (x, y) in rect.pixels() {
-            if let Some(p) = &mut classes[(y * w + x) as usize] {
+            if let Some(p) = &mut classes[window.local(x, y)] {
                 p.smooth = true;
             }
         }
@@ -284,11 +285,14 @@ fn mark_smooth(
 struct PixelRays {
     table: RayTable,
     k: usize,
+    /// The image coordinates of the first pixel of the table.
+    origin: (u32, u32),
 }
 
 impl PixelRays {
-    /// The rays of `cam`'s pixels, `n` stratified ones per pixel (a square; its nearest).
-    fn new(cam: &Camera, n: u32) -> Self {
+    /// The rays of `cam`'s pixels in `window`, `n` stratified ones per pixel (a square; its
+    /// nearest).
+    fn new(cam: &Camera, n: u32, window: &Window) -> Self {
         let k = stratified_side(n) as usize;
         // Per pixel and axis: the centre, then the `k` stratified positions, the very
         // values the frustum octree traces its rays at (`stratified_offsets`: its first
@@ -301,17 +305,19 @@ impl PixelRays {
         let down: Vec<f64> = std::iter::once(0.5)
             .chain(offsets.iter().step_by(k).map(|o| o.1))
             .collect();
-        let positions = |n: u32, inside: &[f64]| -> Vec<f64> {
-            (0..n)
+        let positions = |pixels: std::ops::Range<u32>, inside: &[f64]| -> Vec<f64> {
+            pixels
                 .flat_map(|p| inside.iter().map(move |o| f64::from(p) + o))
                 .collect()
         };
+        let r = window.rect();
         Self {
             table: cam.ray_table(
-                &positions(cam.width(), &across),
-                &positions(cam.height(), &down),
+                &positions(r.x0..r.x1, &across),
+                &positions(r.y0..r.y1, &down),
             ),
             k,
+            origin: (r.x0, r.y0),
         }
     }
 
@@ -320,15 +326,17 @@ impl PixelRays {
         self.k * self.k
     }
 
-    /// The ray through the centre of pixel `(x, y)`.
+    /// The ray through the centre of the image's pixel `(x, y)`.
     fn centre(&self, x: u32, y: u32) -> Ray {
         let per = self.k + 1;
+        let (x, y) = (x - self.origin.0, y - self.origin.1);
         self.table.ray(x as usize * per, y as usize * per)
     }
 
-    /// Stratified ray `r` of pixel `(x, y)`.
+    /// Stratified ray `r` of the image's pixel `(x, y)`.
     fn stratified(&self, x: u32, y: u32, r: usize) -> Ray {
         let per = self.k + 1;
+        let (x, y) = (x - self.origin.0, y - self.origin.1);
         self.table.ray(
             x as usize * per + 1 + r % self.k,
             y as usize * per + 1 + r / self.k,
@@ -381,7 +389,7 @@ fn ray_count(class: Option<BoxPixel>, stratified: usize) -> usize {
     }
 }
 
-/// Ray `r` of pixel `i` (row-major in a `w`-wide image) of box class `class`: the central
+/// Ray `r` of `window`'s pixel `i` of box class `class`: the central
 /// ray, searched in a Hit box's `T_final` (with the box's `scope`) where `narrow`, else
 /// known to have its first root there; else stratified ray `r`, searched from where the
 /// pixel's beam proved every ray root-free (see [`ray_count`]), or, where it is the
@@ -391,11 +399,11 @@ fn ray_count(class: Option<BoxPixel>, stratified: usize) -> usize {
 fn pixel_ray(
     (rays, start, narrow): (&PixelRays, RayStart, bool),
     i: usize,
-    w: u32,
+    window: &Window,
     (class, scope, traced): (Option<BoxPixel>, &Option<BeamScope>, &[Traced]),
     r: usize,
 ) -> PixelRay {
-    let (x, y) = (i as u32 % w, i as u32 / w);
+    let (x, y) = window.pixel(i);
     if let (Some(traced), true) = (traced.get(r), traced.len() == rays.count()) {
         // The octree's ray `r` is this one: at the same stratified position.
         let ray = rays.stratified(x, y, r);
@@ -487,17 +495,17 @@ fn pixel_ray(
 pub(super) fn primary_rays(
     q: &dyn Queries,
     scene: &Scene,
+    window: &Window,
     (classes, scopes, traced): (&PixelClasses, &PixelScopes, &PixelTraces),
     (rays, start, narrow): (u32, RayStart, bool),
     progress: &dyn Progress,
 ) -> Result<PixelSamples, Error> {
-    let cam = &scene.camera;
-    let (w, h) = (cam.width(), cam.height());
+    let (w, h) = (window.width(), window.height());
     let t0 = Instant::now();
-    let pixel_rays = PixelRays::new(cam, rays);
+    let pixel_rays = PixelRays::new(&scene.camera, rays, window);
     progress.begin(Pass::PrimaryRays.name(), u64::from(h));
     let mut c = PrimaryRayCounters::default();
-    let npix = w as usize * h as usize;
+    let npix = window.len();
     let all_rays: usize = classes
         .par_iter()
         .map(|class| ray_count(*class, pixel_rays.count()))
@@ -523,7 +531,7 @@ pub(super) fn primary_rays(
                 pixel_ray(
                     (&pixel_rays, start, narrow),
                     p,
-                    w,
+                    window,
                     (classes[p], &scopes[p], traces_of(traced, p)),
                     r,
                 )

@@ -17,6 +17,7 @@ use crate::scene::Scene;
 use crate::shadow::{LightVisibility, ShadowClass, ShadowQuery, stochastic};
 use crate::stats::PassStats;
 use crate::stats::counters::SoftShadowCounters;
+use crate::window::Window;
 
 /// What the soft-shadow pass produces.
 pub(super) struct SoftShadows {
@@ -44,6 +45,7 @@ pub(super) fn soft_shadows(
     q: &dyn Queries,
     scene: &Scene,
     plan: &Plan,
+    window: &Window,
     pixels: &Pixels,
     vis: &mut [f32],
     progress: &dyn Progress,
@@ -57,8 +59,6 @@ pub(super) fn soft_shadows(
     let mut per_light = Vec::new();
     let mut maps: Vec<LightMaps> = Vec::new();
     let mut total = SoftShadowCounters::default();
-    let mut total_widths = BoundWidths::default();
-    let tolerance = plan.shadow_method.method().tolerance();
     for (li, light) in scene.lights.iter().enumerate() {
         let Some(light) = light.as_area() else {
             continue;
@@ -78,7 +78,7 @@ pub(super) fn soft_shadows(
                 queries.push(ShadowQuery {
                     origin: hit.shadow_origin(offset),
                     light: light.patch,
-                    seed: stochastic::seed(p as u64, si as u32, li as u32),
+                    seed: stochastic::seed(window.global(p) as u64, si as u32, li as u32),
                 });
             }
         }
@@ -102,7 +102,6 @@ pub(super) fn soft_shadows(
         // its class.
         let mut answer = slots.iter().zip(&answers).peekable();
         let mut light_maps = LightMaps::with_capacity(npix);
-        let mut widths = BoundWidths::default();
         for (p, pixel_class) in classes.iter_mut().enumerate() {
             let mut class: Option<ShadowClass> = None;
             let mut shadowed = false;
@@ -138,15 +137,9 @@ pub(super) fn soft_shadows(
             if let Some(cl) = class {
                 *pixel_class = Some(ShadowClass::merge(*pixel_class, cl));
             }
-            let lv = mean.value();
-            if let Some(lv) = lv {
-                widths.add(lv.upper - lv.lower, tolerance);
-            }
-            light_maps.push(lv);
+            light_maps.push(mean.value());
         }
-        widths.count(&mut c);
         total.add(&c);
-        total_widths.merge(&widths);
         maps.push(light_maps);
         per_light.push(PassStats::new(
             &format!("light {li} ({name})"),
@@ -154,7 +147,6 @@ pub(super) fn soft_shadows(
             &crate::stats::Counters::list(&c),
         ));
     }
-    total_widths.count(&mut total);
     let (mut fractions, mut lower, mut upper) = (Vec::new(), Vec::new(), Vec::new());
     for m in maps {
         fractions.push(m.fraction);
@@ -251,39 +243,6 @@ impl PixelMean {
             lower,
             upper,
         })
-    }
-}
-
-/// The widths of the pixels' proven bounds.
-#[derive(Default)]
-struct BoundWidths {
-    pixels: u64,
-    certified: u64,
-    sum: f64,
-    max: f32,
-}
-
-impl BoundWidths {
-    fn add(&mut self, width: f32, tolerance: f32) {
-        self.pixels += 1;
-        self.certified += u64::from(width <= tolerance);
-        self.sum += f64::from(width);
-        self.max = self.max.max(width);
-    }
-
-    fn merge(&mut self, o: &BoundWidths) {
-        self.pixels += o.pixels;
-        self.certified += o.certified;
-        self.sum += o.sum;
-        self.max = self.max.max(o.max);
-    }
-
-    /// Writes the figures into `c` (replacing what an addition of counters summed).
-    fn count(&self, c: &mut SoftShadowCounters) {
-        let ppm = |x: f64| (x * 1e6).round() as u64;
-        c.certified_pixels = self.certified;
-        c.bound_width_mean_ppm = ppm(self.sum / self.pixels.max(1) as f64);
-        c.bound_width_max_ppm = ppm(f64::from(self.max));
     }
 }
 
