@@ -56,7 +56,7 @@ impl Window {
                 ),
             });
         }
-        let on_grid = |v: u32, edge: u32| v % WINDOW_ALIGN == 0 || v == edge;
+        let on_grid = |v: u32, edge: u32| v.is_multiple_of(WINDOW_ALIGN) || v == edge;
         if !(on_grid(x0, width) && on_grid(y0, height) && on_grid(x1, width) && on_grid(y1, height))
         {
             return Err(Error::Setting {
@@ -131,7 +131,7 @@ impl Window {
     /// The tiles of side `size` of the whole image that lie in the window (all of them lie
     /// in it or outside it when `size` divides [`WINDOW_ALIGN`]), row by row.
     pub fn tiles(&self, size: u32) -> Vec<PixelRect> {
-        debug_assert_eq!(WINDOW_ALIGN % size, 0);
+        debug_assert!(WINDOW_ALIGN.is_multiple_of(size));
         let r = self.rect;
         let mut out = Vec::new();
         for y0 in (r.y0..r.y1).step_by(size as usize) {

@@ -165,8 +165,7 @@ fn pieces_that_miss_or_repeat_a_pixel_are_refused() {
     let other = Window::full(60, 60);
     let e = pipeline
         .render(&other, &NoProgress)
-        .err()
-        .expect("refused")
+        .expect_err("refused")
         .to_string();
     assert!(e.contains("60 x 60"), "{e}");
 }

@@ -12,7 +12,7 @@
 //!   thread that asks for boxes when the list runs short (the thesis: fewer than 2), gives
 //!   a share of its boxes to a rank that asks (the thesis: 40 %), sends rendered boxes to
 //!   rank 0, and reports a rank silent for longer than a timeout as an error.
-//! * [`transport`]: MPI between processes ([`transport::Mpi`], feature `mpi`, through the
+//! * [`transport`]: MPI between processes (`transport::Mpi`, feature `mpi`, through the
 //!   `mpi` crate), or channels between threads ([`transport::local_cluster`]).
 //! * [`report`]: per rank busy, idle and communication time, requests, donations and
 //!   bytes, and the matrix of who rendered the boxes of which initial part (Fig. 7.4).

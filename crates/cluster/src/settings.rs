@@ -75,7 +75,7 @@ impl Settings {
         if self.threshold == 0 {
             return bad("threshold", "must be at least 1 box".into());
         }
-        if self.unit == 0 || self.unit % WINDOW_ALIGN != 0 {
+        if self.unit == 0 || !self.unit.is_multiple_of(WINDOW_ALIGN) {
             return bad(
                 "unit",
                 format!("{} is not a positive multiple of {WINDOW_ALIGN}", self.unit),

@@ -109,8 +109,7 @@ fn a_dead_rank_is_reported_not_waited_for() {
         fault: Some(Fault { rank: 1, after: 1 }),
         ..RankOptions::default()
     })
-    .err()
-    .expect("the render fails");
+    .expect_err("the render fails");
     let elapsed = t0.elapsed();
     assert!(
         matches!(err, Error::Silent { rank: 1, .. })
@@ -147,8 +146,7 @@ fn bad_settings_are_refused_by_name() {
         ),
     ] {
         let e = render_local(&scene, 2, &settings)
-            .err()
-            .expect("refused")
+            .expect_err("refused")
             .to_string();
         assert!(e.contains(name), "{e}");
     }

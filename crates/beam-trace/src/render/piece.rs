@@ -41,7 +41,8 @@ pub struct Piece {
     /// The soft-shadow pass's per-pixel maps, when it ran.
     pub shadows: Option<PieceShadows>,
     /// Every pass's time and counters after the set-up, in the order they ran; the
-    /// soft-shadow bound widths ([`WIDTH_COUNTERS`]) are left to the assembly.
+    /// soft-shadow bound widths (`certified_pixels`, `bound_width_mean_ppm`,
+    /// `bound_width_max_ppm`) are left to the assembly, which computes them over the image.
     pub passes: Vec<PassStats>,
     /// Per area light, the soft-shadow counters.
     pub lights: Vec<PassStats>,

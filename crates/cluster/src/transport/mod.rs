@@ -1,4 +1,4 @@
-//! How ranks reach each other: MPI between processes ([`Mpi`], feature `mpi`), or channels
+//! How ranks reach each other: MPI between processes (`Mpi`, feature `mpi`), or channels
 //! between threads of one process ([`local_cluster`]) for tests and for machines without
 //! MPI. A station calls its transport from one thread only.
 

@@ -1,7 +1,7 @@
 //! Ranks as MPI processes (rsmpi): one message per `send`, received by probing for any
 //! source, so a rank never blocks on a peer that has nothing to say.
 
-use mpi::point_to_point::{Destination, Source};
+use mpi::point_to_point::{Destination, MatchedReceiveVec, Source};
 use mpi::topology::{Communicator, SimpleCommunicator};
 
 use super::Transport;
@@ -47,8 +47,8 @@ impl Transport for Mpi {
             .world
             .any_process()
             .immediate_matched_probe()
-            .map(|(message, status)| {
-                let (bytes, _) = message.matched_receive_vec::<u8>();
+            .map(|probed| {
+                let (bytes, status) = probed.matched_receive_vec::<u8>();
                 (status.source_rank() as usize, bytes)
             }))
     }
