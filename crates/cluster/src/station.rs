@@ -70,6 +70,12 @@ impl Default for RankOptions<'_> {
     }
 }
 
+/// The shortest pause of the main thread between polls for messages.
+const MIN_PAUSE: Duration = Duration::from_micros(100);
+
+/// The longest pause of the main thread between polls for messages.
+const MAX_PAUSE: Duration = Duration::from_millis(2);
+
 /// The list of boxes, shared by the main thread and the render thread.
 struct List {
     boxes: VecDeque<WorkBox>,
@@ -412,6 +418,9 @@ impl Station<'_, '_> {
         let mut quiet_until = Instant::now();
         let mut stopping = false;
         let mut rendered = 0u64;
+        // The pause between polls when nothing happened: short after activity, longer while
+        // quiet, so that an idle rank costs its node's render threads little.
+        let mut pause = MIN_PAUSE;
         if rank == 0 {
             self.options.progress.begin("cluster", self.gathered.pixels);
         }
@@ -534,8 +543,11 @@ impl Station<'_, '_> {
                 }
             }
             self.check_alive()?;
-            if !busy {
-                std::thread::sleep(Duration::from_micros(500));
+            if busy {
+                pause = MIN_PAUSE;
+            } else {
+                std::thread::sleep(pause);
+                pause = (pause * 2).min(MAX_PAUSE);
             }
         }
     }

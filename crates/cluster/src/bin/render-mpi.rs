@@ -223,7 +223,6 @@ impl Progress for Lines {
 
 fn run_mpi(args: &Args, mpi: &Mpi) -> Result<(), Failure> {
     use beam_cluster::transport::Transport;
-    let started = Instant::now();
     let scene = scene_of(args)?;
     let settings = settings_of(args)?;
     let fault = fault_of(args)?;
@@ -238,6 +237,8 @@ fn run_mpi(args: &Args, mpi: &Mpi) -> Result<(), Failure> {
             mpi.size()
         );
     }
+    // From here on, as the single-process render's total.
+    let started = Instant::now();
     let plan = Plan::for_scene(&scene);
     let pipeline = Pipeline::new(&scene, &Cpu, &plan).map_err(|e| e.to_string())?;
     let progress = Lines {
