@@ -8,6 +8,12 @@
 
 use crate::beam::BoxClass;
 
+/// Side of the tiles the screen box structure starts from.
+pub const SCREEN_TILE: u32 = 32;
+
+/// Side of the tiles the frustum octree starts from (fidget's first 3D tile).
+pub const OCTREE_TILE: u32 = 64;
+
 /// A rectangle of pixels `[x0, x1) × [y0, y1)`.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
 pub struct PixelRect {

@@ -2,20 +2,32 @@
 //! whole image or one work unit of a render shared among processes (the thesis's screen
 //! boxes handed from workstation to workstation, 7.2).
 //!
-//! The passes start from tiles of the whole image (the screen box structure's and the
-//! frustum octree's), and every answer depends on its query alone, so a window whose
-//! corners lie on the tiles' grid (or on the image's edge) gets, for each of its pixels,
-//! bit for bit what a render of the whole image gets: the same tiles, rays, beams and
-//! seeds. Pixels are numbered row-major inside the window; [`Window::global`] gives a
-//! pixel's number in the whole image (what its stochastic seeds use).
+//! The passes start from tiles of the whole image (the screen box structure's 32 pixels,
+//! the frustum octree's 64) and every answer depends on its query alone, so a window whose
+//! sides lie on the plan's grid of tiles ([`window_grid`]) or on the image's edge gets,
+//! for each of its pixels, bit for bit what a render of the whole image gets: the same
+//! tiles, rays, beams and seeds. Pixels are numbered row-major inside the window;
+//! [`Window::global`] gives a pixel's number in the whole image (what its stochastic seeds
+//! use).
 
 use crate::error::Error;
-use crate::screen::PixelRect;
+use crate::plan::{Pass, Plan, Primary};
+use crate::screen::{OCTREE_TILE, PixelRect, SCREEN_TILE};
 
-/// The grid that a window's corners lie on, away from the image's right and bottom edges:
-/// a multiple of the tiles of both first primary passes (the screen boxes' 32 and the
-/// frustum octree's 64 pixels).
+/// The largest grid a window's sides may need: the frustum octree's tiles (64 pixels), a
+/// multiple of every plan's [`window_grid`].
 pub const WINDOW_ALIGN: u32 = 64;
+
+/// The grid that the sides of a window rendered with `plan` must lie on (away from the
+/// image's edges): the first tiles of its first primary pass (the frustum octree's 64
+/// pixels, the screen boxes' 32), or single pixels when no pass starts from tiles.
+pub fn window_grid(plan: &Plan) -> u32 {
+    match plan.primary {
+        Primary::Octree { .. } => OCTREE_TILE,
+        _ if plan.runs(Pass::ScreenBoxes) => SCREEN_TILE,
+        _ => 1,
+    }
+}
 
 /// A rectangle of an image's pixels that a render covers.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
@@ -44,8 +56,7 @@ impl Window {
     ///
     /// # Errors
     ///
-    /// [`Error::Setting`] (`window`) when `rect` is empty, leaves the image, or has a side that lies
-    /// neither on the [`WINDOW_ALIGN`] grid nor on the image's edge.
+    /// [`Error::Setting`] (`window`) when `rect` is empty or leaves the image.
     pub fn new(rect: PixelRect, width: u32, height: u32) -> Result<Self, Error> {
         let PixelRect { x0, y0, x1, y1 } = rect;
         if x0 >= x1 || y0 >= y1 || x1 > width || y1 > height {
@@ -56,22 +67,34 @@ impl Window {
                 ),
             });
         }
-        let on_grid = |v: u32, edge: u32| v.is_multiple_of(WINDOW_ALIGN) || v == edge;
-        if !(on_grid(x0, width) && on_grid(y0, height) && on_grid(x1, width) && on_grid(y1, height))
-        {
-            return Err(Error::Setting {
-                name: "window".into(),
-                message: format!(
-                    "[{x0}, {x1}) x [{y0}, {y1}): its sides must be multiples of \
-                     {WINDOW_ALIGN} pixels or the image's edges"
-                ),
-            });
-        }
         Ok(Self {
             rect,
             image_width: width,
             image_height: height,
         })
+    }
+
+    /// Checks that the window's sides lie on the grid of side `grid` or on the image's
+    /// edges ([`window_grid`]).
+    ///
+    /// # Errors
+    ///
+    /// [`Error::Setting`] (`window`) naming the window and the grid.
+    pub fn check_grid(&self, grid: u32) -> Result<(), Error> {
+        let PixelRect { x0, y0, x1, y1 } = self.rect;
+        let (w, h) = (self.image_width, self.image_height);
+        let on = |v: u32, edge: u32| v.is_multiple_of(grid) || v == edge;
+        if on(x0, w) && on(y0, h) && on(x1, w) && on(y1, h) {
+            Ok(())
+        } else {
+            Err(Error::Setting {
+                name: "window".into(),
+                message: format!(
+                    "[{x0}, {x1}) x [{y0}, {y1}): its sides must be multiples of {grid} pixels \
+                     (the plan's first tiles) or the image's edges"
+                ),
+            })
+        }
     }
 
     /// The window's pixels in the image.
@@ -128,10 +151,10 @@ impl Window {
         y as usize * self.image_width as usize + x as usize
     }
 
-    /// The tiles of side `size` of the whole image that lie in the window (all of them lie
-    /// in it or outside it when `size` divides [`WINDOW_ALIGN`]), row by row.
+    /// The tiles of side `size` of the whole image that lie in the window (each lies in it
+    /// or outside it when the window is on the grid of `size`), row by row.
     pub fn tiles(&self, size: u32) -> Vec<PixelRect> {
-        debug_assert!(WINDOW_ALIGN.is_multiple_of(size));
+        debug_assert!(self.check_grid(size).is_ok());
         let r = self.rect;
         let mut out = Vec::new();
         for y0 in (r.y0..r.y1).step_by(size as usize) {
@@ -156,16 +179,18 @@ mod tests {
     #[test]
     fn windows_on_the_grid_or_the_edge_only() {
         let r = |x0, y0, x1, y1| PixelRect { x0, y0, x1, y1 };
-        assert!(Window::new(r(64, 0, 128, 100), 200, 100).is_ok());
-        assert!(Window::new(r(128, 64, 200, 100), 200, 100).is_ok());
-        for bad in [
-            r(0, 0, 0, 10),
-            r(0, 0, 65, 64),
-            r(32, 0, 64, 64),
-            r(0, 0, 64, 101),
-        ] {
+        let on = |rect, grid| Window::new(rect, 200, 100).unwrap().check_grid(grid);
+        assert!(on(r(64, 0, 128, 100), 64).is_ok());
+        assert!(on(r(128, 64, 200, 100), 64).is_ok());
+        assert!(on(r(32, 0, 64, 64), 32).is_ok());
+        assert!(on(r(3, 5, 4, 6), 1).is_ok());
+        for bad in [r(0, 0, 65, 64), r(32, 0, 64, 64), r(0, 0, 64, 96)] {
+            let e = on(bad, 64).unwrap_err().to_string();
+            assert!(e.contains("multiples of 64"), "{e}");
+        }
+        for bad in [r(0, 0, 0, 10), r(0, 0, 64, 101)] {
             let e = Window::new(bad, 200, 100).unwrap_err().to_string();
-            assert!(e.contains("window"), "{e}");
+            assert!(e.contains("empty or leaves"), "{e}");
         }
     }
 

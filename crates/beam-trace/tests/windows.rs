@@ -49,7 +49,7 @@ fn cut(scene: &Scene, xs: &[u32], ys: &[u32]) -> Vec<Window> {
                 x1: x[1],
                 y1: y[1],
             };
-            out.push(Window::new(rect, w, h).expect("a window on the grid"));
+            out.push(Window::new(rect, w, h).expect("a window of the image"));
         }
     }
     out
@@ -136,6 +136,30 @@ fn every_primary_mode_from_windows_is_the_whole_render() {
         scene.settings.primary = mode;
         check(&format!("csg {mode:?}"), &scene, &CUTS);
     }
+}
+
+#[test]
+fn windows_follow_the_plans_grid() {
+    // The screen boxes start from tiles of 32 pixels: windows cut at 32 are whole-render
+    // windows too; the frustum octree's tiles are 64 pixels, and a cut at 32 is refused.
+    let mut scene = file_scene("csg.toml", 100, 70);
+    let cuts: [(&[u32], &[u32]); 1] = [(&[32, 96], &[32])];
+    check("csg screen boxes at 32", &scene, &cuts);
+    scene.settings.primary = PrimaryMode::Octree;
+    {
+        let plan = Plan::for_scene(&scene);
+        let pipeline = Pipeline::new(&scene, &Cpu, &plan).expect("the CPU prepares");
+        assert_eq!(pipeline.grid(), 64);
+        let e = pipeline
+            .render(&cut(&scene, &[32], &[])[0], &NoProgress)
+            .expect_err("off the octree's grid")
+            .to_string();
+        assert!(e.contains("multiples of 64"), "{e}");
+    }
+    // Per-pixel rays start from no tiles: any window.
+    scene.settings.primary = PrimaryMode::PerPixel;
+    let cuts: [(&[u32], &[u32]); 1] = [(&[7, 50], &[33])];
+    check("csg per pixel at any column", &scene, &cuts);
 }
 
 #[test]

@@ -19,7 +19,7 @@ pub struct RankStats {
     /// Waiting for a box, with an empty list.
     #[serde(serialize_with = "seconds")]
     pub idle: Duration,
-    /// Inside the transport's calls (sending, receiving, decoding).
+    /// Sending, receiving and decoding messages (polls that find no message excluded).
     #[serde(serialize_with = "seconds")]
     pub communication: Duration,
     /// From the start until its last box was rendered.
@@ -126,6 +126,8 @@ impl RankStats {
 pub struct ClusterReport {
     /// The settings.
     pub settings: Settings,
+    /// The side of the final boxes.
+    pub unit: u32,
     /// The rayon threads of each rank.
     pub threads: usize,
     /// Wall-clock time of the whole render on rank 0, set-up included.
@@ -165,7 +167,7 @@ impl fmt::Display for ClusterReport {
             if s.balance { "on" } else { "off" },
             s.threshold,
             s.fraction * 100.0,
-            s.unit,
+            self.unit,
             self.wall.as_secs_f64(),
             self.setup.as_secs_f64()
         )?;

@@ -3,8 +3,6 @@
 
 use std::time::Duration;
 
-use beam_trace::window::WINDOW_ALIGN;
-
 use crate::error::Error;
 
 /// Where the work starts.
@@ -28,9 +26,11 @@ pub struct Settings {
     pub threshold: usize,
     /// The share of its boxes a rank gives to one that asks (the thesis: 40 %).
     pub fraction: f64,
-    /// The side of the final boxes, rendered as one window: a multiple of
-    /// [`WINDOW_ALIGN`] (larger boxes are bisected first).
-    pub unit: u32,
+    /// The side of the final boxes, rendered as one window: a multiple of the pipeline's
+    /// window grid (`beam_trace::window::window_grid`: 32 pixels for the screen boxes, 64
+    /// for the frustum octree, 1 for per-pixel rays); `None`: the grid itself. Larger
+    /// boxes are bisected first.
+    pub unit: Option<u32>,
     /// Where the work starts.
     pub initial: Initial,
     /// Silence after which a rank is reported dead.
@@ -47,13 +47,13 @@ fn seconds<S: serde::Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> 
 
 impl Default for Settings {
     /// The thesis's settings: balancing on, a request below 2 boxes, 40 % donated; final
-    /// boxes of one window (64 pixels); a rank silent for 60 s is reported dead.
+    /// boxes of one cell of the window grid; a rank silent for 60 s is reported dead.
     fn default() -> Self {
         Self {
             balance: true,
             threshold: 2,
             fraction: 0.4,
-            unit: WINDOW_ALIGN,
+            unit: None,
             initial: Initial::Equal,
             timeout: Duration::from_secs(60),
             heartbeat: Duration::from_millis(250),
@@ -62,12 +62,18 @@ impl Default for Settings {
 }
 
 impl Settings {
-    /// Checks the settings for a cluster of `ranks` ranks.
+    /// The side of the final boxes on a window grid of side `grid`.
+    pub fn unit(&self, grid: u32) -> u32 {
+        self.unit.unwrap_or(grid)
+    }
+
+    /// Checks the settings for a cluster of `ranks` ranks rendering windows on a grid of
+    /// side `grid`.
     ///
     /// # Errors
     ///
     /// [`Error::Setting`] naming the first setting out of range.
-    pub fn check(&self, ranks: usize) -> Result<(), Error> {
+    pub fn check(&self, ranks: usize, grid: u32) -> Result<(), Error> {
         let bad = |name, message: String| Err(Error::Setting { name, message });
         if !(self.fraction > 0.0 && self.fraction <= 1.0) {
             return bad("fraction", format!("{} is not in (0, 1]", self.fraction));
@@ -75,10 +81,11 @@ impl Settings {
         if self.threshold == 0 {
             return bad("threshold", "must be at least 1 box".into());
         }
-        if self.unit == 0 || !self.unit.is_multiple_of(WINDOW_ALIGN) {
+        let unit = self.unit(grid);
+        if unit == 0 || !unit.is_multiple_of(grid) {
             return bad(
                 "unit",
-                format!("{} is not a positive multiple of {WINDOW_ALIGN}", self.unit),
+                format!("{unit} is not a positive multiple of the window grid, {grid} pixels"),
             );
         }
         if let Initial::OnRank(r) = self.initial

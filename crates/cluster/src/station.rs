@@ -112,7 +112,7 @@ struct RenderTimes {
 fn render_thread(
     shared: &Shared,
     pipeline: &Pipeline<'_>,
-    (unit, threads, started): (u32, usize, Instant),
+    (grid, unit, threads, started): (u32, u32, usize, Instant),
     events: &Sender<Event>,
 ) -> RenderTimes {
     let mut times = RenderTimes::default();
@@ -137,7 +137,7 @@ fn render_thread(
                     return times;
                 }
                 match list.boxes.pop_back() {
-                    Some(b) if b.splits(unit) => match b.bisect() {
+                    Some(b) if b.splits(unit) => match b.bisect(grid) {
                         Ok([first, second]) => {
                             list.boxes.push_back(second);
                             list.boxes.push_back(first);
@@ -192,12 +192,13 @@ pub fn run_rank(
     options: &RankOptions<'_>,
 ) -> Result<Option<Gathered>, Error> {
     let (rank, size) = (transport.rank(), transport.size());
-    settings.check(size)?;
+    let grid = pipeline.grid();
+    settings.check(size, grid)?;
     let (width, height) = pipeline.full_window().image_size();
     let mut lists = match settings.initial {
-        Initial::Equal => initial_boxes(&equal_parts(width, height, size), size),
+        Initial::Equal => initial_boxes(&equal_parts(width, height, size, grid), size),
         Initial::OnRank(r) => {
-            let mut lists = initial_boxes(&equal_parts(width, height, 1), size);
+            let mut lists = initial_boxes(&equal_parts(width, height, 1, grid), size);
             lists.rotate_right(r);
             for b in lists[r].iter_mut() {
                 b.origin = r as u32;
@@ -218,7 +219,7 @@ pub fn run_rank(
         let worker = {
             let shared = &shared;
             let tx = events_tx;
-            let cfg = (settings.unit, options.threads, options.started);
+            let cfg = (grid, settings.unit(grid), options.threads, options.started);
             scope.spawn(move || render_thread(shared, pipeline, cfg, &tx))
         };
         let mut station = Station {
@@ -330,23 +331,21 @@ impl Station<'_, '_> {
         Ok(())
     }
 
+    /// The next message, decoded. The time of a poll that finds none is not counted as
+    /// communication (on an oversubscribed node MPI yields the core inside the poll, and
+    /// the wait is the rank's idle time).
     fn recv(&mut self) -> Result<Option<(usize, Message)>, Error> {
         let t0 = Instant::now();
-        let got = self.transport.try_recv()?;
-        let out = match got {
-            None => None,
-            Some((from, bytes)) => {
-                if from >= self.size() {
-                    return Err(Error::Transport(format!("a message from rank {from}")));
-                }
-                self.last_seen[from] = Instant::now();
-                let m =
-                    Message::decode(&bytes).map_err(|message| Error::Message { from, message })?;
-                Some((from, m))
-            }
+        let Some((from, bytes)) = self.transport.try_recv()? else {
+            return Ok(None);
         };
+        if from >= self.size() {
+            return Err(Error::Transport(format!("a message from rank {from}")));
+        }
+        self.last_seen[from] = Instant::now();
+        let m = Message::decode(&bytes).map_err(|message| Error::Message { from, message })?;
         self.stats.communication += t0.elapsed();
-        Ok(out)
+        Ok(Some((from, m)))
     }
 
     /// The ranks this one must hear from: rank 0 hears every rank, the others rank 0.
@@ -371,7 +370,8 @@ impl Station<'_, '_> {
     /// Gives boxes to `to`, which asked: the configured share of the list's boxes, the
     /// largest first, bisecting the largest box while the share is less than one box.
     fn donate(&mut self, to: usize) -> Result<(), Error> {
-        let (unit, fraction) = (self.settings.unit, self.settings.fraction);
+        let grid = self.pipeline.grid();
+        let (unit, fraction) = (self.settings.unit(grid), self.settings.fraction);
         let share = |n: usize| (n as f64 * fraction).floor() as usize;
         let largest = |boxes: &VecDeque<WorkBox>| {
             (0..boxes.len()).max_by_key(|&i| (boxes[i].rect.area(), std::cmp::Reverse(i)))
@@ -381,7 +381,7 @@ impl Station<'_, '_> {
             while share(list.boxes.len()) == 0 {
                 match largest(&list.boxes) {
                     Some(i) if list.boxes[i].splits(unit) => {
-                        let [first, second] = list.boxes[i].bisect()?;
+                        let [first, second] = list.boxes[i].bisect(grid)?;
                         list.boxes[i] = first;
                         list.boxes.insert(i + 1, second);
                         list.splits += 1;
@@ -576,6 +576,7 @@ impl Station<'_, '_> {
         Ok(Some(Gathered {
             report: ClusterReport {
                 settings: *self.settings,
+                unit: self.settings.unit(self.pipeline.grid()),
                 threads: self.options.threads,
                 wall: output.stats.total,
                 setup,

@@ -9,7 +9,6 @@
 //! the order of the messages.
 
 use beam_trace::screen::PixelRect;
-use beam_trace::window::WINDOW_ALIGN;
 
 use crate::error::Error;
 
@@ -29,19 +28,20 @@ pub struct WorkBox {
 }
 
 impl WorkBox {
-    /// Whether the box is larger than a final box of side `unit`.
+    /// Whether the box is larger than a final box of side `unit` (at least the grid's
+    /// side, so that a box that splits has two cells across its longer side).
     pub fn splits(&self, unit: u32) -> bool {
         self.rect.x1 - self.rect.x0 > unit || self.rect.y1 - self.rect.y0 > unit
     }
 
-    /// The two halves of the box across its longer side, on the window grid, each with
-    /// half of its credit.
+    /// The two halves of the box across its longer side, cut on the grid of side `grid`
+    /// (the pipeline's window grid), each with half of its credit.
     ///
     /// # Errors
     ///
     /// [`Error::Setting`] when the credit is too small to halve (never for boxes of less
     /// than 2^60 pixels).
-    pub fn bisect(&self) -> Result<[WorkBox; 2], Error> {
+    pub fn bisect(&self, grid: u32) -> Result<[WorkBox; 2], Error> {
         if self.credit < 2 {
             return Err(Error::Setting {
                 name: "credit",
@@ -50,7 +50,7 @@ impl WorkBox {
         }
         let r = self.rect;
         let (w, h) = (r.x1 - r.x0, r.y1 - r.y0);
-        let half = |lo: u32, len: u32| lo + len.div_ceil(WINDOW_ALIGN) / 2 * WINDOW_ALIGN;
+        let half = |lo: u32, len: u32| lo + len.div_ceil(grid) / 2 * grid;
         let (a, b) = if w >= h {
             let m = half(r.x0, w);
             (PixelRect { x1: m, ..r }, PixelRect { x0: m, ..r })
@@ -75,9 +75,9 @@ impl WorkBox {
 }
 
 /// The screen of a `width × height` image cut into `parts` nearly equal rectangles on the
-/// window grid, in reading order (for four: the quadrants, upper left first). Fewer when
-/// the image has fewer windows than parts.
-pub fn equal_parts(width: u32, height: u32, parts: usize) -> Vec<PixelRect> {
+/// grid of side `grid`, in reading order (for four: the quadrants, upper left first). Fewer
+/// when the image has fewer cells of the grid than parts.
+pub fn equal_parts(width: u32, height: u32, parts: usize, grid: u32) -> Vec<PixelRect> {
     let mut out = Vec::new();
     cut(
         PixelRect {
@@ -87,6 +87,7 @@ pub fn equal_parts(width: u32, height: u32, parts: usize) -> Vec<PixelRect> {
             y1: height,
         },
         parts.max(1),
+        grid.max(1),
         &mut out,
     );
     out.sort_by_key(|r| (r.y0, r.x0));
@@ -94,9 +95,9 @@ pub fn equal_parts(width: u32, height: u32, parts: usize) -> Vec<PixelRect> {
 }
 
 /// Cuts `r` into `parts` rectangles of areas as nearly proportional as the grid allows.
-fn cut(r: PixelRect, parts: usize, out: &mut Vec<PixelRect>) {
+fn cut(r: PixelRect, parts: usize, grid: u32, out: &mut Vec<PixelRect>) {
     let (w, h) = (r.x1 - r.x0, r.y1 - r.y0);
-    let cells = |len: u32| len.div_ceil(WINDOW_ALIGN);
+    let cells = |len: u32| len.div_ceil(grid);
     if parts == 1 || (cells(w) < 2 && cells(h) < 2) {
         out.push(r);
         return;
@@ -104,7 +105,7 @@ fn cut(r: PixelRect, parts: usize, out: &mut Vec<PixelRect>) {
     let first = parts / 2;
     let at = |lo: u32, len: u32| {
         let k = (u64::from(cells(len)) * first as u64 + parts as u64 / 2) / parts as u64;
-        lo + (k.clamp(1, u64::from(cells(len)) - 1) as u32) * WINDOW_ALIGN
+        lo + (k.clamp(1, u64::from(cells(len)) - 1) as u32) * grid
     };
     let (a, b) = if (w >= h && cells(w) >= 2) || cells(h) < 2 {
         let m = at(r.x0, w);
@@ -113,8 +114,8 @@ fn cut(r: PixelRect, parts: usize, out: &mut Vec<PixelRect>) {
         let m = at(r.y0, h);
         (PixelRect { y1: m, ..r }, PixelRect { y0: m, ..r })
     };
-    cut(a, first, out);
-    cut(b, parts - first, out);
+    cut(a, first, grid, out);
+    cut(b, parts - first, grid, out);
 }
 
 /// The initial boxes of each of `ranks` ranks: `parts[k]` to rank `k`, the credit shared
@@ -143,7 +144,7 @@ mod tests {
 
     #[test]
     fn four_equal_parts_are_the_quadrants() {
-        let p = equal_parts(512, 512, 4);
+        let p = equal_parts(512, 512, 4, 64);
         let q = |x0, y0| PixelRect {
             x0,
             y0,
@@ -157,7 +158,7 @@ mod tests {
     fn parts_tile_the_screen() {
         for (w, h) in [(512, 512), (300, 200), (64, 64), (130, 70), (1024, 100)] {
             for n in 1..=9 {
-                let p = equal_parts(w, h, n);
+                let p = equal_parts(w, h, n, 32);
                 assert!(p.len() <= n);
                 assert_eq!(p.iter().map(area).sum::<u64>(), u64::from(w) * u64::from(h));
                 for (i, a) in p.iter().enumerate() {
@@ -188,7 +189,7 @@ mod tests {
         let mut finals = Vec::new();
         while let Some(b) = list.pop() {
             if b.splits(64) {
-                list.extend(b.bisect().unwrap());
+                list.extend(b.bisect(32).unwrap());
             } else {
                 finals.push(b);
             }
@@ -198,7 +199,7 @@ mod tests {
         assert!(finals.iter().all(|b| b.credit > 0));
         for b in &finals {
             for v in [b.rect.x0, b.rect.y0] {
-                assert_eq!(v % WINDOW_ALIGN, 0);
+                assert_eq!(v % 32, 0);
             }
         }
     }

@@ -27,7 +27,7 @@ impl Sim {
         Self {
             ranks,
             width: w,
-            lists: initial_boxes(&equal_parts(w, h, ranks), ranks),
+            lists: initial_boxes(&equal_parts(w, h, ranks, 32), ranks),
             transit: Vec::new(),
             credit: 0,
             covered: vec![0; (w * h) as usize],
@@ -40,8 +40,8 @@ impl Sim {
             // A rank takes its last box: bisects it, or renders a final one.
             0 => {
                 if let Some(bx) = self.lists[r].pop() {
-                    if bx.splits(64) {
-                        self.lists[r].extend(bx.bisect().expect("credit to halve"));
+                    if bx.splits(32) {
+                        self.lists[r].extend(bx.bisect(32).expect("credit to halve"));
                     } else {
                         self.transit.push(Transit::Rendered(bx));
                     }

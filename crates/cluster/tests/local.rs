@@ -90,9 +90,8 @@ fn without_balancing_each_rank_renders_its_part() {
     assert!(!report.balanced());
     for r in &report.ranks {
         assert_eq!(r.requests + r.donations + r.boxes_received, 0);
-        // The quadrants of 256 x 192: 128 x 128 above, 128 x 64 below.
-        let part = if r.rank < 2 { 128 * 128 } else { 128 * 64 };
-        assert_eq!(r.pixels, part, "rank {}", r.rank);
+        // The quadrants of 256 x 192 on the screen boxes' grid of 32 pixels.
+        assert_eq!(r.pixels, 128 * 96, "rank {}", r.rank);
     }
 }
 
@@ -132,7 +131,7 @@ fn bad_settings_are_refused_by_name() {
         ),
         (
             Settings {
-                unit: 100,
+                unit: Some(100),
                 ..Settings::default()
             },
             "unit",

@@ -16,7 +16,7 @@ use crate::progress::Progress;
 use crate::sample::Coverage;
 use crate::scene::Scene;
 use crate::stats::PassStats;
-use crate::window::Window;
+use crate::window::{Window, window_grid};
 
 /// A render prepared for one scene and plan: the backends set up (the CPU backend's grid,
 /// a GPU's kernels), ready to render any [`Window`] of the image.
@@ -56,6 +56,12 @@ impl<'a> Pipeline<'a> {
         &self.setup
     }
 
+    /// The grid that the sides of the windows this pipeline renders must lie on
+    /// ([`window_grid`]).
+    pub fn grid(&self) -> u32 {
+        window_grid(self.plan)
+    }
+
     /// The whole image's window.
     pub fn full_window(&self) -> Window {
         let cam = &self.scene.camera;
@@ -68,7 +74,7 @@ impl<'a> Pipeline<'a> {
     /// # Errors
     ///
     /// [`Error::Backend`] when a backend fails; [`Error::Setting`] when `window` is not a
-    /// window of this scene's image.
+    /// window of this scene's image, or its sides are off the plan's [`grid`](Self::grid).
     pub fn render(&self, window: &Window, progress: &dyn Progress) -> Result<Piece, Error> {
         let (q, scene, plan) = (&self.queries, self.scene, self.plan);
         let cam = &scene.camera;
@@ -84,6 +90,7 @@ impl<'a> Pipeline<'a> {
                 ),
             });
         }
+        window.check_grid(self.grid())?;
         let npix = window.len();
         let mut passes = Vec::new();
 

@@ -20,13 +20,12 @@ use crate::ray::Ray;
 use crate::root::{Proof, RootResult};
 use crate::sample::{Area, Sample};
 use crate::scene::Scene;
-use crate::screen::{PixelRect, needs_split, stratified_offsets, stratified_side};
+use crate::screen::{
+    OCTREE_TILE, PixelRect, SCREEN_TILE as TILE, needs_split, stratified_offsets, stratified_side,
+};
 use crate::stats::PassStats;
 use crate::stats::counters::{PrimaryRayCounters, ScreenBoxCounters};
 use crate::window::Window;
-
-/// Side of the tiles the screen box structure starts from.
-const TILE: u32 = 32;
 
 /// What the first primary pass proved of a pixel.
 #[derive(Copy, Clone, Debug)]
@@ -95,9 +94,6 @@ pub(super) fn structure(
         }
     }
 }
-
-/// Side of the tiles the frustum octree starts from (fidget's first 3D tile).
-const OCTREE_TILE: u32 = 64;
 
 /// The frustum octree pass ([`crate::frustum`]): the tiles of a band of rows in one batch;
 /// each pixel a Hit in the range its first cell proved (with that cell's scope), else

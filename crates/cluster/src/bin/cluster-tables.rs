@@ -112,7 +112,12 @@ impl Job<'_> {
             }
             Some(p) => {
                 let mut c = Command::new("mpirun");
-                c.args(["--allow-run-as-root", "--oversubscribe", "--bind-to", "none"]);
+                c.args([
+                    "--allow-run-as-root",
+                    "--oversubscribe",
+                    "--bind-to",
+                    "none",
+                ]);
                 c.args(args.mpirun_args.split_whitespace());
                 c.arg("-np").arg(p.to_string()).arg(bin);
                 if !self.balance {
@@ -141,7 +146,8 @@ impl Job<'_> {
                 String::from_utf8_lossy(&out.stderr)
             ));
         }
-        let text = std::fs::read_to_string(&json).map_err(|e| format!("{}: {e}", json.display()))?;
+        let text =
+            std::fs::read_to_string(&json).map_err(|e| format!("{}: {e}", json.display()))?;
         serde_json::from_str(&text).map_err(|e| format!("{}: {e}", json.display()))
     }
 }
@@ -161,7 +167,10 @@ fn run(args: &Args) -> Result<(), String> {
     let mut sizes = std::collections::HashMap::new();
     for kv in args.sizes.split(',').filter(|s| !s.is_empty()) {
         let (k, v) = kv.split_once('=').ok_or(format!("--sizes: {kv}"))?;
-        sizes.insert(k.to_string(), v.parse::<u32>().map_err(|_| format!("--sizes: {kv}"))?);
+        sizes.insert(
+            k.to_string(),
+            v.parse::<u32>().map_err(|_| format!("--sizes: {kv}"))?,
+        );
     }
     let runs = args.runs.max(1);
     let mut table = String::from(
@@ -171,7 +180,11 @@ fn run(args: &Args) -> Result<(), String> {
     let mut details = String::new();
     for name in args.scenes.split(',').map(str::trim) {
         let file = format!("scenes/{name}.toml");
-        let scene = if Path::new(&file).exists() { file.as_str() } else { name };
+        let scene = if Path::new(&file).exists() {
+            file.as_str()
+        } else {
+            name
+        };
         let size = sizes.get(name).copied().unwrap_or(args.size);
         let job = |ranks, balance, threads| Job {
             scene,
@@ -246,7 +259,9 @@ fn rank_details(scene: &str, balance: bool, v: &Value) -> String {
         ));
     }
     let origins = c["origins"].as_array().cloned().unwrap_or_default();
-    s.push_str("\nboxes rendered by rank (rows) from each rank's initial part (columns)\n\n| rank |");
+    s.push_str(
+        "\nboxes rendered by rank (rows) from each rank's initial part (columns)\n\n| rank |",
+    );
     for o in 0..origins.len() {
         s.push_str(&format!(" part {o} |"));
     }

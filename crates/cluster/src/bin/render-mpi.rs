@@ -67,9 +67,10 @@ struct Args {
     /// The share of its boxes a rank gives to one that asks.
     #[arg(long, default_value_t = 0.4)]
     fraction: f64,
-    /// Side of the final boxes in pixels (a multiple of 64).
-    #[arg(long, default_value_t = 64)]
-    unit: u32,
+    /// Side of the final boxes in pixels, a multiple of the plan's window grid (32 pixels
+    /// for the screen boxes, 64 for the octree; the grid itself when absent).
+    #[arg(long)]
+    unit: Option<u32>,
     /// Where the work starts: `equal` (one part per rank) or `rank:R` (all on rank R).
     #[arg(long, default_value = "equal")]
     initial: String,
@@ -115,8 +116,8 @@ fn main() -> ExitCode {
     match run_mpi(&args, &mpi) {
         Ok(()) => ExitCode::SUCCESS,
         Err(Failure::Fault) => {
-            // A dead process: no word to the others, no MPI_Finalize.
-            std::process::exit(3)
+            // A process killed by a signal: no word to the others, no MPI_Finalize.
+            std::process::abort()
         }
         Err(Failure::Other(e)) => {
             eprintln!("error: {e}");
