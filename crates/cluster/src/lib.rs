@@ -92,7 +92,13 @@ pub fn render_local_with(
             .map(|(rank, t)| {
                 let plan = &plan;
                 s.spawn(move || {
-                    let pipeline = Pipeline::new(scene, &Cpu, plan)?;
+                    let pipeline = match Pipeline::new(scene, &Cpu, plan) {
+                        Ok(p) => p,
+                        Err(e) => {
+                            station::tell_failure(&t, &e.to_string());
+                            return Err(e.into());
+                        }
+                    };
                     let opts = RankOptions {
                         started,
                         ..options(rank)
@@ -110,13 +116,25 @@ pub fn render_local_with(
             .collect()
     });
     let mut gathered = None;
-    let mut first_error = None;
+    let mut first_error: Option<Error> = None;
     for r in results {
         match r {
             Ok(Some(g)) => gathered = Some(g),
             Ok(None) => {}
+            // The cause rather than its symptoms: a rank's own failure before another's
+            // report of it, and either before a timeout.
             Err(e) => {
-                first_error.get_or_insert(e);
+                let rank_of = |e: &Error| match e {
+                    Error::Silent { .. } => 2,
+                    Error::Failed { .. } => 1,
+                    _ => 0,
+                };
+                if first_error
+                    .as_ref()
+                    .is_none_or(|f| rank_of(&e) < rank_of(f))
+                {
+                    first_error = Some(e);
+                }
             }
         }
     }

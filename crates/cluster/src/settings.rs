@@ -5,6 +5,9 @@ use std::time::Duration;
 
 use crate::error::Error;
 
+/// The least default side of the final boxes, in pixels.
+pub const DEFAULT_UNIT: u32 = 32;
+
 /// Where the work starts.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, serde::Serialize)]
 pub enum Initial {
@@ -22,14 +25,16 @@ pub struct Settings {
     /// Whether a rank that runs short asks the others for boxes (else each renders its
     /// initial part alone: the thesis's Fig. 7.3).
     pub balance: bool,
-    /// A rank asks for boxes when its list holds fewer than this many (the thesis: 2).
+    /// A rank asks for boxes when its list holds fewer than this many final boxes (the
+    /// thesis: 2 boxes; a box not yet bisected counts for the final boxes it holds).
     pub threshold: usize,
-    /// The share of its boxes a rank gives to one that asks (the thesis: 40 %).
+    /// The share of its final boxes a rank gives to one that asks (the thesis: 40 % of its
+    /// boxes).
     pub fraction: f64,
     /// The side of the final boxes, rendered as one window: a multiple of the pipeline's
     /// window grid (`beam_trace::window::window_grid`: 32 pixels for the screen boxes, 64
-    /// for the frustum octree, 1 for per-pixel rays); `None`: the grid itself. Larger
-    /// boxes are bisected first.
+    /// for the frustum octree, 1 for per-pixel rays); `None`: the grid's side, at least
+    /// [`DEFAULT_UNIT`]. Larger boxes are bisected first.
     pub unit: Option<u32>,
     /// Where the work starts.
     pub initial: Initial,
@@ -62,9 +67,11 @@ impl Default for Settings {
 }
 
 impl Settings {
-    /// The side of the final boxes on a window grid of side `grid`.
+    /// The side of the final boxes on a window grid of side `grid`: the setting, else the
+    /// grid's side but at least 32 pixels (a box of one pixel per message would cost more
+    /// to send than to render).
     pub fn unit(&self, grid: u32) -> u32 {
-        self.unit.unwrap_or(grid)
+        self.unit.unwrap_or(grid.max(DEFAULT_UNIT))
     }
 
     /// Checks the settings for a cluster of `ranks` ranks rendering windows on a grid of

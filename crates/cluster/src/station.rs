@@ -11,7 +11,7 @@
 //! error instead of being waited for.
 
 use std::collections::VecDeque;
-use std::sync::mpsc::{Receiver, Sender, channel};
+use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 use std::sync::{Condvar, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 
@@ -236,24 +236,35 @@ pub fn run_rank(
             gathered: Gathering::new(size, width, height),
         };
         let result = station.run(&events);
+        if let Err(e) = &result
+            && !matches!(e, Error::Failed { message, .. } if message == FAULT_MESSAGE)
+        {
+            // Tell the others at once, so that they stop now rather than at their timeout
+            // (and before this rank waits for its render thread's current box).
+            tell_failure(transport, &e.to_string());
+        }
         // Whatever happened, the render thread stops.
         shared.lock().stop = true;
         shared.wake.notify_all();
-        let times = worker.join().unwrap_or_default();
-        match result {
-            Ok(()) => station.finish(times),
-            Err(e) => {
-                if !matches!(&e, Error::Failed { message, .. } if message == FAULT_MESSAGE) {
-                    // Tell the others, so that they stop now rather than at their timeout.
-                    let why = Message::Failed(e.to_string()).encode();
-                    for peer in (0..size).filter(|&p| p != rank) {
-                        let _ = transport.send(peer, &why);
-                    }
-                }
-                Err(e)
-            }
+        let times = worker.join();
+        match (result, times) {
+            (Ok(()), Ok(times)) => station.finish(times),
+            (Ok(()), Err(_)) => Err(Error::Failed {
+                rank,
+                message: "the render thread panicked".into(),
+            }),
+            (Err(e), _) => Err(e),
         }
     })
+}
+
+/// Tells every other rank that this one failed, and why (sending errors ignored: the
+/// others find out by the timeout then).
+pub fn tell_failure(transport: &dyn crate::transport::Transport, why: &str) {
+    let message = Message::Failed(why.to_string()).encode();
+    for peer in (0..transport.size()).filter(|&p| p != transport.rank()) {
+        let _ = transport.send(peer, &message);
+    }
 }
 
 /// What rank 0 collects.
@@ -279,22 +290,34 @@ impl Gathering {
     }
 
     fn add(&mut self, by: usize, b: &WorkBox, piece: Piece) -> Result<(), Error> {
+        let bad = |message: String| Err(Error::Message { from: by, message });
         let o = b.origin as usize;
         if o >= self.origins.len() {
-            return Err(Error::Message {
-                from: by,
-                message: format!("a box of rank {o}'s part"),
-            });
+            return bad(format!(
+                "a box of rank {o}'s part, of {} ranks",
+                self.origins.len()
+            ));
         }
-        self.origins[by][o] += 1;
-        self.origin_pixels[by][o] += b.rect.area();
-        self.credit = self
+        if piece.window.rect() != b.rect {
+            return bad(format!(
+                "the pixels of {:?} for the box {:?}",
+                piece.window.rect(),
+                b.rect
+            ));
+        }
+        let credit = self
             .credit
             .checked_add(b.credit)
-            .ok_or_else(|| Error::Message {
-                from: by,
-                message: "credit beyond the total".into(),
-            })?;
+            .filter(|&c| c <= TOTAL_CREDIT);
+        let Some(credit) = credit else {
+            return bad(format!(
+                "a box whose credit {} takes the render's past the total (a box counted twice)",
+                b.credit
+            ));
+        };
+        self.credit = credit;
+        self.origins[by][o] += 1;
+        self.origin_pixels[by][o] += b.rect.area();
         self.pieces.push(piece);
         Ok(())
     }
@@ -348,14 +371,21 @@ impl Station<'_, '_> {
         Ok(Some((from, m)))
     }
 
-    /// The ranks this one must hear from: rank 0 hears every rank, the others rank 0.
-    fn check_alive(&self) -> Result<(), Error> {
-        let watched: Vec<usize> = if self.rank() == 0 {
-            (1..self.size()).collect()
+    /// The ranks this one waits on: rank 0 every rank that has not sent its statistics,
+    /// the others rank 0.
+    fn watched(&self) -> Vec<usize> {
+        if self.rank() == 0 {
+            (1..self.size())
+                .filter(|&r| self.gathered.reports[r].is_none())
+                .collect()
         } else {
             vec![0]
-        };
-        for r in watched {
+        }
+    }
+
+    /// Checks that every rank this one waits on has been heard from within the timeout.
+    fn check_alive(&self) -> Result<(), Error> {
+        for r in self.watched() {
             let silent = self.last_seen[r].elapsed();
             if silent > self.settings.timeout {
                 return Err(Error::Silent {
@@ -367,33 +397,39 @@ impl Station<'_, '_> {
         Ok(())
     }
 
-    /// Gives boxes to `to`, which asked: the configured share of the list's boxes, the
-    /// largest first, bisecting the largest box while the share is less than one box.
+    /// Gives boxes to `to`, which asked: the configured share of the final boxes the list
+    /// holds ([`WorkBox::units`]), the largest boxes that fit in the share first, bisecting
+    /// the largest box when none fits.
     fn donate(&mut self, to: usize) -> Result<(), Error> {
         let grid = self.pipeline.grid();
         let (unit, fraction) = (self.settings.unit(grid), self.settings.fraction);
-        let share = |n: usize| (n as f64 * fraction).floor() as usize;
-        let largest = |boxes: &VecDeque<WorkBox>| {
-            (0..boxes.len()).max_by_key(|&i| (boxes[i].rect.area(), std::cmp::Reverse(i)))
-        };
         let given: Vec<WorkBox> = {
             let mut list = self.shared.lock();
-            while share(list.boxes.len()) == 0 {
-                match largest(&list.boxes) {
-                    Some(i) if list.boxes[i].splits(unit) => {
-                        let [first, second] = list.boxes[i].bisect(grid)?;
-                        list.boxes[i] = first;
-                        list.boxes.insert(i + 1, second);
-                        list.splits += 1;
-                    }
-                    _ => break,
+            let held: u64 = list.boxes.iter().map(|b| b.units(unit)).sum();
+            let share = (held as f64 * fraction).floor() as u64;
+            let mut given = Vec::new();
+            let mut left = share;
+            while left > 0 && !list.boxes.is_empty() {
+                let largest_fitting = (0..list.boxes.len())
+                    .filter(|&i| list.boxes[i].units(unit) <= left)
+                    .max_by_key(|&i| (list.boxes[i].units(unit), std::cmp::Reverse(i)));
+                if let Some(i) = largest_fitting {
+                    let b = list.boxes.remove(i).expect("an index of the list");
+                    left -= b.units(unit);
+                    given.push(b);
+                    continue;
                 }
-            }
-            let n = share(list.boxes.len()).min(list.boxes.len());
-            let mut given = Vec::with_capacity(n);
-            for _ in 0..n {
-                let i = largest(&list.boxes).expect("n boxes in the list");
-                given.push(list.boxes.remove(i).expect("an index of the list"));
+                // Every box is larger than what is left to give: halve the largest.
+                let i = (0..list.boxes.len())
+                    .max_by_key(|&i| (list.boxes[i].units(unit), std::cmp::Reverse(i)))
+                    .expect("a box in the list");
+                if !list.boxes[i].splits(unit) {
+                    break;
+                }
+                let [first, second] = list.boxes[i].bisect(grid)?;
+                list.boxes[i] = first;
+                list.boxes.insert(i + 1, second);
+                list.splits += 1;
             }
             given
         };
@@ -427,7 +463,18 @@ impl Station<'_, '_> {
         loop {
             let mut busy = false;
             // Boxes the render thread finished.
-            while let Ok(event) = events.try_recv() {
+            loop {
+                let event = match events.try_recv() {
+                    Ok(event) => event,
+                    Err(TryRecvError::Empty) => break,
+                    // The render thread ends only when told to, or when it panicked.
+                    Err(TryRecvError::Disconnected) => {
+                        return Err(Error::Failed {
+                            rank,
+                            message: "the render thread ended (it panicked)".into(),
+                        });
+                    }
+                };
                 busy = true;
                 match event {
                     Event::Rendered(b, piece) => {
@@ -516,7 +563,9 @@ impl Station<'_, '_> {
             }
             // Ask for boxes when the list runs short.
             if self.settings.balance && size > 1 && !stopping && asked.is_none() {
-                let short = self.shared.lock().boxes.len() < self.settings.threshold;
+                let unit = self.settings.unit(self.pipeline.grid());
+                let held: u64 = self.shared.lock().boxes.iter().map(|b| b.units(unit)).sum();
+                let short = held < self.settings.threshold as u64;
                 if short && Instant::now() >= quiet_until {
                     let to = next_peer;
                     next_peer = (next_peer + 1) % size;
@@ -533,12 +582,7 @@ impl Station<'_, '_> {
             }
             if last_beat.elapsed() >= heartbeat {
                 last_beat = Instant::now();
-                let to: Vec<usize> = if rank == 0 {
-                    (1..size).collect()
-                } else {
-                    vec![0]
-                };
-                for peer in to {
+                for peer in self.watched() {
                     self.send(peer, &Message::Heartbeat)?;
                 }
             }

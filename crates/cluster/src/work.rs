@@ -34,6 +34,13 @@ impl WorkBox {
         self.rect.x1 - self.rect.x0 > unit || self.rect.y1 - self.rect.y0 > unit
     }
 
+    /// The number of final boxes of side `unit` the box holds (its load: a box larger than
+    /// the final size counts for every final box it will be bisected into).
+    pub fn units(&self, unit: u32) -> u64 {
+        let r = self.rect;
+        u64::from((r.x1 - r.x0).div_ceil(unit)) * u64::from((r.y1 - r.y0).div_ceil(unit))
+    }
+
     /// The two halves of the box across its longer side, cut on the grid of side `grid`
     /// (the pipeline's window grid), each with half of its credit.
     ///

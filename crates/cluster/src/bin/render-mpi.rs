@@ -108,13 +108,21 @@ fn main() -> ExitCode {
             }
         };
     }
-    let Some((universe, _)) = mpi::initialize_with_threading(Threading::Funneled) else {
+    let Some((universe, threading)) = mpi::initialize_with_threading(Threading::Funneled) else {
         eprintln!("error: MPI could not be initialized");
         return ExitCode::FAILURE;
     };
     let mpi = Mpi::new(universe.world());
+    if threading < Threading::Funneled {
+        eprintln!("error: the MPI library gives no thread support (MPI_THREAD_FUNNELED needed)");
+        mpi.abort(1)
+    }
     match run_mpi(&args, &mpi) {
-        Ok(()) => ExitCode::SUCCESS,
+        Ok(()) => {
+            // Every rank has finished before any finalizes.
+            mpi.barrier();
+            ExitCode::SUCCESS
+        }
         Err(Failure::Fault) => {
             // A process killed by a signal: no word to the others, no MPI_Finalize.
             std::process::abort()

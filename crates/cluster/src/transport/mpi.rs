@@ -1,6 +1,7 @@
 //! Ranks as MPI processes (rsmpi): one message per `send`, received by probing for any
 //! source, so a rank never blocks on a peer that has nothing to say.
 
+use mpi::collective::CommunicatorCollectives;
 use mpi::point_to_point::{Destination, MatchedReceiveVec, Source};
 use mpi::topology::{Communicator, SimpleCommunicator};
 
@@ -17,6 +18,11 @@ impl Mpi {
     /// `Threading::Funneled`: only the thread that made it calls MPI).
     pub fn new(world: SimpleCommunicator) -> Self {
         Self { world }
+    }
+
+    /// Waits until every rank has called it.
+    pub fn barrier(&self) {
+        self.world.barrier();
     }
 
     /// Ends every process of the job with `code` (a rank failed: the others must not hang).
