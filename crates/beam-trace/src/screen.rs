@@ -108,14 +108,28 @@ pub fn needs_split(rect: &PixelRect, class: &BoxClass, t_final_width: f64) -> bo
 /// The tiles of side `size` (or less at the right and bottom edges) covering a `w × h`
 /// image, row by row: where the structure starts.
 pub fn tiles(w: u32, h: u32, size: u32) -> Vec<PixelRect> {
+    tiles_in(
+        PixelRect {
+            x0: 0,
+            y0: 0,
+            x1: w,
+            y1: h,
+        },
+        size,
+    )
+}
+
+/// The tiles of side `size` (or less at the right and bottom edges) covering `area`, from
+/// its top left corner, row by row.
+pub fn tiles_in(area: PixelRect, size: u32) -> Vec<PixelRect> {
     let mut out = Vec::new();
-    for y0 in (0..h).step_by(size as usize) {
-        for x0 in (0..w).step_by(size as usize) {
+    for y0 in (area.y0..area.y1).step_by(size as usize) {
+        for x0 in (area.x0..area.x1).step_by(size as usize) {
             out.push(PixelRect {
                 x0,
                 y0,
-                x1: (x0 + size).min(w),
-                y1: (y0 + size).min(h),
+                x1: (x0 + size).min(area.x1),
+                y1: (y0 + size).min(area.y1),
             });
         }
     }

@@ -12,7 +12,7 @@
 
 use crate::error::Error;
 use crate::plan::{Pass, Plan, Primary};
-use crate::screen::{OCTREE_TILE, PixelRect, SCREEN_TILE};
+use crate::screen::{OCTREE_TILE, PixelRect, SCREEN_TILE, tiles_in};
 
 /// The largest grid a window's sides may need: the frustum octree's tiles (64 pixels), a
 /// multiple of every plan's [`window_grid`].
@@ -155,19 +155,7 @@ impl Window {
     /// or outside it when the window is on the grid of `size`), row by row.
     pub fn tiles(&self, size: u32) -> Vec<PixelRect> {
         debug_assert!(self.check_grid(size).is_ok());
-        let r = self.rect;
-        let mut out = Vec::new();
-        for y0 in (r.y0..r.y1).step_by(size as usize) {
-            for x0 in (r.x0..r.x1).step_by(size as usize) {
-                out.push(PixelRect {
-                    x0,
-                    y0,
-                    x1: (x0 + size).min(r.x1),
-                    y1: (y0 + size).min(r.y1),
-                });
-            }
-        }
-        out
+        tiles_in(self.rect, size)
     }
 }
 
