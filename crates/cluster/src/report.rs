@@ -13,10 +13,10 @@ use crate::wire::{ReadError, Reader, Writer};
 pub struct RankStats {
     /// The rank.
     pub rank: usize,
-    /// Rendering final boxes.
+    /// Rendering final boxes (summed over the rank's render threads).
     #[serde(serialize_with = "seconds")]
     pub busy: Duration,
-    /// Waiting for a box, with an empty list.
+    /// Waiting for a box, with an empty list (summed over the rank's render threads).
     #[serde(serialize_with = "seconds")]
     pub idle: Duration,
     /// Sending, receiving and decoding messages (polls that find no message excluded).
@@ -128,7 +128,9 @@ pub struct ClusterReport {
     pub settings: Settings,
     /// The side of the final boxes.
     pub unit: u32,
-    /// The rayon threads of each rank.
+    /// The render threads of each rank (each renders a box at a time).
+    pub render_threads: usize,
+    /// The rayon threads of each rank (0: rayon's default).
     pub threads: usize,
     /// Wall-clock time of the whole render on rank 0, set-up included.
     #[serde(serialize_with = "seconds")]
@@ -160,9 +162,11 @@ impl fmt::Display for ClusterReport {
         let s = &self.settings;
         writeln!(
             f,
-            "cluster: {} ranks x {} threads, balancing {} (request below {} boxes, donate {:.0} %), \
-             final boxes {} px, wall {:.3} s (set-up {:.3} s)",
+            "cluster: {} ranks x {} render threads ({} rayon threads), balancing {} \
+             (request below {} boxes, donate {:.0} %), final boxes {} px, wall {:.3} s \
+             (set-up {:.3} s)",
             self.ranks.len(),
+            self.render_threads,
             self.threads,
             if s.balance { "on" } else { "off" },
             s.threshold,

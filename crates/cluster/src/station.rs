@@ -47,9 +47,13 @@ pub struct Fault {
 /// The error a rank returns when its injected [`Fault`] strikes.
 pub const FAULT_MESSAGE: &str = "stopped by an injected fault";
 
-/// How a rank runs: its rayon threads, where its progress goes, the fault to inject.
+/// How a rank runs: its render threads and their rayon threads, where its progress goes,
+/// the fault to inject.
 pub struct RankOptions<'p> {
-    /// Rayon threads of the render thread's pool (0: rayon's global pool).
+    /// Threads that take boxes from the rank's list and render them, each a box at a time
+    /// (the thesis: one per processor of the workstation; at least 1).
+    pub render_threads: usize,
+    /// Rayon threads of the pool the render threads share (0: rayon's global pool).
     pub threads: usize,
     /// Rank 0's progress, in pixels rendered.
     pub progress: &'p dyn Progress,
@@ -62,6 +66,7 @@ pub struct RankOptions<'p> {
 impl Default for RankOptions<'_> {
     fn default() -> Self {
         Self {
+            render_threads: 1,
             threads: 0,
             progress: &NoProgress,
             fault: None,
@@ -100,7 +105,7 @@ enum Event {
     Failed(String),
 }
 
-/// The render thread's own figures.
+/// The render threads' own figures.
 #[derive(Default)]
 struct RenderTimes {
     busy: Duration,
@@ -108,24 +113,23 @@ struct RenderTimes {
     last_box: Duration,
 }
 
-/// The render thread: takes boxes from the back of the list until told to stop.
+impl RenderTimes {
+    /// Adds another thread's times (the latest last box).
+    fn add(&mut self, o: &RenderTimes) {
+        self.busy += o.busy;
+        self.idle += o.idle;
+        self.last_box = self.last_box.max(o.last_box);
+    }
+}
+
+/// A render thread: takes boxes from the back of the list until told to stop.
 fn render_thread(
     shared: &Shared,
     pipeline: &Pipeline<'_>,
-    (grid, unit, threads, started): (u32, u32, usize, Instant),
+    (grid, unit, pool, started): (u32, u32, Option<&rayon::ThreadPool>, Instant),
     events: &Sender<Event>,
 ) -> RenderTimes {
     let mut times = RenderTimes::default();
-    let pool = (threads > 0)
-        .then(|| rayon::ThreadPoolBuilder::new().num_threads(threads).build())
-        .transpose();
-    let pool = match pool {
-        Ok(p) => p,
-        Err(e) => {
-            let _ = events.send(Event::Failed(format!("thread pool: {e}")));
-            return times;
-        }
-    };
     let (width, height) = pipeline.full_window().image_size();
     loop {
         let waited = Instant::now();
@@ -160,10 +164,21 @@ fn render_thread(
         };
         times.idle += waited.elapsed();
         let t0 = Instant::now();
-        let piece = Window::new(next.rect, width, height).and_then(|w| match &pool {
-            Some(pool) => pool.install(|| pipeline.render(&w, &NoProgress)),
-            None => pipeline.render(&w, &NoProgress),
-        });
+        let render = || {
+            Window::new(next.rect, width, height).and_then(|w| match pool {
+                Some(pool) => pool.install(|| pipeline.render(&w, &NoProgress)),
+                None => pipeline.render(&w, &NoProgress),
+            })
+        };
+        // A panic in the render is this rank's failure, reported like an error: its box's
+        // credit would never come back, and the others would wait for it.
+        let piece =
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(render)).unwrap_or_else(|_| {
+                Err(beam_trace::Error::Data(format!(
+                    "the render of box {:?} panicked",
+                    next.rect
+                )))
+            });
         times.busy += t0.elapsed();
         times.last_box = started.elapsed();
         let event = match piece {
@@ -214,14 +229,28 @@ pub fn run_rank(
         }),
         wake: Condvar::new(),
     };
+    let pool = (options.threads > 0)
+        .then(|| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(options.threads)
+                .build()
+        })
+        .transpose()
+        .map_err(|e| Error::Setting {
+            name: "threads",
+            message: e.to_string(),
+        })?;
     let (events_tx, events) = channel();
     std::thread::scope(|scope| {
-        let worker = {
-            let shared = &shared;
-            let tx = events_tx;
-            let cfg = (grid, settings.unit(grid), options.threads, options.started);
-            scope.spawn(move || render_thread(shared, pipeline, cfg, &tx))
-        };
+        let workers: Vec<_> = (0..options.render_threads.max(1))
+            .map(|_| {
+                let shared = &shared;
+                let tx = events_tx.clone();
+                let cfg = (grid, settings.unit(grid), pool.as_ref(), options.started);
+                scope.spawn(move || render_thread(shared, pipeline, cfg, &tx))
+            })
+            .collect();
+        drop(events_tx);
         let mut station = Station {
             transport,
             pipeline,
@@ -246,14 +275,21 @@ pub fn run_rank(
         // Whatever happened, the render thread stops.
         shared.lock().stop = true;
         shared.wake.notify_all();
-        let times = worker.join();
-        match (result, times) {
-            (Ok(()), Ok(times)) => station.finish(times),
-            (Ok(()), Err(_)) => Err(Error::Failed {
+        let mut times = RenderTimes::default();
+        let mut panicked = false;
+        for w in workers {
+            match w.join() {
+                Ok(t) => times.add(&t),
+                Err(_) => panicked = true,
+            }
+        }
+        match result {
+            Ok(()) if panicked => Err(Error::Failed {
                 rank,
-                message: "the render thread panicked".into(),
+                message: "a render thread panicked".into(),
             }),
-            (Err(e), _) => Err(e),
+            Ok(()) => station.finish(times),
+            Err(e) => Err(e),
         }
     })
 }
@@ -621,6 +657,7 @@ impl Station<'_, '_> {
             report: ClusterReport {
                 settings: *self.settings,
                 unit: self.settings.unit(self.pipeline.grid()),
+                render_threads: self.options.render_threads.max(1),
                 threads: self.options.threads,
                 wall: output.stats.total,
                 setup,

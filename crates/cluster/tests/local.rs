@@ -47,6 +47,15 @@ fn soft_shadows_on_ranks_with_one_thread_each() {
     .expect("renders");
     assert_eq!(out.fingerprint(), alone.fingerprint());
     assert_eq!(out.stats.work(), alone.stats.work());
+    // Several render threads per rank, taking boxes from its list concurrently.
+    let (out, report) = render_local_with(&scene, 2, &Settings::default(), &|_| RankOptions {
+        render_threads: 3,
+        threads: 2,
+        ..RankOptions::default()
+    })
+    .expect("renders");
+    assert_eq!(out.fingerprint(), alone.fingerprint());
+    assert_eq!(report.render_threads, 3);
 }
 
 #[test]

@@ -4,6 +4,7 @@
 //!
 //! ```text
 //! mpirun -np 4 render-mpi [SCENE] [--out FILE.png] [--width W --height H] [--threads N]
+//!        [--box-threads N]
 //!        [--primary MODE] [--shadows METHOD] [--no-balance] [--threshold 2] [--fraction 0.4]
 //!        [--unit 64] [--initial equal|rank:R] [--timeout S] [--stats FILE.json]
 //!        [--fingerprint] [--quiet]
@@ -52,6 +53,10 @@ struct Args {
     /// Rayon threads per rank (rayon's default when absent).
     #[arg(long)]
     threads: Option<usize>,
+    /// Threads per rank that take boxes from its list, each rendering a box at a time on
+    /// the rank's rayon threads (the thesis: one per processor).
+    #[arg(long, default_value_t = 1, value_parser = clap::value_parser!(u32).range(1..=256))]
+    box_threads: u32,
     /// Primary visibility mode (the scene's when absent).
     #[arg(long)]
     primary: Option<PrimaryMode>,
@@ -256,6 +261,7 @@ fn run_mpi(args: &Args, mpi: &Mpi) -> Result<(), Failure> {
         quiet: args.quiet,
     };
     let options = RankOptions {
+        render_threads: args.box_threads as usize,
         threads: args.threads.unwrap_or(0),
         progress: &progress,
         fault,
@@ -302,7 +308,9 @@ fn run_here(args: &Args) -> Result<(), String> {
         scene.camera.width(),
         scene.camera.height()
     );
+    let render_threads = args.box_threads as usize;
     let (out, report) = render_local_with(&scene, ranks, &settings, &|_| RankOptions {
+        render_threads,
         threads,
         fault,
         ..RankOptions::default()
