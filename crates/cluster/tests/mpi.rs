@@ -120,6 +120,10 @@ fn one_two_and_four_ranks_render_the_single_process_image() {
                 ])
                 .arg("--out")
                 .arg(dir.join(format!("case{k}-{ranks}.png")));
+            if ranks == 2 {
+                // Two render threads per rank, taking boxes concurrently.
+                cmd.args(["--box-threads", "2"]);
+            }
             let (code, text, _) = run_bounded(cmd, Duration::from_secs(600));
             assert_eq!(code, Some(0), "{text}");
             assert_eq!(
