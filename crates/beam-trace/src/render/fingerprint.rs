@@ -3,7 +3,7 @@
 //! images, the per-pixel classes, bounds and maps, the plan and the work counters), and of
 //! nothing that may vary (times, the cost map).
 
-use super::RenderOutput;
+use super::output::RenderOutput;
 use crate::beam::BoxClass;
 use crate::image::Image;
 

@@ -6,7 +6,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use super::images::{classification_image, cost_image, shadow_class_image};
-use super::{RenderOutput, ShadowMaps};
+use super::output::{RenderOutput, ShadowMaps};
 use crate::beam::BoxClass;
 use crate::error::Error;
 use crate::image::Image;

@@ -7,8 +7,9 @@ use std::time::Instant;
 use glam::DVec3;
 use rayon::prelude::*;
 
+use super::output::RenderOutput;
 use super::piece::{Piece, PieceShadows};
-use super::{RenderOutput, hard_shadows, pixel_beams, primary, shading, soft_shadows};
+use super::{hard_shadows, pixel_beams, primary, shading, soft_shadows};
 use crate::backend::{Backend, Routed, Routing};
 use crate::error::Error;
 use crate::plan::{Pass, PixelBeams, Plan, Primary};

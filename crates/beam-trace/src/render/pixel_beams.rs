@@ -20,9 +20,9 @@ use std::time::Instant;
 use interval_core::Interval;
 use rayon::prelude::*;
 
+use super::batches::{PixelSamples, RowBatch, row_batches};
 use super::pixels::{Pixels, offsets};
 use super::primary::{PixelClasses, PixelScopes};
-use super::{PixelSamples, RowBatch, row_batches};
 use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery, VariationQuery};
 use crate::beam::{BeamScope, BoxClass, child_window};
 use crate::camera::Camera;

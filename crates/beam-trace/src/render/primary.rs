@@ -6,8 +6,8 @@ use std::time::Instant;
 use interval_core::Interval;
 use rayon::prelude::*;
 
+use super::batches::{PixelSamples, RowBatch, row_batches};
 use super::pixels::{self, Pixels, owners};
-use super::{PixelSamples, RowBatch, row_batches};
 use crate::backend::{BeamQuery, CellQuery, HitQuery, Queries, RayQuery, VariationQuery};
 use crate::beam::{BeamScope, BoxClass};
 use crate::beam::{child_window, forward};

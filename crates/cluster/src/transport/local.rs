@@ -2,7 +2,7 @@
 
 use std::sync::mpsc::{Receiver, Sender, TryRecvError, channel};
 
-use super::Transport;
+use super::traits::Transport;
 use crate::error::Error;
 
 /// One rank of a cluster of threads ([`local_cluster`]).

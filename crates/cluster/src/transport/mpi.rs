@@ -5,7 +5,7 @@ use mpi::collective::CommunicatorCollectives;
 use mpi::point_to_point::{Destination, MatchedReceiveVec, Source};
 use mpi::topology::{Communicator, SimpleCommunicator};
 
-use super::Transport;
+use super::traits::Transport;
 use crate::error::Error;
 
 /// This process's rank in `MPI_COMM_WORLD`.
