@@ -162,12 +162,15 @@ impl fmt::Display for ClusterReport {
         let s = &self.settings;
         writeln!(
             f,
-            "cluster: {} ranks x {} render threads ({} rayon threads), balancing {} \
-             (request below {} boxes, donate {:.0} %), final boxes {} px, wall {:.3} s \
+            "cluster: {} ranks x {} render threads ({}), balancing {} \
+             (request below {} final boxes, donate {:.0} %), final boxes {} px, wall {:.3} s \
              (set-up {:.3} s)",
             self.ranks.len(),
             self.render_threads,
-            self.threads,
+            match self.threads {
+                0 => "rayon's default pool".to_string(),
+                n => format!("{n} rayon threads"),
+            },
             if s.balance { "on" } else { "off" },
             s.threshold,
             s.fraction * 100.0,
