@@ -118,7 +118,18 @@ mod tests {
         };
         let stats = RankStats {
             rank: 2,
+            busy: std::time::Duration::from_millis(1500),
+            idle: std::time::Duration::from_nanos(7),
+            last_box: std::time::Duration::from_secs(3),
             boxes: 7,
+            pixels: 7168,
+            splits: 3,
+            requests: 11,
+            refusals: 9,
+            donations: 2,
+            boxes_given: 5,
+            boxes_received: 1,
+            messages: 40,
             bytes: 99,
             ..RankStats::default()
         };

@@ -80,43 +80,26 @@ impl RankStats {
 
     /// Reads what [`RankStats::write`] wrote.
     pub fn read(r: &mut Reader<'_>) -> Result<Self, ReadError> {
-        let rank = r.u64("rank")? as usize;
-        let mut d = [Duration::ZERO; 4];
-        for v in &mut d {
-            *v = r.duration("rank time")?;
-        }
-        let mut c = [0u64; 10];
-        for v in &mut c {
-            *v = r.u64("rank counter")?;
-        }
-        let [
-            boxes,
-            pixels,
-            splits,
-            requests,
-            refusals,
-            donations,
-            boxes_given,
-            boxes_received,
-            messages,
-            bytes,
-        ] = c;
+        let time = |r: &mut Reader<'_>| r.duration("rank time");
+        let count = |r: &mut Reader<'_>| r.u64("rank counter");
+        // Fields are read in the order they are written (a struct literal evaluates its
+        // fields in source order).
         Ok(Self {
-            rank,
-            busy: d[0],
-            idle: d[1],
-            communication: d[2],
-            last_box: d[3],
-            boxes,
-            pixels,
-            splits,
-            requests,
-            refusals,
-            donations,
-            boxes_given,
-            boxes_received,
-            messages,
-            bytes,
+            rank: r.u64("rank")? as usize,
+            busy: time(r)?,
+            idle: time(r)?,
+            communication: time(r)?,
+            last_box: time(r)?,
+            boxes: count(r)?,
+            pixels: count(r)?,
+            splits: count(r)?,
+            requests: count(r)?,
+            refusals: count(r)?,
+            donations: count(r)?,
+            boxes_given: count(r)?,
+            boxes_received: count(r)?,
+            messages: count(r)?,
+            bytes: count(r)?,
         })
     }
 }
