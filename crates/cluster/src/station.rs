@@ -16,6 +16,7 @@ use std::sync::{Condvar, Mutex, MutexGuard, PoisonError};
 use std::time::{Duration, Instant};
 
 use beam_trace::render::{Piece, Pipeline};
+use beam_trace::screen::PixelRect;
 use beam_trace::window::Window;
 use beam_trace::{NoProgress, Progress, RenderOutput};
 
@@ -86,6 +87,21 @@ struct List {
     boxes: VecDeque<WorkBox>,
     stop: bool,
     splits: u64,
+}
+
+impl List {
+    /// The load of the list: the number of final boxes of side `unit` its boxes hold.
+    fn load(&self, unit: u32) -> u64 {
+        self.boxes.iter().map(|b| b.units(unit)).sum()
+    }
+
+    /// The index of the largest box holding at most `limit` final boxes of side `unit`
+    /// (the first of equals).
+    fn largest(&self, unit: u32, limit: u64) -> Option<usize> {
+        (0..self.boxes.len())
+            .filter(|&i| self.boxes[i].units(unit) <= limit)
+            .max_by_key(|&i| (self.boxes[i].units(unit), std::cmp::Reverse(i)))
+    }
 }
 
 struct Shared {
@@ -209,15 +225,22 @@ pub fn run_rank(
     let (rank, size) = (transport.rank(), transport.size());
     let grid = pipeline.grid();
     settings.check(size, grid)?;
+    let unit = settings.unit(grid);
     let (width, height) = pipeline.full_window().image_size();
     let mut lists = match settings.initial {
         Initial::Equal => initial_boxes(&equal_parts(width, height, size, grid), size),
         Initial::OnRank(r) => {
-            let mut lists = initial_boxes(&equal_parts(width, height, 1, grid), size);
-            lists.rotate_right(r);
-            for b in lists[r].iter_mut() {
-                b.origin = r as u32;
-            }
+            let mut lists = vec![Vec::new(); size];
+            lists[r].push(WorkBox {
+                rect: PixelRect {
+                    x0: 0,
+                    y0: 0,
+                    x1: width,
+                    y1: height,
+                },
+                credit: TOTAL_CREDIT,
+                origin: r as u32,
+            });
             lists
         }
     };
@@ -246,7 +269,7 @@ pub fn run_rank(
             .map(|_| {
                 let shared = &shared;
                 let tx = events_tx.clone();
-                let cfg = (grid, settings.unit(grid), pool.as_ref(), options.started);
+                let cfg = (grid, unit, pool.as_ref(), options.started);
                 scope.spawn(move || render_thread(shared, pipeline, cfg, &tx))
             })
             .collect();
@@ -254,6 +277,8 @@ pub fn run_rank(
         let mut station = Station {
             transport,
             pipeline,
+            grid,
+            unit,
             settings,
             options,
             shared: &shared,
@@ -363,6 +388,10 @@ impl Gathering {
 struct Station<'s, 'p> {
     transport: &'s dyn crate::transport::Transport,
     pipeline: &'s Pipeline<'p>,
+    /// The pipeline's window grid.
+    grid: u32,
+    /// The side of the final boxes.
+    unit: u32,
     settings: &'s Settings,
     options: &'s RankOptions<'s>,
     shared: &'s Shared,
@@ -437,28 +466,20 @@ impl Station<'_, '_> {
     /// holds ([`WorkBox::units`]), the largest boxes that fit in the share first, bisecting
     /// the largest box when none fits.
     fn donate(&mut self, to: usize) -> Result<(), Error> {
-        let grid = self.pipeline.grid();
-        let (unit, fraction) = (self.settings.unit(grid), self.settings.fraction);
+        let (grid, unit) = (self.grid, self.unit);
         let given: Vec<WorkBox> = {
             let mut list = self.shared.lock();
-            let held: u64 = list.boxes.iter().map(|b| b.units(unit)).sum();
-            let share = (held as f64 * fraction).floor() as u64;
+            let mut left = (list.load(unit) as f64 * self.settings.fraction).floor() as u64;
             let mut given = Vec::new();
-            let mut left = share;
             while left > 0 && !list.boxes.is_empty() {
-                let largest_fitting = (0..list.boxes.len())
-                    .filter(|&i| list.boxes[i].units(unit) <= left)
-                    .max_by_key(|&i| (list.boxes[i].units(unit), std::cmp::Reverse(i)));
-                if let Some(i) = largest_fitting {
+                if let Some(i) = list.largest(unit, left) {
                     let b = list.boxes.remove(i).expect("an index of the list");
                     left -= b.units(unit);
                     given.push(b);
                     continue;
                 }
                 // Every box is larger than what is left to give: halve the largest.
-                let i = (0..list.boxes.len())
-                    .max_by_key(|&i| (list.boxes[i].units(unit), std::cmp::Reverse(i)))
-                    .expect("a box in the list");
+                let i = list.largest(unit, u64::MAX).expect("a box in the list");
                 if !list.boxes[i].splits(unit) {
                     break;
                 }
@@ -599,21 +620,18 @@ impl Station<'_, '_> {
             }
             // Ask for boxes when the list runs short.
             if self.settings.balance && size > 1 && !stopping && asked.is_none() {
-                let unit = self.settings.unit(self.pipeline.grid());
-                let held: u64 = self.shared.lock().boxes.iter().map(|b| b.units(unit)).sum();
-                let short = held < self.settings.threshold as u64;
+                let short = self.shared.lock().load(self.unit) < self.settings.threshold as u64;
                 if short && Instant::now() >= quiet_until {
+                    // The other ranks in turn.
                     let to = next_peer;
                     next_peer = (next_peer + 1) % size;
                     if next_peer == rank {
                         next_peer = (next_peer + 1) % size;
                     }
-                    if to != rank {
-                        self.stats.requests += 1;
-                        self.send(to, &Message::Request)?;
-                        asked = Some(to);
-                        busy = true;
-                    }
+                    self.stats.requests += 1;
+                    self.send(to, &Message::Request)?;
+                    asked = Some(to);
+                    busy = true;
                 }
             }
             if last_beat.elapsed() >= heartbeat {
@@ -643,9 +661,9 @@ impl Station<'_, '_> {
             self.send(0, &report)?;
             return Ok(None);
         }
-        let g = std::mem::replace(&mut self.gathered, Gathering::new(0, 0, 0));
+        let g = self.gathered;
         let mut ranks: Vec<RankStats> = g.reports.into_iter().skip(1).flatten().collect();
-        ranks.insert(0, self.stats.clone());
+        ranks.insert(0, self.stats);
         let setup = self
             .pipeline
             .setup_stats()
@@ -656,7 +674,7 @@ impl Station<'_, '_> {
         Ok(Some(Gathered {
             report: ClusterReport {
                 settings: *self.settings,
-                unit: self.settings.unit(self.pipeline.grid()),
+                unit: self.unit,
                 render_threads: self.options.render_threads.max(1),
                 threads: self.options.threads,
                 wall: output.stats.total,

@@ -103,11 +103,11 @@ impl Piece {
 pub(super) fn assemble(
     (width, height): (u32, u32),
     plan: &Plan,
-    tolerance: f32,
     (setup, pieces): (&[PassStats], Vec<Piece>),
     started: Instant,
 ) -> Result<RenderOutput, Error> {
     let npix = width as usize * height as usize;
+    let tolerance = plan.shadow_method.method().tolerance();
     let soft = plan.runs(Pass::SoftShadows);
     let nl = plan.soft_shadow_lights;
     let mut seen = vec![false; npix];

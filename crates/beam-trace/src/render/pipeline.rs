@@ -223,11 +223,9 @@ impl<'a> Pipeline<'a> {
     /// image or plan.
     pub fn assemble(&self, pieces: Vec<Piece>, started: Instant) -> Result<RenderOutput, Error> {
         let cam = &self.scene.camera;
-        let tolerance = self.plan.shadow_method.method().tolerance();
         super::piece::assemble(
             (cam.width(), cam.height()),
             self.plan,
-            tolerance,
             (&self.setup, pieces),
             started,
         )
