@@ -408,10 +408,19 @@ impl BeamEval {
         }
         let tape = self.interval.scope().clone();
         let continuous = continuous || tape.is_continuous_everywhere();
-        let centred = self
+        let forms = self
             .centred
-            .get_or_insert_with(|| Box::new(Centred::new(&tape)))
-            .enclose_f64(&tape, &points, continuous);
+            .get_or_insert_with(|| Box::new(Centred::new(&tape)));
+        // First with the gradient of an enclosing piece (the one this piece was cut from):
+        // a form that decides the sign decides it as this piece's own gradient would (that
+        // form lies inside this one), without computing it.
+        if let Some(c) = forms.enclose_f64_reused(&tape, &points) {
+            let both = meet(natural, c);
+            if both.inf() > 0.0 || both.sup() < 0.0 {
+                return both;
+            }
+        }
+        let centred = forms.enclose_f64(&tape, &points, continuous);
         centred.map_or(natural, |c| meet(natural, c))
     }
 

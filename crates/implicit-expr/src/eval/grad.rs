@@ -68,7 +68,7 @@ point_grad_scalar!(f64);
 point_grad_scalar!(f32);
 
 impl<T: Float> GradScalar for Interval<T> {
-    #[inline]
+    #[inline(always)]
     fn abs_slope(a: Self) -> Self {
         match a.bounds() {
             None => a,
@@ -78,7 +78,7 @@ impl<T: Float> GradScalar for Interval<T> {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn defined_slope(u: Self, slope: Self) -> Self {
         if slope.is_empty() && !u.is_empty() {
             Interval::ENTIRE
@@ -87,7 +87,7 @@ impl<T: Float> GradScalar for Interval<T> {
         }
     }
 
-    #[inline]
+    #[inline(always)]
     fn select(a: Self, b: Self, da: Self, db: Self, is_max: bool) -> Self {
         let (_, choice) = if is_max {
             Self::max_choice(a, b)
@@ -128,9 +128,17 @@ impl<N: GradScalar> Grad<N> {
     fn chain(self, v: N, slope: N) -> Self {
         Self {
             v,
-            d: self.d.map(|d| N::binary(BinaryOp::Mul, slope, d)),
+            d: each(|i| N::binary(BinaryOp::Mul, slope, self.d[i])),
         }
     }
+}
+
+/// `[f(0), f(1), f(2)]`, written out: `std::array::from_fn` and `map` call their closure
+/// through a function of their own, which is not compiled for the evaluator loop's
+/// instruction set ([`interval_core::isa`]) and calls libm's `fma` in every rounded product.
+#[inline(always)]
+fn each<N>(f: impl Fn(usize) -> N) -> [N; 3] {
+    [f(0), f(1), f(2)]
 }
 
 #[inline(always)]
@@ -158,11 +166,15 @@ fn sub<N: Number>(a: N, b: N) -> N {
     N::binary(BinaryOp::Sub, a, b)
 }
 
+// Inlined into the evaluators' loops, so that the interval operations inside are compiled
+// for the loop's instruction set ([`interval_core::isa`]) and the operation's `match`
+// folds away.
 impl<N: GradScalar> Number for Grad<N> {
     fn constant(c: &Constant) -> Self {
         Self::constant_value(N::constant(c))
     }
 
+    #[inline(always)]
     fn unary(op: UnaryOp, a: Self) -> Self {
         let u = a.v;
         let v = N::unary(op, u);
@@ -200,36 +212,38 @@ impl<N: GradScalar> Number for Grad<N> {
         a.chain(v, N::defined_slope(u, slope))
     }
 
+    #[inline(always)]
     fn binary(op: BinaryOp, a: Self, b: Self) -> Self {
         let v = N::binary(op, a.v, b.v);
         let d = match op {
-            BinaryOp::Add => std::array::from_fn(|i| add(a.d[i], b.d[i])),
-            BinaryOp::Sub => std::array::from_fn(|i| sub(a.d[i], b.d[i])),
-            BinaryOp::Mul => std::array::from_fn(|i| add(mul(a.v, b.d[i]), mul(b.v, a.d[i]))),
+            BinaryOp::Add => each(|i| add(a.d[i], b.d[i])),
+            BinaryOp::Sub => each(|i| sub(a.d[i], b.d[i])),
+            BinaryOp::Mul => each(|i| add(mul(a.v, b.d[i]), mul(b.v, a.d[i]))),
             BinaryOp::Div => {
                 // (da - (a/b) db) / b
-                std::array::from_fn(|i| div(sub(a.d[i], mul(v, b.d[i])), b.v))
+                each(|i| div(sub(a.d[i], mul(v, b.d[i])), b.v))
             }
             BinaryOp::Min | BinaryOp::Max => {
                 let is_max = op == BinaryOp::Max;
-                std::array::from_fn(|i| N::select(a.v, b.v, a.d[i], b.d[i], is_max))
+                each(|i| N::select(a.v, b.v, a.d[i], b.d[i], is_max))
             }
             BinaryOp::Pow => {
                 // d(a^b) = b a^(b-1) da + a^b ln(a) db
                 let p = N::binary(BinaryOp::Pow, a.v, sub(b.v, k(1.0)));
                 let sa = N::defined_slope(a.v, mul(b.v, p));
                 let sb = N::defined_slope(a.v, mul(v, N::unary(UnaryOp::Ln, a.v)));
-                std::array::from_fn(|i| add(mul(sa, a.d[i]), mul(sb, b.d[i])))
+                each(|i| add(mul(sa, a.d[i]), mul(sb, b.d[i])))
             }
             // As the symbolic derivative: `domain(d, f') + slope_not(d)`.
             BinaryOp::Domain => {
                 let jump = N::unary(UnaryOp::SlopeNot, a.v);
-                std::array::from_fn(|i| add(N::binary(BinaryOp::Domain, a.v, b.d[i]), jump))
+                each(|i| add(N::binary(BinaryOp::Domain, a.v, b.d[i]), jump))
             }
         };
         Self { v, d }
     }
 
+    #[inline(always)]
     fn pown(a: Self, n: i32) -> Self {
         let v = N::pown(a.v, n);
         let slope = mul(k(f64::from(n)), N::pown(a.v, n - 1));
