@@ -317,17 +317,22 @@ mod tests {
         assert!(checked > 1000, "only {checked} points checked");
     }
 
+    /// Every catalog surface without parameters, and the soft-shadow scene's torus.
+    fn surfaces_and_torus() -> Vec<String> {
+        implicit_expr::catalog::all()
+            .iter()
+            .filter(|s| s.params.is_empty())
+            .map(|s| s.formula.to_string())
+            .chain(["(x^2 + y^2 + z^2 + 0.4275)^2 - 1.96 * (x^2 + y^2)".to_string()])
+            .collect()
+    }
+
     /// The `f64` form over random boxes of every catalog surface without parameters holds
     /// the value at every sampled point (a double-double enclosure of it meets the form),
     /// with continuity checked or taken from the tape's form alike.
     #[test]
     fn f64_form_meets_the_value_at_sampled_points() {
-        let formulas: Vec<String> = implicit_expr::catalog::all()
-            .iter()
-            .filter(|s| s.params.is_empty())
-            .map(|s| s.formula.to_string())
-            .chain(["(x^2 + y^2 + z^2 + 0.4275)^2 - 1.96 * (x^2 + y^2)".to_string()])
-            .collect();
+        let formulas = surfaces_and_torus();
         let mut next = uniform(0x2545_f491_4f6c_dd1d);
         let (mut checked, mut narrower) = (0, 0);
         for formula in &formulas {
@@ -360,12 +365,7 @@ mod tests {
     /// for boxes not inside that box or of another tape.
     #[test]
     fn reused_form_meets_the_value_inside_the_gradients_box() {
-        let formulas: Vec<String> = implicit_expr::catalog::all()
-            .iter()
-            .filter(|s| s.params.is_empty())
-            .map(|s| s.formula.to_string())
-            .chain(["(x^2 + y^2 + z^2 + 0.4275)^2 - 1.96 * (x^2 + y^2)".to_string()])
-            .collect();
+        let formulas = surfaces_and_torus();
         let other = ray_tape("x - y");
         let mut next = uniform(0x5851_f42d_4c95_7f2d);
         let (mut checked, mut refused) = (0, 0);
