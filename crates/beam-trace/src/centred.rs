@@ -43,6 +43,10 @@ pub struct Centred {
     /// box inside that one ([`Centred::enclose_f64_reused`]). Keeping the enclosures of
     /// the chain of pieces a search cut from one another instead (up to 16) saved no time.
     last: Option<Slope>,
+    /// The last value at a centre evaluated in `f64` ([`Centred::form_f64`]): a form
+    /// with the reused gradient that does not decide is followed by one with the piece's
+    /// own gradient at the same centre.
+    last_centre: Option<(Tape, [f64; 3], Interval<f64>)>,
 }
 
 /// A gradient enclosure of a tape's function over a box, where the function was proven
@@ -68,6 +72,7 @@ impl Centred {
             centre_vars: vec![DdInterval::point(0.0); RAY_SLOTS],
             centre64_vars: vec![Interval::ZERO; RAY_SLOTS],
             last: None,
+            last_centre: None,
         }
     }
 
@@ -122,11 +127,18 @@ impl Centred {
         m: [f64; 3],
         slope: [Interval<f64>; 3],
     ) -> Option<Interval<f64>> {
-        self.centre64.set_tape(tape);
-        for (v, &c) in self.centre64_vars.iter_mut().zip(&m) {
-            *v = Interval::new_unchecked(c, c);
-        }
-        let mut acc = self.centre64.eval(&self.centre64_vars).ok()?;
+        let mut acc = match &self.last_centre {
+            Some((t, at, v)) if t.ptr_eq(tape) && *at == m => *v,
+            _ => {
+                self.centre64.set_tape(tape);
+                for (v, &c) in self.centre64_vars.iter_mut().zip(&m) {
+                    *v = Interval::new_unchecked(c, c);
+                }
+                let v = self.centre64.eval(&self.centre64_vars).ok()?;
+                self.last_centre = Some((tape.clone(), m, v));
+                v
+            }
+        };
         for i in 0..3 {
             acc = acc + slope[i] * (b[i] - Interval::new_unchecked(m[i], m[i]));
         }

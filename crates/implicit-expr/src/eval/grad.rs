@@ -11,6 +11,29 @@ use crate::constant::Constant;
 use crate::number::{Choice, Number};
 use crate::op::{BinaryOp, UnaryOp};
 
+/// `[e(0), e(1), e(2)]` for an expression `e` of `i`, written out: a closure called three
+/// times (`std::array::from_fn`, `map`) may stay a function of its own, which is not
+/// compiled for the evaluator loop's instruction set ([`interval_core::isa`]) and calls
+/// libm's `fma` in every rounded product.
+macro_rules! each {
+    (|$i:ident| $e:expr) => {
+        [
+            {
+                let $i = 0;
+                $e
+            },
+            {
+                let $i = 1;
+                $e
+            },
+            {
+                let $i = 2;
+                $e
+            },
+        ]
+    };
+}
+
 /// A value and its gradient with respect to the variable slots 0, 1, 2 (`x`, `y`, `z`).
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Grad<N> {
@@ -128,17 +151,9 @@ impl<N: GradScalar> Grad<N> {
     fn chain(self, v: N, slope: N) -> Self {
         Self {
             v,
-            d: each(|i| N::binary(BinaryOp::Mul, slope, self.d[i])),
+            d: each!(|i| N::binary(BinaryOp::Mul, slope, self.d[i])),
         }
     }
-}
-
-/// `[f(0), f(1), f(2)]`, written out: `std::array::from_fn` and `map` call their closure
-/// through a function of their own, which is not compiled for the evaluator loop's
-/// instruction set ([`interval_core::isa`]) and calls libm's `fma` in every rounded product.
-#[inline(always)]
-fn each<N>(f: impl Fn(usize) -> N) -> [N; 3] {
-    [f(0), f(1), f(2)]
 }
 
 #[inline(always)]
@@ -216,28 +231,28 @@ impl<N: GradScalar> Number for Grad<N> {
     fn binary(op: BinaryOp, a: Self, b: Self) -> Self {
         let v = N::binary(op, a.v, b.v);
         let d = match op {
-            BinaryOp::Add => each(|i| add(a.d[i], b.d[i])),
-            BinaryOp::Sub => each(|i| sub(a.d[i], b.d[i])),
-            BinaryOp::Mul => each(|i| add(mul(a.v, b.d[i]), mul(b.v, a.d[i]))),
+            BinaryOp::Add => each!(|i| add(a.d[i], b.d[i])),
+            BinaryOp::Sub => each!(|i| sub(a.d[i], b.d[i])),
+            BinaryOp::Mul => each!(|i| add(mul(a.v, b.d[i]), mul(b.v, a.d[i]))),
             BinaryOp::Div => {
                 // (da - (a/b) db) / b
-                each(|i| div(sub(a.d[i], mul(v, b.d[i])), b.v))
+                each!(|i| div(sub(a.d[i], mul(v, b.d[i])), b.v))
             }
             BinaryOp::Min | BinaryOp::Max => {
                 let is_max = op == BinaryOp::Max;
-                each(|i| N::select(a.v, b.v, a.d[i], b.d[i], is_max))
+                each!(|i| N::select(a.v, b.v, a.d[i], b.d[i], is_max))
             }
             BinaryOp::Pow => {
                 // d(a^b) = b a^(b-1) da + a^b ln(a) db
                 let p = N::binary(BinaryOp::Pow, a.v, sub(b.v, k(1.0)));
                 let sa = N::defined_slope(a.v, mul(b.v, p));
                 let sb = N::defined_slope(a.v, mul(v, N::unary(UnaryOp::Ln, a.v)));
-                each(|i| add(mul(sa, a.d[i]), mul(sb, b.d[i])))
+                each!(|i| add(mul(sa, a.d[i]), mul(sb, b.d[i])))
             }
             // As the symbolic derivative: `domain(d, f') + slope_not(d)`.
             BinaryOp::Domain => {
                 let jump = N::unary(UnaryOp::SlopeNot, a.v);
-                each(|i| add(N::binary(BinaryOp::Domain, a.v, b.d[i]), jump))
+                each!(|i| add(N::binary(BinaryOp::Domain, a.v, b.d[i]), jump))
             }
         };
         Self { v, d }
