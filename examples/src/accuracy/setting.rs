@@ -82,6 +82,9 @@ pub(crate) const FULL: &[&str] = &[
     "minkowski:beam:4",
     "minkowski:beam:7",
     "minkowski:beam:16",
+    "certified:1:1024:64",
+    "certified:0.9:1024:64",
+    "certified:0.7",
     "certified:0.5",
     "certified:0.25",
     "certified:0.1",
@@ -103,6 +106,7 @@ pub(crate) const QUICK: &[&str] = &[
     "minkowski:beam:4",
     "certified:0.25",
     "certified:0.05",
+    "certified:0.9:1024:64",
 ];
 
 /// What a run changes besides the shadow method.
@@ -175,12 +179,20 @@ impl Setting {
             ShadowSpec::Minkowski {
                 fine: Fine::Beams { n },
             } => format!("mb{n}"),
-            ShadowSpec::Certified { tolerance, budget } => {
-                if budget == ShadowSpec::DEFAULT_BUDGET {
-                    format!("c{tolerance}")
-                } else {
-                    format!("c{tolerance}/{budget}")
+            ShadowSpec::Certified {
+                tolerance,
+                budget,
+                segments,
+            } => {
+                let mut key = format!("c{tolerance}");
+                if budget != ShadowSpec::DEFAULT_BUDGET || segments != ShadowSpec::DEFAULT_SEGMENTS
+                {
+                    key += &format!("/{budget}");
                 }
+                if segments != ShadowSpec::DEFAULT_SEGMENTS {
+                    key += &format!("/{segments}");
+                }
+                key
             }
         };
         match self.variant {

@@ -7,7 +7,7 @@
 //!        [--primary screen-boxes|screen-rays|per-pixel|octree] [--undecided-depth D]
 //!        [--classification FILE.png] [--cost-map FILE.png]
 //!        [--shadows stochastic:N|beam:n|beam-all:n|beam-quadtree:n|
-//!                   minkowski:stochastic:N|minkowski:beam:n|certified:TOL[:BUDGET]]
+//!                   minkowski:stochastic:N|minkowski:beam:n|certified:TOL[:BUDGET[:SEGMENTS]]]
 //!        [--shadow-classes FILE.png] [--shadow-fraction PREFIX] [--precision f64|f32|dd]
 //! ```
 //!
@@ -75,8 +75,10 @@ struct Args {
     rays_per_pixel: Option<u32>,
     /// Soft-shadow method of area lights: stochastic:N (stochastic:N:cache), beam:n,
     /// beam-all:n, beam-quadtree:n, minkowski:stochastic:N, minkowski:beam:n,
-    /// certified:TOL or certified:TOL:BUDGET (the visible fraction proven to lie in a bound
-    /// at most TOL wide, with at most BUDGET beams per point, default 1024).
+    /// certified:TOL, certified:TOL:BUDGET or certified:TOL:BUDGET:SEGMENTS (the visible
+    /// fraction proven to lie in a bound at most TOL wide, with at most BUDGET beams per
+    /// point, default 1024, and an estimate inside it from SEGMENTS stratified segments,
+    /// default 32).
     #[arg(long)]
     shadows: Option<ShadowSpec>,
     /// Where the searches run: cpu (the reliable CPU renderer) or gpu (wgpu compute).

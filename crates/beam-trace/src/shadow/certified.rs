@@ -55,6 +55,9 @@ pub struct Certified {
     pub tolerance: Tolerance,
     /// Largest number of beams per point and light.
     pub budget: u32,
+    /// Stratified segments of the estimate inside the bound, spread over the parts left
+    /// undecided (at least one per part; [`ESTIMATE_SEGMENTS`] by default).
+    pub segments: u32,
 }
 
 /// A square part of the light's parameter square: `[i, i + 1] × [j, j + 1]` scaled by
@@ -180,17 +183,17 @@ impl Certified {
 }
 
 /// The estimate inside the bound: `lo` plus each open part's area times the share of its
-/// stratified segments found free (together [`ESTIMATE_SEGMENTS`], at least one per part).
+/// stratified segments found free (together `segments`, at least one per part).
 fn estimate(
     occluders: &mut dyn Occluders,
     q: &ShadowQuery,
-    r: &Refined,
+    (r, segments): (&Refined, u32),
     work: &mut ShadowWork,
 ) -> f64 {
     if r.open.is_empty() {
         return r.lo;
     }
-    let per_part = ESTIMATE_SEGMENTS.div_ceil(r.open.len() as u32).max(1);
+    let per_part = segments.div_ceil(r.open.len() as u32).max(1);
     let mut visible = 0.0;
     for (k, part) in r.open.iter().enumerate() {
         let patch = part.patch(&q.light);
@@ -211,6 +214,7 @@ impl ShadowMethod for Certified {
         ShadowSpec::Certified {
             tolerance: self.tolerance,
             budget: self.budget,
+            segments: self.segments,
         }
         .to_string()
     }
@@ -227,7 +231,7 @@ impl ShadowMethod for Certified {
     ) -> LightVisibility {
         work.queries += 1;
         let r = self.refine(occluders, q, work);
-        let fraction = estimate(occluders, q, &r, work);
+        let fraction = estimate(occluders, q, (&r, self.segments), work);
         // Outward to f32 (exact for the dyadic areas of at most `MAX_LEVEL` levels).
         let bound = Interval::new_unchecked(r.lo, r.hi).cast::<f32>();
         LightVisibility {

@@ -51,9 +51,15 @@ impl ShadowSpec {
             ShadowSpec::Stochastic { samples, cache } => Box::new(Stochastic { samples, cache }),
             ShadowSpec::Beam { n, strategy } => Box::new(BeamShadows { n, strategy }),
             ShadowSpec::Minkowski { fine } => Box::new(Minkowski { fine }),
-            ShadowSpec::Certified { tolerance, budget } => {
-                Box::new(Certified { tolerance, budget })
-            }
+            ShadowSpec::Certified {
+                tolerance,
+                budget,
+                segments,
+            } => Box::new(Certified {
+                tolerance,
+                budget,
+                segments,
+            }),
         }
     }
 }

@@ -79,7 +79,7 @@ impl FromStr for Tolerance {
 ///
 /// Written `stochastic:N` (`stochastic:N:cache` with the last-occluder cache), `beam:n`,
 /// `beam-all:n`, `beam-quadtree:n`, `minkowski:stochastic:N`, `minkowski:beam:n`,
-/// `certified:TOL` or `certified:TOL:BUDGET`.
+/// `certified:TOL`, `certified:TOL:BUDGET` or `certified:TOL:BUDGET:SEGMENTS`.
 ///
 /// ```
 /// use beam_trace::shadow::{ShadowSpec, Strategy};
@@ -117,6 +117,8 @@ pub enum ShadowSpec {
         tolerance: Tolerance,
         /// Largest number of beams per point and light.
         budget: u32,
+        /// Stratified segments of the estimate inside the bound, per point and light.
+        segments: u32,
     },
 }
 
@@ -129,6 +131,9 @@ impl ShadowSpec {
     pub const DEFAULT_BUDGET: u32 = 1024;
     /// Largest budget of beams per point and light.
     pub const MAX_BUDGET: u32 = 1 << 20;
+    /// Segments of `certified:TOL`'s estimate without a count
+    /// ([`ESTIMATE_SEGMENTS`](crate::shadow::certified::ESTIMATE_SEGMENTS)).
+    pub const DEFAULT_SEGMENTS: u32 = crate::shadow::certified::ESTIMATE_SEGMENTS;
 }
 
 impl Default for ShadowSpec {
@@ -165,11 +170,17 @@ impl fmt::Display for ShadowSpec {
             ShadowSpec::Minkowski {
                 fine: Fine::Beams { n },
             } => write!(f, "minkowski:beam:{n}"),
-            ShadowSpec::Certified { tolerance, budget } => {
-                if budget == ShadowSpec::DEFAULT_BUDGET {
-                    write!(f, "certified:{tolerance}")
-                } else {
+            ShadowSpec::Certified {
+                tolerance,
+                budget,
+                segments,
+            } => {
+                if segments != ShadowSpec::DEFAULT_SEGMENTS {
+                    write!(f, "certified:{tolerance}:{budget}:{segments}")
+                } else if budget != ShadowSpec::DEFAULT_BUDGET {
                     write!(f, "certified:{tolerance}:{budget}")
+                } else {
+                    write!(f, "certified:{tolerance}")
                 }
             }
         }
@@ -178,7 +189,7 @@ impl fmt::Display for ShadowSpec {
 
 const FORMS: &str = "stochastic:N, stochastic:N:cache, beam:n, beam-all:n, beam-quadtree:n, \
                      minkowski:stochastic:N, minkowski:beam:n, certified:TOL, \
-                     certified:TOL:BUDGET";
+                     certified:TOL:BUDGET, certified:TOL:BUDGET:SEGMENTS";
 
 fn count(s: &str, text: &str, what: &str, max: u32) -> Result<u32, String> {
     match text.parse::<u32>() {
@@ -226,10 +237,22 @@ impl FromStr for ShadowSpec {
             ["certified", tol] => Ok(ShadowSpec::Certified {
                 tolerance: tolerance(tol)?,
                 budget: ShadowSpec::DEFAULT_BUDGET,
+                segments: ShadowSpec::DEFAULT_SEGMENTS,
             }),
             ["certified", tol, budget] => Ok(ShadowSpec::Certified {
                 tolerance: tolerance(tol)?,
                 budget: count(s, budget, "budget of beams", ShadowSpec::MAX_BUDGET)?,
+                segments: ShadowSpec::DEFAULT_SEGMENTS,
+            }),
+            ["certified", tol, budget, segments] => Ok(ShadowSpec::Certified {
+                tolerance: tolerance(tol)?,
+                budget: count(s, budget, "budget of beams", ShadowSpec::MAX_BUDGET)?,
+                segments: count(
+                    s,
+                    segments,
+                    "number of estimate segments",
+                    ShadowSpec::MAX_SAMPLES,
+                )?,
             }),
             _ => Err(format!("unknown shadow method '{s}' (one of: {FORMS})")),
         }
@@ -253,6 +276,8 @@ mod tests {
             "certified:0.05",
             "certified:0.001:64",
             "certified:1",
+            "certified:0.9:1024:64",
+            "certified:0.5:16:8",
         ] {
             let spec: ShadowSpec = s.parse().unwrap();
             assert_eq!(spec.to_string(), s);
@@ -275,6 +300,8 @@ mod tests {
         assert!(e.contains("six digits"), "{e}");
         let e = "certified:0.05:0".parse::<ShadowSpec>().unwrap_err();
         assert!(e.contains("budget of beams"), "{e}");
+        let e = "certified:0.05:64:0".parse::<ShadowSpec>().unwrap_err();
+        assert!(e.contains("number of estimate segments"), "{e}");
         let e = "certified:x".parse::<ShadowSpec>().unwrap_err();
         assert!(e.contains("'certified:x'") && e.contains("a number"), "{e}");
         assert_eq!(
