@@ -169,7 +169,9 @@ pub struct Beam {
 impl Beam {
     /// An enclosure of the points of every ray of the beam for `t ∈ t`.
     pub fn points(&self, t: Interval<f64>) -> IBox {
-        std::array::from_fn(|i| self.origin[i] + t * self.dir[i])
+        // By sign cases: the parameters are never negative, so the branches predict, and
+        // two directed products replace `×`'s eight (the searches ask this of every piece).
+        std::array::from_fn(|i| self.origin[i] + t.mul_sign_cases(self.dir[i]))
     }
 
     /// The largest width of the beam's directions over the length of the longest: about
