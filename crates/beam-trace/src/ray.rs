@@ -169,8 +169,9 @@ pub struct Beam {
 impl Beam {
     /// An enclosure of the points of every ray of the beam for `t ∈ t`.
     pub fn points(&self, t: Interval<f64>) -> IBox {
-        // By sign cases: the parameters are never negative, so the branches predict, and
-        // two directed products replace `×`'s eight (the searches ask this of every piece).
+        // By sign cases (the same interval as `×`): the parameters of a search are not
+        // negative, so the branches predict, and two directed products replace `×`'s eight
+        // (the searches ask this of every piece).
         std::array::from_fn(|i| self.origin[i] + t.mul_sign_cases(self.dir[i]))
     }
 
@@ -418,7 +419,7 @@ impl BeamEval {
         // form lies inside this one), without computing it.
         if let Some(c) = forms.enclose_f64_reused(&tape, &points) {
             let both = meet(natural, c);
-            if both.inf() > 0.0 || both.sup() < 0.0 {
+            if crate::root::search::excludes_zero(both) {
                 return both;
             }
         }

@@ -179,20 +179,11 @@ impl Setting {
             ShadowSpec::Minkowski {
                 fine: Fine::Beams { n },
             } => format!("mb{n}"),
-            ShadowSpec::Certified {
-                tolerance,
-                budget,
-                segments,
-            } => {
-                let mut key = format!("c{tolerance}");
-                if budget != ShadowSpec::DEFAULT_BUDGET || segments != ShadowSpec::DEFAULT_SEGMENTS
-                {
-                    key += &format!("/{budget}");
-                }
-                if segments != ShadowSpec::DEFAULT_SEGMENTS {
-                    key += &format!("/{segments}");
-                }
-                key
+            // The spec as written, defaults left out: `c0.5`, `c0.9/1024/64`.
+            spec @ ShadowSpec::Certified { .. } => {
+                let written = spec.to_string();
+                let settings = written.trim_start_matches("certified:");
+                format!("c{}", settings.replace(':', "/"))
             }
         };
         match self.variant {
