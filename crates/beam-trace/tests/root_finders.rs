@@ -358,6 +358,42 @@ fn reliable_methods_with_a_coarse_epsilon() {
     }
 }
 
+/// Asking only whether a root exists (`narrow_roots` off) changes how narrow a unique root's
+/// enclosure is, never whether a root is found: the same kind of answer as the narrowing
+/// search, every claim still true of the exact roots, and no more evaluations.
+#[test]
+fn existence_searches_answer_alike_with_less_work() {
+    let narrow = RootSettings::default();
+    let exist = narrow.existence();
+    let mut widened = 0;
+    for f in ALL_FNS.into_iter().chain([BLURRED, NEAR_MISS]) {
+        for m in reliable() {
+            let t = iv(f.t.0, f.t.1);
+            let (a, ca) = solve(m, &mut f.clone(), t, &narrow);
+            let (b, cb) = solve(m, &mut f.clone(), t, &exist);
+            check(m, &f, b, &exist);
+            assert_eq!(
+                std::mem::discriminant(&a),
+                std::mem::discriminant(&b),
+                "{m} on {}: {a:?} against {b:?}",
+                f.name
+            );
+            if let (Some(ta), Some(tb)) = (a.root(), b.root()) {
+                assert!(ta.subset(tb), "{m} on {}: {ta:?} not in {tb:?}", f.name);
+                widened += usize::from(tb.wid() > narrow.epsilon);
+            }
+            assert!(
+                cb.g_evals + cb.dg_evals + cb.point_evals
+                    <= ca.g_evals + ca.dg_evals + ca.point_evals,
+                "{m} on {}: {cb:?} against {ca:?}",
+                f.name
+            );
+        }
+    }
+    // The uniqueness proofs end the existence searches early somewhere.
+    assert!(widened > 0);
+}
+
 #[test]
 fn expected_proofs() {
     let s = RootSettings::default();

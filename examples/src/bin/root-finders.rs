@@ -116,6 +116,7 @@ fn run(args: &Args) -> Result<(), Box<dyn std::error::Error>> {
         sampling_step: args.sampling_step,
         lipschitz: args.lipschitz,
         escalate: !args.no_escalate,
+        ..RootSettings::default()
     };
     let setups: Vec<CatalogView> = names
         .iter()

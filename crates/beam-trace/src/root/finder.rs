@@ -23,6 +23,30 @@ pub struct RootSettings {
     /// Whether a search that ends open because rounding dominates its enclosures is run
     /// again in the next higher precision ([`Escalating`](super::Escalating)).
     pub escalate: bool,
+    /// Whether a piece proven to hold exactly one root (the first) is narrowed to width
+    /// [`epsilon`](Self::epsilon) before it is returned. Where only the root's existence
+    /// matters (a shadow segment is blocked or not), `false` ends the search at that piece,
+    /// returned as it is ([`Proof::Unique`]); the finders that prove uniqueness (the Newton
+    /// searches, Mitchell, MRFro) then skip their narrowing steps. Which searches find a root
+    /// does not change, only how narrow the reported enclosure is.
+    pub narrow_roots: bool,
+}
+
+impl RootSettings {
+    /// Whether a piece `x` proven to hold exactly one root is returned as it is: it is
+    /// narrower than [`epsilon`](Self::epsilon), or roots are not narrowed.
+    pub(crate) fn unique_settled(&self, x: Interval<f64>) -> bool {
+        !self.narrow_roots || super::search::is_small(x, self.epsilon)
+    }
+
+    /// These settings for a search that asks only whether a root exists
+    /// ([`narrow_roots`](Self::narrow_roots) off).
+    pub fn existence(self) -> Self {
+        Self {
+            narrow_roots: false,
+            ..self
+        }
+    }
 }
 
 impl Default for RootSettings {
@@ -33,6 +57,7 @@ impl Default for RootSettings {
             sampling_step: 1e-3,
             lipschitz: 10.0,
             escalate: true,
+            narrow_roots: true,
         }
     }
 }

@@ -116,7 +116,7 @@ fn refine(
     };
     let mut x = x;
     loop {
-        if is_small(x, settings.epsilon) || budget.step(x.inf()).is_some() {
+        if settings.unique_settled(x) || budget.step(x.inf()).is_some() {
             return unique(x);
         }
         let m = x.mid();

@@ -152,7 +152,7 @@ pub(crate) fn mrfro_search(
         let x = p.t;
         let (a, b) = (x.inf(), x.sup());
         let small = is_small(x, settings.epsilon);
-        if p.unique && small {
+        if p.unique && settings.unique_settled(x) {
             return RootResult::Root {
                 t: x,
                 proof: Proof::Unique,

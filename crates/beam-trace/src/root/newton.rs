@@ -88,7 +88,7 @@ pub(crate) fn newton_search(
     let mut stack = Stack::new(Piece::open(t));
     while let Some(p) = stack.pop() {
         let x = p.t;
-        if p.unique && is_small(x, settings.epsilon) {
+        if p.unique && settings.unique_settled(x) {
             return RootResult::Root {
                 t: x,
                 proof: Proof::Unique,

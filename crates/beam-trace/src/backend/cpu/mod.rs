@@ -107,7 +107,7 @@ impl Queries for CpuQueries<'_> {
 
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error> {
         Ok(self.map(queries, true, |ev, q, c| {
-            self.cast(ev, &q.ray, q.window, q.scope.as_ref(), c)
+            self.cast(ev, &q.ray, q.window, (q.scope.as_ref(), &self.plan.root), c)
         }))
     }
 
@@ -187,7 +187,15 @@ impl Queries for CpuQueries<'_> {
                 origin: q.from,
                 dir: q.to - q.from,
             };
-            let r = self.cast(ev, &ray, Interval::new_unchecked(0.0, 1.0), None, c);
+            // Blocked or not is all a segment asks: a root proven to exist is not narrowed.
+            let root = self.plan.root.existence();
+            let r = self.cast(
+                ev,
+                &ray,
+                Interval::new_unchecked(0.0, 1.0),
+                (None, &root),
+                c,
+            );
             segment_visibility(r, self.finder.is_reliable())
         }))
     }

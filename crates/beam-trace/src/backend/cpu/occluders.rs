@@ -45,9 +45,16 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
             origin: from,
             dir: to - from,
         };
-        let r = self
-            .queries
-            .cast(self.ev, &ray, Interval::new_unchecked(start, 1.0), None, c);
+        // Blocked or not is what a segment asks (and, for the occluder cache, a point near
+        // an occluder): a root proven to exist is not narrowed.
+        let root = self.queries.plan.root.existence();
+        let r = self.queries.cast(
+            self.ev,
+            &ray,
+            Interval::new_unchecked(start, 1.0),
+            (None, &root),
+            c,
+        );
         let at = match r {
             RootResult::Root { t, .. } | RootResult::Undecided { t } if t.mid().is_finite() => {
                 Some(t.mid())

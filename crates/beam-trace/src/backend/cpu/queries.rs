@@ -18,7 +18,7 @@ use crate::frustum::{TileCells, first_cells};
 use crate::grid::{Grid, GridEval};
 use crate::plan::Plan;
 use crate::ray::{Beam, BeamEval, Precision, Ray};
-use crate::root::{Escalating, RayFn, RootCounters, RootFinder, RootResult};
+use crate::root::{Escalating, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
 use crate::sample::Hit;
 use crate::scene::Scene;
 use crate::scene::geometry::GeometryEval;
@@ -326,26 +326,26 @@ impl CpuQueries<'_> {
     /// function of the `scope` of the beam the ray lies in where `t` is inside its
     /// parameters (see [`super::scoped`]), else through the grid's cells when there is a
     /// grid (each with its reduced function), else with the whole scene function; inside
-    /// the scene bounds.
+    /// the scene bounds. `root` is the plan's root settings, or their
+    /// [`existence`](RootSettings::existence) form where only whether a root exists matters.
     pub(super) fn cast(
         &self,
         ev: &mut Evals,
         ray: &Ray,
         t: Interval<f64>,
-        scope: Option<&BeamScope>,
+        (scope, root): (Option<&BeamScope>, &RootSettings),
         c: &mut RootCounters,
     ) -> RootResult {
-        let root = &self.plan.root;
         let t = t.intersection(forward());
         if t.is_empty() {
             return RootResult::NoRoot;
         }
         if let Some(eval) = ev.scoped.within(&self.scoped, scope, t) {
-            return self.first_root_in_bounds(eval, ray, t, c);
+            return self.first_root_in_bounds(eval, ray, (t, root), c);
         }
         match (&self.grid, ev.grid.as_mut()) {
             (Some(g), Some(gev)) => g.first_root_within(gev, ray, t, &self.finder, root, c),
-            _ => self.first_root_in_bounds(&mut ev.geo.beam, ray, t, c),
+            _ => self.first_root_in_bounds(&mut ev.geo.beam, ray, (t, root), c),
         }
     }
 
@@ -355,13 +355,13 @@ impl CpuQueries<'_> {
         &self,
         eval: &mut BeamEval,
         ray: &Ray,
-        t: Interval<f64>,
+        (t, root): (Interval<f64>, &RootSettings),
         c: &mut RootCounters,
     ) -> RootResult {
         match ray.beam().t_range_within(&self.scene.geometry.bounds(), t) {
             Some(t) => {
                 eval.set_ray(ray);
-                self.finder.first_root(eval, t, &self.plan.root, c)
+                self.finder.first_root(eval, t, root, c)
             }
             None => RootResult::NoRoot,
         }
