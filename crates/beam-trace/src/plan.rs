@@ -183,6 +183,18 @@ impl fmt::Display for Pass {
 }
 
 impl Plan {
+    /// The root settings of primary rays (the pixels' rays, their sub-rays and the rays of
+    /// undecided pixels): [`root`](Self::root), without narrowing a root proven unique
+    /// where hits are not narrowed ([`narrow_hits`](Self::narrow_hits) off: the image
+    /// needs only whether each ray meets a surface, and no point on it).
+    pub fn ray_root(&self) -> RootSettings {
+        if self.narrow_hits {
+            self.root
+        } else {
+            self.root.existence()
+        }
+    }
+
     /// The plan for `scene`.
     pub fn for_scene(scene: &Scene) -> Plan {
         let s = &scene.settings;

@@ -106,8 +106,9 @@ impl Queries for CpuQueries<'_> {
     }
 
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error> {
+        let root = self.plan.ray_root();
         Ok(self.map(queries, true, |ev, q, c| {
-            self.cast(ev, &q.ray, q.window, (q.scope.as_ref(), &self.plan.root), c)
+            self.cast(ev, &q.ray, q.window, (q.scope.as_ref(), &root), c)
         }))
     }
 
