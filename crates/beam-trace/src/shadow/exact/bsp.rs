@@ -84,6 +84,8 @@ pub(super) struct Bsp {
     occluders: Vec<Occluder>,
     light: Patch,
     rng: u64,
+    /// The nodes an insertion has still to visit (kept to reuse its memory).
+    pending: Vec<u32>,
     pub work: BspWork,
 }
 
@@ -96,6 +98,7 @@ impl Bsp {
             occluders,
             light,
             rng: seed,
+            pending: Vec::new(),
             work: BspWork::default(),
         };
         bsp.reset();
@@ -175,8 +178,11 @@ impl Bsp {
 
     /// Sorts occluder `o` into the subtree at `root` (Algorithm 1's `insertOccluder`).
     fn insert(&mut self, root: u32, o: u32) {
-        let mut stack = vec![root];
-        let corners = self.light.corners();
+        let mut stack = std::mem::take(&mut self.pending);
+        stack.push(root);
+        // Opposite corners first: a mixed occluder shows both signs sooner.
+        let [c0, c1, c2, c3] = self.light.corners();
+        let corners = [c0, c2, c1, c3];
         while let Some(n) = stack.pop() {
             match &mut self.nodes[n as usize] {
                 Node::Leaf { visible, occluders } => {
@@ -185,13 +191,18 @@ impl Bsp {
                     }
                 }
                 &mut Node::Inner { a, b, pos, neg } => {
+                    // The signs over the light's corners and the occluder's vertices; once
+                    // both are seen the occluder goes both ways, whatever the other lines say.
                     let (mut plus, mut minus) = (false, false);
-                    for &l in &corners {
+                    'lines: for &l in &corners {
                         for &p in &self.occluders[o as usize].original {
                             match side_sign(a, b, l, p) {
                                 1 => plus = true,
                                 -1 => minus = true,
                                 _ => {}
+                            }
+                            if plus && minus {
+                                break 'lines;
                             }
                         }
                     }
@@ -208,6 +219,7 @@ impl Bsp {
                 }
             }
         }
+        self.pending = stack;
     }
 
     /// Expands the undefined leaf `n`: a random occluder of its list becomes its chain, the
