@@ -12,7 +12,6 @@ use std::sync::Mutex;
 use std::time::Instant;
 
 use glam::DVec3;
-use interval_core::Interval;
 use rayon::prelude::*;
 
 use super::query::{
@@ -25,7 +24,6 @@ use crate::error::Error;
 use crate::frustum::TileCells;
 use crate::grid::Grid;
 use crate::plan::{Pass, Plan};
-use crate::ray::Ray;
 use crate::root::{Escalating, RootFinder, RootResult};
 use crate::sample::Hit;
 use crate::scene::{Material, Scene};
@@ -184,19 +182,7 @@ impl Queries for CpuQueries<'_> {
 
     fn segments(&self, queries: &[SegmentQuery]) -> Result<Answers<Visibility>, Error> {
         Ok(self.map(queries, false, |ev, q, c| {
-            let ray = Ray {
-                origin: q.from,
-                dir: q.to - q.from,
-            };
-            // Blocked or not is all a segment asks: a root proven to exist is not narrowed.
-            let root = self.plan.root.existence();
-            let r = self.cast(
-                ev,
-                &ray,
-                Interval::new_unchecked(0.0, 1.0),
-                (None, &root),
-                c,
-            );
+            let r = self.segment_search(ev, (q.from, q.to), 0.0, c);
             segment_visibility(r, self.finder.is_reliable())
         }))
     }

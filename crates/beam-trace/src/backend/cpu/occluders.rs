@@ -41,20 +41,7 @@ pub(super) struct SceneOccluders<'q, 'a, 'e> {
 
 impl Occluders for SceneOccluders<'_, '_, '_> {
     fn segment(&mut self, from: DVec3, to: DVec3, start: f64, c: &mut RootCounters) -> Occlusion {
-        let ray = Ray {
-            origin: from,
-            dir: to - from,
-        };
-        // Blocked or not is what a segment asks (and, for the occluder cache, a point near
-        // an occluder): a root proven to exist is not narrowed.
-        let root = self.queries.plan.root.existence();
-        let r = self.queries.cast(
-            self.ev,
-            &ray,
-            Interval::new_unchecked(start, 1.0),
-            (None, &root),
-            c,
-        );
+        let r = self.queries.segment_search(self.ev, (from, to), start, c);
         let at = match r {
             RootResult::Root { t, .. } | RootResult::Undecided { t } if t.mid().is_finite() => {
                 Some(t.mid())
@@ -178,6 +165,25 @@ impl CpuQueries<'_> {
                 BoxClass::Undecided { .. }
             )
         })
+    }
+
+    /// The search of the shadow segment `from → to` (`t = 1` at `to`) for `t ∈ [start, 1]`.
+    /// Blocked or not is what a segment asks (and, for the occluder cache, a point near an
+    /// occluder): a root proven to exist is not narrowed ([`RootSettings::existence`](crate::root::RootSettings::existence)).
+    pub(super) fn segment_search(
+        &self,
+        ev: &mut Evals,
+        (from, to): (DVec3, DVec3),
+        start: f64,
+        c: &mut RootCounters,
+    ) -> RootResult {
+        let ray = Ray {
+            origin: from,
+            dir: to - from,
+        };
+        let root = self.plan.root.existence();
+        let t = Interval::new_unchecked(start, 1.0);
+        self.cast(ev, &ray, t, (None, &root), c)
     }
 
     /// A shadow beam (rays `origin + t·dir` to the light at `t = 1`) searched for
