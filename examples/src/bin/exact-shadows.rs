@@ -63,6 +63,10 @@ struct Args {
     /// Skip the coherence ablation (its reset variant is the slowest part).
     #[arg(long)]
     no_coherence: bool,
+    /// Build each tile's tree without its region (insertions then keep every line from the
+    /// light through an occluder, not only those reaching the tile; the same fractions).
+    #[arg(long)]
+    no_region: bool,
     /// Multipliers of the light's side for the light-size table (area grows with the
     /// square).
     #[arg(long, value_delimiter = ',', default_value = "1,2,5,10")]
@@ -126,7 +130,7 @@ fn exact(
     size: usize,
     tile: usize,
     lights: &[Patch],
-    reset: bool,
+    (reset, region): (bool, bool),
 ) -> (Vec<f64>, f64, BspWork) {
     let floor = Plane {
         point: DVec3::ZERO,
@@ -163,6 +167,10 @@ fn exact(
                 let seed = (t as u64) << 8 | li as u64;
                 let mut ex =
                     ExactShadows::new(*light, floor, &occ, seed).expect("a light above the floor");
+                if region {
+                    ex.set_region(DVec3::new(x0, 0.0, z0), DVec3::new(x1, 0.0, z1))
+                        .expect("a tile is a box");
+                }
                 let points = rows.clone().flat_map(|r| cols.clone().map(move |c| (r, c)));
                 for (sum, (r, c)) in sums.iter_mut().zip(points) {
                     if reset {
@@ -259,8 +267,9 @@ fn run(args: &Args) -> Result<(), String> {
         args.light,
         rayon::current_num_threads()
     );
+    let region = !args.no_region;
     eprintln!("exact ...");
-    let (ex, t_exact, w) = exact(&tris, args.size, args.tile, &one, false);
+    let (ex, t_exact, w) = exact(&tris, args.size, args.tile, &one, (false, region));
     eprintln!("  {t_exact:.3} s");
     md += &format!(
         "## Equal time and equal quality\n\nexact: {:.3} s (merges {}, inner nodes {}, splits {}, fragments {}, largest tree {} nodes)\n\n| samples per point | time (s) | time / exact | RMSE | largest error |\n|---:|---:|---:|---:|---:|\n",
@@ -316,8 +325,8 @@ fn run(args: &Args) -> Result<(), String> {
     if !args.no_coherence {
         let small = (args.size / 4).max(args.tile);
         eprintln!("coherence ...");
-        let (a, ta, wa) = exact(&tris, small, args.tile, &one, false);
-        let (b, tb, wb) = exact(&tris, small, args.tile, &one, true);
+        let (a, ta, wa) = exact(&tris, small, args.tile, &one, (false, region));
+        let (b, tb, wb) = exact(&tris, small, args.tile, &one, (true, region));
         let same = a.iter().zip(&b).all(|(x, y)| (x - y).abs() < 1e-9);
         md += &format!(
             "\n## Coherence\n\nfloor {small}²: one tree per tile {ta:.3} s ({} merges); rebuilt for every query {tb:.3} s ({} merges): {:.1} × slower; same fractions: {same}\n",
@@ -331,7 +340,7 @@ fn run(args: &Args) -> Result<(), String> {
         let side = args.light * scale;
         eprintln!("light side {side} ...");
         let l = lights(side, 1);
-        let (_, t, w) = exact(&tris, args.size / 2, args.tile, &l, false);
+        let (_, t, w) = exact(&tris, args.size / 2, args.tile, &l, (false, region));
         eprintln!("  exact {t:.3} s");
         let (_, ts) = stochastic(&bvh, &floor_points(args.size / 2), &l, 16);
         md += &format!(
@@ -346,7 +355,7 @@ fn run(args: &Args) -> Result<(), String> {
     for &k in &args.light_counts {
         eprintln!("{} lights ...", k * k);
         let l = lights(args.light, k);
-        let (_, t, w) = exact(&tris, args.size / 2, args.tile, &l, false);
+        let (_, t, w) = exact(&tris, args.size / 2, args.tile, &l, (false, region));
         md += &format!(
             "| {} | {t:.3} | {:.4} | {} |\n",
             k * k,

@@ -77,12 +77,39 @@ impl BspWork {
     }
 }
 
+/// Whether some line `p → q` (`p` of `from`, `q` of `to`) lies on the positive side of the
+/// line `a → b`, and whether some lies on the negative side (exact signs). Stops once both
+/// are seen. By bilinearity of the side operator these are the signs of every line from a
+/// point of the convex hull of `from` to one of `to`.
+fn signs(a: DVec3, b: DVec3, from: &[DVec3], to: &[DVec3]) -> (bool, bool) {
+    let (mut plus, mut minus) = (false, false);
+    for &p in from {
+        for &q in to {
+            match side_sign(a, b, p, q) {
+                1 => plus = true,
+                -1 => minus = true,
+                _ => {}
+            }
+            if plus && minus {
+                return (true, true);
+            }
+        }
+    }
+    (plus, minus)
+}
+
 /// The tree of one light and one group of receivers.
 #[derive(Clone, Debug)]
 pub(super) struct Bsp {
     nodes: Vec<Node>,
     occluders: Vec<Occluder>,
     light: Patch,
+    /// The corners of a box holding every query point (empty: no box given). A line that
+    /// matters to an insertion reaches a query point `x` through a point `q` of the
+    /// occluder between the light and `x`; its side equals that of `q → x` times a positive
+    /// factor, so where the lines from the occluder's vertices to these corners all lie on
+    /// one side of a node's edge, so do the lines of every query that the occluder blocks.
+    region: Vec<DVec3>,
     rng: u64,
     /// The nodes an insertion has still to visit (kept to reuse its memory).
     pending: Vec<u32>,
@@ -97,6 +124,7 @@ impl Bsp {
             nodes: Vec::new(),
             occluders,
             light,
+            region: Vec::new(),
             rng: seed,
             pending: Vec::new(),
             work: BspWork::default(),
@@ -112,6 +140,25 @@ impl Bsp {
             visible: true,
             occluders: (0..self.occluders.len() as u32).collect(),
         });
+    }
+
+    /// Restricts the insertions to the lines that reach the box `[lo, hi]`, which must hold
+    /// every later query point (the caller checks it); the tree restarts from its root.
+    pub fn set_region(&mut self, lo: DVec3, hi: DVec3) {
+        let mut corners: Vec<DVec3> = (0..8)
+            .map(|k| {
+                DVec3::new(
+                    if k & 1 == 0 { lo.x } else { hi.x },
+                    if k & 2 == 0 { lo.y } else { hi.y },
+                    if k & 4 == 0 { lo.z } else { hi.z },
+                )
+            })
+            .collect();
+        corners.dedup();
+        corners.sort_by(|p, q| p.to_array().partial_cmp(&q.to_array()).expect("finite"));
+        corners.dedup();
+        self.region = corners;
+        self.reset();
     }
 
     /// The next pseudo-random number (SplitMix64).
@@ -191,20 +238,13 @@ impl Bsp {
                     }
                 }
                 &mut Node::Inner { a, b, pos, neg } => {
-                    // The signs over the light's corners and the occluder's vertices; once
-                    // both are seen the occluder goes both ways, whatever the other lines say.
-                    let (mut plus, mut minus) = (false, false);
-                    'lines: for &l in &corners {
-                        for &p in &self.occluders[o as usize].original {
-                            match side_sign(a, b, l, p) {
-                                1 => plus = true,
-                                -1 => minus = true,
-                                _ => {}
-                            }
-                            if plus && minus {
-                                break 'lines;
-                            }
-                        }
+                    let original = &self.occluders[o as usize].original;
+                    // The lines from the light's corners to the occluder's vertices; where
+                    // they lie on both sides, the lines from its vertices to the corners of
+                    // the receivers' region (see `Bsp::region`).
+                    let (mut plus, mut minus) = signs(a, b, &corners, original);
+                    if plus && minus && !self.region.is_empty() {
+                        (plus, minus) = signs(a, b, original, &self.region);
                     }
                     match (plus, minus) {
                         (true, false) => stack.push(pos),

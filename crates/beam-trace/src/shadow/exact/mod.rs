@@ -68,6 +68,12 @@ pub enum ExactError {
     /// A query point is not on the receiver's plane.
     #[error("query point {0:?} is not on the receiver's plane")]
     OffReceiver(DVec3),
+    /// A query point lies outside the box given by [`ExactShadows::set_region`].
+    #[error("query point {0:?} is outside the receivers' region")]
+    OutsideRegion(DVec3),
+    /// The receivers' region is not a box (`lo ≤ hi`, finite).
+    #[error("the receivers' region [{0:?}, {1:?}] is not a box with finite corners")]
+    BadRegion(DVec3, DVec3),
 }
 
 /// The exact visibility of one area light from the points of one planar receiver, through
@@ -77,6 +83,8 @@ pub struct ExactShadows {
     light: Patch,
     receiver: Plane,
     bsp: Bsp,
+    /// The box every query point must lie in ([`ExactShadows::set_region`]).
+    region: Option<(DVec3, DVec3)>,
     /// Occluders given, and those clipped away or dropped as degenerate.
     given: usize,
     dropped: usize,
@@ -169,6 +177,7 @@ impl ExactShadows {
             light,
             receiver,
             bsp: Bsp::new(light, kept, seed),
+            region: None,
             given: occluders.len(),
             dropped,
         })
@@ -187,6 +196,11 @@ impl ExactShadows {
         if self.receiver.height(x).abs() > tolerance {
             return Err(ExactError::OffReceiver(x));
         }
+        if let Some((lo, hi)) = self.region
+            && !(lo.cmple(x).all() && x.cmple(hi).all())
+        {
+            return Err(ExactError::OutsideRegion(x));
+        }
         let mut f = Fragment::whole();
         if let Some(n) = normal {
             // Above the horizon: (l(u, v) − x) · n ≥ 0.
@@ -201,6 +215,23 @@ impl ExactShadows {
             }
         }
         Ok(self.bsp.query(x, f))
+    }
+
+    /// Tells the tree that every later query point lies in the box `[lo, hi]` (a group's
+    /// receivers: a tile of the floor, a mesh triangle's bounding box). Insertions then
+    /// skip the branches that no line from the light through an occluder to that box can
+    /// reach, which makes smaller trees for the same fractions; queries outside the box are
+    /// refused ([`ExactError::OutsideRegion`]). The tree restarts from its root.
+    ///
+    /// # Errors
+    /// [`ExactError::BadRegion`] unless `lo ≤ hi` on every axis with finite corners.
+    pub fn set_region(&mut self, lo: DVec3, hi: DVec3) -> Result<(), ExactError> {
+        if !(lo.is_finite() && hi.is_finite() && lo.cmple(hi).all()) {
+            return Err(ExactError::BadRegion(lo, hi));
+        }
+        self.region = Some((lo, hi));
+        self.bsp.set_region(lo, hi);
+        Ok(())
     }
 
     /// Back to the unexpanded tree (every query then pays the whole construction: the

@@ -274,3 +274,63 @@ fn a_square_split_into_two_triangles_leaks_no_light_along_the_diagonal() {
         assert!((got - want).abs() < 1e-9, "at {x}: {got} against {want}");
     }
 }
+
+/// A tree told the box of its query points answers as one without it, with fewer merges
+/// where the box is small, and refuses points outside the box and boxes that are none.
+#[test]
+fn a_region_changes_the_cost_not_the_answer() {
+    let (light, floor) = setup();
+    // Twelve triangles around a ring, and the two squares of the closed-form tests.
+    let mut occ: Vec<Vec<DVec3>> = (0..12)
+        .map(|i| {
+            let a = f64::from(i) * 0.52;
+            let c = DVec3::new(0.5 * a.cos(), 0.5 + 0.08 * f64::from(i), 0.5 * a.sin());
+            vec![
+                c + DVec3::new(0.2, 0.0, 0.0),
+                c + DVec3::new(-0.1, 0.05, 0.17),
+                c + DVec3::new(-0.1, -0.05, -0.17),
+            ]
+        })
+        .collect();
+    occ.push(rect(-0.3, 0.2, -0.25, 0.3, 1.0));
+    occ.push(rect(0.0, 0.6, -0.1, 0.5, 1.4));
+    let (mut merges, mut merges_in_regions) = (0, 0);
+    // Tiles of 0.34 × 0.26 over the floor points, each its own tree.
+    for (ti, tk) in (-3..3).flat_map(|i| (-3..3).map(move |k| (i, k))) {
+        let (x0, z0) = (0.34 * f64::from(ti) - 0.17, 0.26 * f64::from(tk) - 0.13);
+        let (lo, hi) = (
+            DVec3::new(x0, 0.0, z0),
+            DVec3::new(x0 + 0.34, 0.0, z0 + 0.26),
+        );
+        let points: Vec<DVec3> = floor_points()
+            .into_iter()
+            .filter(|x| lo.cmple(*x).all() && x.cmple(hi).all())
+            .collect();
+        let mut plain = ExactShadows::new(light, floor, &occ, 5).unwrap();
+        let mut boxed = ExactShadows::new(light, floor, &occ, 5).unwrap();
+        boxed.set_region(lo, hi).unwrap();
+        for &x in &points {
+            let (a, b) = (
+                plain.visible_fraction(x, Some(DVec3::Y)).unwrap(),
+                boxed.visible_fraction(x, Some(DVec3::Y)).unwrap(),
+            );
+            assert!((a - b).abs() < 1e-9, "at {x}: {a} against {b}");
+        }
+        merges += plain.work().merges;
+        merges_in_regions += boxed.work().merges;
+        let outside = hi + DVec3::new(0.01, 0.0, 0.0);
+        assert_eq!(
+            boxed.visible_fraction(outside, None),
+            Err(ExactError::OutsideRegion(outside))
+        );
+    }
+    assert!(
+        merges_in_regions < merges,
+        "{merges_in_regions} merges in regions against {merges}"
+    );
+    let mut ex = ExactShadows::new(light, floor, &occ, 5).unwrap();
+    let (lo, hi) = (DVec3::ONE, DVec3::ZERO);
+    assert_eq!(ex.set_region(lo, hi), Err(ExactError::BadRegion(lo, hi)));
+    let nan = DVec3::new(f64::NAN, 0.0, 0.0);
+    assert!(ex.set_region(nan, DVec3::ONE).is_err());
+}
