@@ -117,7 +117,7 @@ mod tests {
                 // On the plane of a, b, c up to rounding, nudged by a few ulps.
                 let (s, t) = (next(), next());
                 let p = a + s * (b - a) + t * (c - a);
-                let k = (i % 7) as i32 - 3;
+                let k = i % 7 - 3;
                 DVec3::new(
                     p.x,
                     p.y,
