@@ -69,6 +69,7 @@ pub(super) fn side(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     #[test]
     fn sign_convention_matches_the_determinant() {
@@ -87,48 +88,54 @@ mod tests {
         assert_ne!(side_sign(a, b, c, d), 0);
     }
 
-    /// The filtered sign is the adaptive predicate's, on random points and on points a few
-    /// ulps off a common plane (where the filter must hand over).
-    #[test]
-    fn the_filter_agrees_with_the_adaptive_predicate() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (state >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    /// The adaptive predicate's sign of `side(a → b, c → d)`.
+    fn adaptive(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
+        let p = |v: DVec3| robust::Coord3D {
+            x: v.x,
+            y: v.y,
+            z: v.z,
         };
-        let exact = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| {
-            let p = |v: DVec3| robust::Coord3D {
-                x: v.x,
-                y: v.y,
-                z: v.z,
-            };
-            let o = robust::orient3d(p(a), p(b), p(c), p(d));
-            -(o.signum() as i8) * i8::from(o != 0.0)
-        };
-        let (mut handed_over, mut n) = (0, 0);
-        for i in 0..20_000 {
-            let mut v = || DVec3::new(next(), next(), next());
-            let (a, b, c) = (v(), v(), v());
-            let d = if i % 2 == 0 {
-                v()
-            } else {
-                // On the plane of a, b, c up to rounding, nudged by a few ulps.
-                let (s, t) = (next(), next());
+        let o = robust::orient3d(p(a), p(b), p(c), p(d));
+        -(o.signum() as i8) * i8::from(o != 0.0)
+    }
+
+    fn point() -> impl Strategy<Value = DVec3> {
+        (-1.0..1.0f64, -1.0..1.0f64, -1.0..1.0f64).prop_map(|(x, y, z)| DVec3::new(x, y, z))
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4096))]
+
+        /// The filtered sign is the adaptive predicate's, on random points and on points a
+        /// few ulps off the plane of the other three (where the filter must hand over).
+        #[test]
+        fn the_filter_agrees_with_the_adaptive_predicate(
+            (a, b, c, d) in (point(), point(), point(), point()),
+            (s, t) in (-1.0..1.0f64, -1.0..1.0f64),
+            ulps in -3i32..=3,
+            near in any::<bool>(),
+        ) {
+            let d = if near {
                 let p = a + s * (b - a) + t * (c - a);
-                let k = i % 7 - 3;
-                DVec3::new(
-                    p.x,
-                    p.y,
-                    p.z + f64::from(k) * p.z.abs().max(1e-300) * f64::EPSILON,
-                )
+                DVec3::new(p.x, p.y, p.z + f64::from(ulps) * p.z.abs().max(1e-300) * f64::EPSILON)
+            } else {
+                d
             };
-            handed_over += usize::from(filtered(a, b, c, d).is_none());
-            n += 1;
-            assert_eq!(side_sign(a, b, c, d), exact(a, b, c, d), "{a} {b} {c} {d}");
+            prop_assert_eq!(side_sign(a, b, c, d), adaptive(a, b, c, d));
         }
-        // The near-plane half exercises the adaptive path.
-        assert!(handed_over > n / 10, "{handed_over} of {n}");
+    }
+
+    #[test]
+    fn the_filter_hands_nearly_flat_cases_over() {
+        // d on the plane of a, b, c up to the rounding of its coordinates.
+        let (a, b, c) = (
+            DVec3::new(0.1, 0.2, 0.3),
+            DVec3::new(0.7, -0.4, 0.9),
+            DVec3::new(-0.3, 0.8, 0.5),
+        );
+        let d = a + 0.37 * (b - a) + 0.21 * (c - a);
+        assert_eq!(filtered(a, b, c, d), None);
+        assert_eq!(side_sign(a, b, c, d), adaptive(a, b, c, d));
+        assert!(filtered(a, b, c, d + DVec3::Z).is_some());
     }
 }

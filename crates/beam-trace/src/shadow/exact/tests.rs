@@ -186,10 +186,9 @@ fn triangles_anywhere_match_dense_segment_sampling() {
     eprintln!("largest difference from {n}² samples: {worst:.2e}");
 }
 
-#[test]
-fn coherence_and_seeds_change_the_cost_not_the_answer() {
-    let (light, floor) = setup();
-    let occ: Vec<Vec<DVec3>> = (0..12)
+/// Twelve small triangles around a ring, climbing from height 0.5 to 1.38.
+fn ring() -> Vec<Vec<DVec3>> {
+    (0..12)
         .map(|i| {
             let a = f64::from(i) * 0.52;
             let c = DVec3::new(0.5 * a.cos(), 0.5 + 0.08 * f64::from(i), 0.5 * a.sin());
@@ -199,7 +198,13 @@ fn coherence_and_seeds_change_the_cost_not_the_answer() {
                 c + DVec3::new(-0.1, -0.05, -0.17),
             ]
         })
-        .collect();
+        .collect()
+}
+
+#[test]
+fn coherence_and_seeds_change_the_cost_not_the_answer() {
+    let (light, floor) = setup();
+    let occ = ring();
     let points = floor_points();
     let answers = |seed: u64, reset: bool| {
         let mut ex = ExactShadows::new(light, floor, &occ, seed).unwrap();
@@ -281,17 +286,7 @@ fn a_square_split_into_two_triangles_leaks_no_light_along_the_diagonal() {
 fn a_region_changes_the_cost_not_the_answer() {
     let (light, floor) = setup();
     // Twelve triangles around a ring, and the two squares of the closed-form tests.
-    let mut occ: Vec<Vec<DVec3>> = (0..12)
-        .map(|i| {
-            let a = f64::from(i) * 0.52;
-            let c = DVec3::new(0.5 * a.cos(), 0.5 + 0.08 * f64::from(i), 0.5 * a.sin());
-            vec![
-                c + DVec3::new(0.2, 0.0, 0.0),
-                c + DVec3::new(-0.1, 0.05, 0.17),
-                c + DVec3::new(-0.1, -0.05, -0.17),
-            ]
-        })
-        .collect();
+    let mut occ = ring();
     occ.push(rect(-0.3, 0.2, -0.25, 0.3, 1.0));
     occ.push(rect(0.0, 0.6, -0.1, 0.5, 1.4));
     let (mut merges, mut merges_in_regions) = (0, 0);
