@@ -154,7 +154,7 @@ impl Bsp {
                 )
             })
             .collect();
-        corners.dedup();
+        // A flat box (a floor tile) has each corner twice.
         corners.sort_by(|p, q| p.to_array().partial_cmp(&q.to_array()).expect("finite"));
         corners.dedup();
         self.region = corners;

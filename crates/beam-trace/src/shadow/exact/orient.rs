@@ -35,6 +35,17 @@ fn filtered(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Option<f64> {
     (det > bound || -det > bound).then_some(det)
 }
 
+/// `orient3d(a, b, c, d)` by Shewchuk's adaptive predicate (the `robust` crate): its sign is
+/// exact for every input.
+fn adaptive(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
+    let p = |v: DVec3| robust::Coord3D {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    };
+    robust::orient3d(p(a), p(b), p(c), p(d))
+}
+
 /// The sign (−1, 0, 1) of `side(a → b, c → d) = det[b − a, c − a, d − a]`, exactly.
 pub(super) fn side_sign(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
     // `orient3d(a, b, c, d) = det[a − d, b − d, c − d] = −det[b − a, c − a, d − a]`.
@@ -43,14 +54,7 @@ pub(super) fn side_sign(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
         // A shared point makes the lines meet: zero, without the adaptive stages that an
         // exact zero would run through (neighbouring mesh triangles share vertices).
         None if d == a || d == b || c == a || c == b || c == d || a == b => return 0,
-        None => {
-            let p = |v: DVec3| robust::Coord3D {
-                x: v.x,
-                y: v.y,
-                z: v.z,
-            };
-            robust::orient3d(p(a), p(b), p(c), p(d))
-        }
+        None => adaptive(a, b, c, d),
     };
     if o < 0.0 {
         1
@@ -89,13 +93,8 @@ mod tests {
     }
 
     /// The adaptive predicate's sign of `side(a → b, c → d)`.
-    fn adaptive(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
-        let p = |v: DVec3| robust::Coord3D {
-            x: v.x,
-            y: v.y,
-            z: v.z,
-        };
-        let o = robust::orient3d(p(a), p(b), p(c), p(d));
+    fn adaptive_sign(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
+        let o = adaptive(a, b, c, d);
         -(o.signum() as i8) * i8::from(o != 0.0)
     }
 
@@ -121,7 +120,7 @@ mod tests {
             } else {
                 d
             };
-            prop_assert_eq!(side_sign(a, b, c, d), adaptive(a, b, c, d));
+            prop_assert_eq!(side_sign(a, b, c, d), adaptive_sign(a, b, c, d));
         }
     }
 
@@ -135,7 +134,7 @@ mod tests {
         );
         let d = a + 0.37 * (b - a) + 0.21 * (c - a);
         assert_eq!(filtered(a, b, c, d), None);
-        assert_eq!(side_sign(a, b, c, d), adaptive(a, b, c, d));
+        assert_eq!(side_sign(a, b, c, d), adaptive_sign(a, b, c, d));
         assert!(filtered(a, b, c, d + DVec3::Z).is_some());
     }
 }
