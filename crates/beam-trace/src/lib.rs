@@ -79,6 +79,7 @@ pub mod frustum;
 pub mod grid;
 pub mod ibox;
 pub mod image;
+pub mod mesh;
 pub mod plan;
 pub mod progress;
 pub mod ray;

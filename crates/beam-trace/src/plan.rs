@@ -236,9 +236,12 @@ impl Plan {
             }
         };
         let leaves = scene.geometry.leaves();
+        let first_colour = leaves[0].material.color;
         let one_colour = leaves
             .iter()
-            .all(|l| l.material.color == leaves[0].material.color);
+            .map(|l| l.material.color)
+            .chain(scene.meshes.iter().map(|m| m.material.color))
+            .all(|c| c == first_colour);
         let hard_shadow_lights = count(|l| l.as_point().is_some());
         let soft_shadow_lights = count(|l| l.as_area().is_some());
         Plan {

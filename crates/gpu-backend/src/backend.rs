@@ -67,6 +67,10 @@ impl Backend for GpuBackend {
             // root where the CPU proves none): those queries go back to the CPU backend.
             return no("the kernels have no two-sided test of domain boundaries");
         }
+        if searches && !scene.meshes.is_empty() {
+            // The kernels search the implicit surfaces only; the CPU searches both.
+            return no("the kernels do not search triangle meshes");
+        }
         match kind {
             QueryKind::Beams | QueryKind::Roots | QueryKind::Segments => Support::Yes,
             QueryKind::HitPoints => no(

@@ -156,7 +156,7 @@ impl<'a> Pipeline<'a> {
             .collect();
 
         if plan.runs(Pass::Normals) {
-            passes.push(shading::normals(q, &mut samples, progress)?);
+            passes.push(shading::normals(q, scene, &mut samples, progress)?);
         } else {
             passes.push(PassStats::skipped(Pass::Normals.name()));
         }

@@ -9,21 +9,25 @@ use crate::backend::{Queries, ShadeBatch, ShadeLight, ShadeSample};
 use crate::error::Error;
 use crate::plan::Pass;
 use crate::progress::Progress;
+use crate::sample::Hit;
 use crate::scene::Scene;
 use crate::stats::PassStats;
 use crate::stats::counters::{NormalCounters, ShadingCounters};
 
-/// Unit normals of the hit samples from the gradient.
+/// Unit normals of the hit samples of implicit surfaces from the gradient (a hit on a mesh
+/// has its triangle's normal from its hit record).
 pub(super) fn normals(
     q: &dyn Queries,
+    scene: &Scene,
     pixels: &mut Pixels,
     progress: &dyn Progress,
 ) -> Result<PassStats, Error> {
     let t0 = Instant::now();
+    let implicit = |h: &Hit| scene.mesh_of_leaf(h.leaf).is_none();
     let points: Vec<_> = pixels
         .samples
         .iter()
-        .filter_map(|s| s.hit.map(|h| h.point))
+        .filter_map(|s| s.hit.filter(implicit).map(|h| h.point))
         .collect();
     progress.begin(Pass::Normals.name(), 1);
     let answers = q.normals(&points)?;
@@ -33,7 +37,11 @@ pub(super) fn normals(
         search: answers.search,
         ..NormalCounters::default()
     };
-    let hits = pixels.samples.iter_mut().filter_map(|s| s.hit.as_mut());
+    let hits = pixels
+        .samples
+        .iter_mut()
+        .filter_map(|s| s.hit.as_mut())
+        .filter(|h| implicit(h));
     for (hit, n) in hits.zip(answers.values) {
         match n {
             Some(n) => hit.normal = n,
@@ -54,7 +62,6 @@ pub(super) fn shading(
     vis: &[f32],
 ) -> Result<(Vec<[f32; 3]>, PassStats), Error> {
     let t0 = Instant::now();
-    let leaves = scene.geometry.leaves();
     let nl = scene.lights.len();
     let samples = &pixels.samples;
     // The hit samples, and each sample's rank among them (its colour's index).
@@ -84,7 +91,7 @@ pub(super) fn shading(
                     point: h.point,
                     normal: h.normal,
                     to_eye: h.to_eye,
-                    material: leaves[h.leaf as usize].material,
+                    material: scene.material_of(h.leaf),
                 }
             })
             .collect();
@@ -105,7 +112,7 @@ pub(super) fn shading(
     } else {
         hit_samples
             .iter()
-            .map(|&j| leaves[hit(j).leaf as usize].material.color)
+            .map(|&j| scene.material_of(hit(j).leaf).color)
             .collect()
     };
     let image = (0..pixels.len())

@@ -105,6 +105,49 @@ impl RootResult {
         }
     }
 
+    /// The first root of the union of two sets searched over the same window, from the
+    /// answers `self` and `other` of their searches (the first root along the ray of
+    /// either).
+    ///
+    /// A root proven to end before the other answer begins comes first as it is; where the
+    /// two overlap, the first root lies between the earlier start and the earlier end, and
+    /// a root is proven there only if the answer that ends first proves one (uniqueness is
+    /// not kept). An undecided answer keeps undecided everything from the earlier start on.
+    pub fn first_of(self, other: RootResult) -> RootResult {
+        use RootResult::{NoRoot, Root, Undecided};
+        match (self, other) {
+            (NoRoot, x) | (x, NoRoot) => x,
+            (Undecided { t: a }, Undecided { t: b }) => Undecided {
+                t: a.convex_hull(b),
+            },
+            (Undecided { t: u }, Root { t, proof }) | (Root { t, proof }, Undecided { t: u }) => {
+                if t.sup() < u.inf() {
+                    Root { t, proof }
+                } else {
+                    Undecided {
+                        t: Interval::new_unchecked(t.inf().min(u.inf()), u.sup().max(t.sup())),
+                    }
+                }
+            }
+            (Root { t: a, proof: pa }, Root { t: b, proof: pb }) => {
+                if a.sup() < b.inf() {
+                    self
+                } else if b.sup() < a.inf() {
+                    other
+                } else {
+                    let ends_first = if a.sup() <= b.sup() { pa } else { pb };
+                    Root {
+                        t: Interval::new_unchecked(a.inf().min(b.inf()), a.sup().min(b.sup())),
+                        proof: match ends_first {
+                            Proof::Possible => Proof::Possible,
+                            _ => Proof::Exists,
+                        },
+                    }
+                }
+            }
+        }
+    }
+
     /// The root enclosure, if any.
     pub fn root(&self) -> Option<Interval<f64>> {
         match *self {

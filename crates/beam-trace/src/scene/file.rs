@@ -25,6 +25,7 @@ use super::csg::{Ref, csg_tree, ref_path, resolve_csg};
 use super::diagnostics::Doc;
 use super::geometry::{Csg, Geometry, Leaf};
 use super::lights::lights;
+use super::mesh::{build_meshes, scene_bounds};
 use super::model::{Light, PointLight, Scene};
 use super::schema::{RawCamera, RawRender, RawScene, RawSurface};
 use super::settings::render_settings;
@@ -104,6 +105,7 @@ fn build(
         order_names.push(name);
     }
     let (kids, _) = resolve_csg(doc, &raw.csg, &names, &order_names)?;
+    let meshes = build_meshes(doc, &raw.meshes, base, &order_names)?;
     // Which nodes are drawn on their own, and which surfaces are used at all.
     let mut used_surface = vec![false; raw.surfaces.len()];
     let mut used_csg = vec![false; raw.csg.len()];
@@ -171,7 +173,7 @@ fn build(
         })
         .collect();
     let geometry = Geometry::new(geo, leaves, objects).map_err(|e| doc.err("", e))?;
-    let (camera, auto_light) = camera(doc, &raw.camera, &geometry.bounds())?;
+    let (camera, auto_light) = camera(doc, &raw.camera, &scene_bounds(&geometry, &meshes))?;
     let lights = lights(doc, &raw.lights)?;
     Ok((
         Scene {
@@ -181,6 +183,7 @@ fn build(
             ambient,
             lights,
             geometry,
+            meshes,
             settings,
             proofs: None,
         },
@@ -426,6 +429,7 @@ impl Scene {
                 catalog: Some(name.to_string()),
                 ..RawSurface::default()
             }],
+            meshes: Vec::new(),
             csg: Vec::new(),
             lights: Vec::new(),
             render: RawRender::default(),

@@ -17,6 +17,7 @@ mod file;
 pub mod geometry;
 mod lights;
 mod material;
+mod mesh;
 mod model;
 mod schema;
 mod settings;
@@ -28,6 +29,7 @@ pub use block::BlockMismatch;
 pub use file::DEFAULT_SCENE;
 pub use geometry::{Csg, Geometry, Leaf};
 pub use material::Material;
+pub use mesh::MeshSurface;
 pub use model::{
     AaMode, AreaLight, Light, MAX_GRID_RESOLUTION, PointLight, PrimaryMode, RenderSettings, Scene,
     auto_grid_resolution,

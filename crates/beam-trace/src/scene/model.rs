@@ -5,6 +5,7 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::geometry::Geometry;
+use super::mesh::MeshSurface;
 use crate::camera::Camera;
 use crate::free_ranges::BlockProofs;
 use crate::ray::Precision;
@@ -330,6 +331,9 @@ pub struct Scene {
     pub lights: Vec<Light>,
     /// The compiled geometry.
     pub geometry: Geometry,
+    /// Triangle meshes beside the implicit surfaces. Mesh `k` shades the samples of leaf
+    /// `geometry.leaves().len() + k` ([`Scene::material_of`]).
+    pub meshes: Vec<MeshSurface>,
     /// Render settings.
     pub settings: RenderSettings,
     /// Proofs shared with a block of animation frames: recorded while the block's scene is

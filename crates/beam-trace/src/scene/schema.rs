@@ -16,6 +16,8 @@ pub(super) struct RawScene {
     #[serde(default)]
     pub(super) csg: Vec<RawCsg>,
     #[serde(default)]
+    pub(super) meshes: Vec<RawMesh>,
+    #[serde(default)]
     pub(super) lights: Vec<RawLight>,
     #[serde(default)]
     pub(super) render: RawRender,
@@ -50,6 +52,18 @@ pub(super) struct RawSurface {
     #[serde(default)]
     pub(super) material: RawMaterial,
     pub(super) visible: Option<bool>,
+}
+
+/// A triangle mesh: an OBJ file or inline polygons.
+#[derive(Deserialize, Default)]
+#[serde(deny_unknown_fields)]
+pub(super) struct RawMesh {
+    pub(super) name: Option<String>,
+    pub(super) obj: Option<String>,
+    pub(super) polygons: Option<Vec<Vec<[f64; 3]>>>,
+    pub(super) transform: Option<RawTransform>,
+    #[serde(default)]
+    pub(super) material: RawMaterial,
 }
 
 #[derive(Deserialize)]

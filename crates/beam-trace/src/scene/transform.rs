@@ -102,6 +102,14 @@ fn rotation_matrix(r: Rotation) -> Option<Mat3> {
 }
 
 impl Affine {
+    /// The world point `M · p + t` of the local point `p`, computed in `f64` (each
+    /// coordinate a sum of three products and the translation, left to right).
+    pub fn map_point(&self, p: DVec3) -> DVec3 {
+        let row =
+            |i: usize| self.m[i][0] * p.x + self.m[i][1] * p.y + self.m[i][2] * p.z + self.t[i];
+        DVec3::new(row(0), row(1), row(2))
+    }
+
     /// `translate ∘ rotate ∘ scale`, or `None` when a part is not finite, an axis is zero
     /// or a scale factor is zero (a singular map).
     pub fn new(translate: [f64; 3], rotate: Option<Rotation>, scale: [f64; 3]) -> Option<Self> {

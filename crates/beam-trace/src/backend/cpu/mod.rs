@@ -23,6 +23,7 @@ use crate::aa::{LightSource, shading_variation};
 use crate::error::Error;
 use crate::frustum::TileCells;
 use crate::grid::Grid;
+use crate::mesh::MeshIndex;
 use crate::plan::{Pass, Plan};
 use crate::root::{Escalating, RootFinder, RootResult};
 use crate::sample::Hit;
@@ -86,6 +87,8 @@ impl Backend for Cpu {
                 grid,
                 finder: Escalating::new(plan.root_finder.finder()),
                 scoped,
+                meshes: (!scene.meshes.is_empty())
+                    .then(|| MeshIndex::new(scene.meshes.iter().map(|m| m.triangles.as_slice()))),
                 pool: Mutex::new(Vec::new()),
             }),
             passes: vec![stats],
@@ -99,6 +102,15 @@ impl Queries for CpuQueries<'_> {
     }
 
     fn first_cells(&self, queries: &[CellQuery]) -> Result<Answers<TileCells>, Error> {
+        if !self.scene.meshes.is_empty() {
+            return Err(Error::Backend {
+                backend: "cpu".into(),
+                message: "the frustum octree (primary = \"octree\") does not search triangle \
+                          meshes; render this scene with primary = \"screen-boxes\", \
+                          \"screen-rays\" or \"per-pixel\""
+                    .into(),
+            });
+        }
         // A tile is much work: one per piece.
         Ok(self.map_pieces(queries, 1, true, |ev, q, c| self.cells(ev, q, c)))
     }

@@ -4,7 +4,7 @@
 use glam::DVec3;
 use interval_core::Interval;
 
-use super::queries::{CpuQueries, Evals};
+use super::queries::{CpuQueries, Evals, with_mesh};
 use crate::aa::{facing, shadow_origins};
 use crate::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
 use crate::ibox::{IBox, ipoint};
@@ -191,6 +191,24 @@ impl CpuQueries<'_> {
     /// [`BoxClass::Miss`] proves that no ray meets a surface there; with `inclusion`,
     /// [`BoxClass::Hit`] that every ray does; else [`BoxClass::Undecided`].
     pub(super) fn shadow_beam(
+        &self,
+        ev: &mut Evals,
+        beam: &Beam,
+        (start, inclusion): (f64, bool),
+        settings: &BeamSettings,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        let window = Interval::new_unchecked(start, 1.0);
+        let implicit = self.shadow_beam_implicit(ev, beam, (start, inclusion), settings, c);
+        // Blocked by the implicit surfaces is blocked whatever the triangles do.
+        match (implicit, self.mesh_beam(beam, window)) {
+            (class @ BoxClass::Hit { .. }, _) | (class, None) => class,
+            (class, Some(tm)) => with_mesh(class, tm),
+        }
+    }
+
+    /// [`shadow_beam`](Self::shadow_beam) against the implicit surfaces alone.
+    fn shadow_beam_implicit(
         &self,
         ev: &mut Evals,
         beam: &Beam,

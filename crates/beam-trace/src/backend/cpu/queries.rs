@@ -16,6 +16,7 @@ use crate::beam::{
 use crate::free_ranges::BeamKey;
 use crate::frustum::{TileCells, first_cells};
 use crate::grid::{Grid, GridEval};
+use crate::mesh::MeshIndex;
 use crate::plan::Plan;
 use crate::ray::{Beam, BeamEval, Precision, Ray};
 use crate::root::{Escalating, RayFn, RootCounters, RootFinder, RootResult, RootSettings};
@@ -42,6 +43,9 @@ pub struct CpuQueries<'a> {
     pub(super) finder: Escalating,
     /// The functions of the scopes rays are searched with.
     pub(super) scoped: ScopedFunctions,
+    /// The scene's triangle meshes, searched beside the implicit surfaces (`None` for a
+    /// scene without meshes).
+    pub(super) meshes: Option<MeshIndex>,
     /// Evaluators given back by finished pieces of work, for the next ones: a scene's
     /// evaluators (of long tapes, of every object) cost more to make than many queries.
     pub(super) pool: Mutex<Vec<Evals>>,
@@ -233,6 +237,38 @@ impl CpuQueries<'_> {
         query: &BeamQuery,
         c: &mut RootCounters,
     ) -> Classified {
+        let implicit = self.classify_implicit(ev, query, c);
+        let window = child_window(query.parent.as_ref());
+        match self.mesh_beam(&query.beam, window) {
+            None => implicit,
+            Some(tm) => match with_mesh(implicit.class, tm) {
+                // The triangles lie behind every ray's first root.
+                class @ BoxClass::Hit { .. } => Classified {
+                    class,
+                    scope: implicit.scope,
+                },
+                class => class.into(),
+            },
+        }
+    }
+
+    /// The first parameter range in `window` where a ray of `beam` may meet a triangle of
+    /// the scene's meshes (`None`: proven that none does, or there are no meshes).
+    pub(super) fn mesh_beam(&self, beam: &Beam, window: Interval<f64>) -> Option<Interval<f64>> {
+        let window = window.intersection(forward());
+        if window.is_empty() {
+            return None;
+        }
+        self.meshes.as_ref()?.bvh().beam_first(beam, window)
+    }
+
+    /// [`classify`](Self::classify) against the implicit surfaces alone.
+    fn classify_implicit(
+        &self,
+        ev: &mut Evals,
+        query: &BeamQuery,
+        c: &mut RootCounters,
+    ) -> Classified {
         let (beam, parent) = (&query.beam, query.parent.as_ref());
         let window = child_window(parent);
         // Inside an Undecided parent, first up to the end of the parent's restriction
@@ -340,6 +376,22 @@ impl CpuQueries<'_> {
         if t.is_empty() {
             return RootResult::NoRoot;
         }
+        let implicit = self.cast_implicit(ev, ray, t, (scope, root), c);
+        match &self.meshes {
+            Some(m) => implicit.first_of(m.bvh().first_crossing(ray, t).result),
+            None => implicit,
+        }
+    }
+
+    /// [`cast`](Self::cast) against the implicit surfaces alone, `t` already clipped.
+    fn cast_implicit(
+        &self,
+        ev: &mut Evals,
+        ray: &Ray,
+        t: Interval<f64>,
+        (scope, root): (Option<&BeamScope>, &RootSettings),
+        c: &mut RootCounters,
+    ) -> RootResult {
         if let Some(eval) = ev.scoped.within(&self.scoped, scope, t) {
             return self.first_root_in_bounds(eval, ray, (t, root), c);
         }
@@ -387,6 +439,20 @@ impl CpuQueries<'_> {
         scope: Option<&BeamScope>,
         c: &mut RootCounters,
     ) -> Hit {
+        // A triangle crossed inside the enclosure is taken as the hit (where an implicit
+        // surface may also be, the proof is `t` either way).
+        if let Some(m) = &self.meshes
+            && let first = m.bvh().first_crossing(ray, t)
+            && let (Some(tri), Some(tt)) = (first.triangle, first.result.root())
+        {
+            return Hit {
+                t,
+                point: ray.at(tt.mid()),
+                to_eye: (-ray.dir).normalize_or_zero(),
+                leaf: self.scene.mesh_leaf(m.owner(tri) as usize),
+                normal: m.normal(tri),
+            };
+        }
         let tm = if self.plan.narrow_hits || !t.inf().is_finite() {
             self.shading_parameter(ev, ray, t, scope, c)
         } else {
@@ -435,6 +501,21 @@ impl CpuQueries<'_> {
             },
         };
         shading_parameter(eval, ray, t, c)
+    }
+}
+
+/// The class of a beam whose implicit class is `implicit`, where its rays may meet a
+/// triangle first in `tm` (and in no range before): a beam is Hit only where the triangles
+/// lie behind its `T_final`; else it is Undecided from the earlier of the two ranges on.
+pub(super) fn with_mesh(implicit: BoxClass, tm: Interval<f64>) -> BoxClass {
+    let earlier = |t: Interval<f64>| if tm.inf() < t.inf() { tm } else { t };
+    match implicit {
+        BoxClass::Miss => BoxClass::Undecided { t: tm },
+        BoxClass::Undecided { t } => BoxClass::Undecided { t: earlier(t) },
+        BoxClass::Hit { t_final } if tm.inf() > t_final.sup() => implicit,
+        BoxClass::Hit { t_final } => BoxClass::Undecided {
+            t: earlier(t_final),
+        },
     }
 }
 

@@ -1,0 +1,247 @@
+//! A bounding-volume hierarchy over triangles: first crossings of rays and segments, and
+//! the first parameter range where a beam may meet a triangle.
+
+use glam::DVec3;
+use interval_core::Interval;
+
+use super::triangle::{Crossing, Triangle};
+use crate::ibox::{IBox, hull};
+use crate::ray::{Beam, Ray};
+use crate::root::{Proof, RootResult};
+
+/// Triangles per leaf at most.
+const LEAF_SIZE: usize = 4;
+
+/// How many times a beam's parameter range is halved at most before a piece that may meet
+/// a triangle is reported ([`Bvh::beam_first`]).
+const BEAM_DEPTH: u32 = 10;
+
+/// A node: its box and either two children or a run of triangles.
+#[derive(Clone, Debug)]
+struct Node {
+    bounds: IBox,
+    /// Leaf: the first triangle and the count; inner: the second child (the first follows
+    /// the node) and 0.
+    start: u32,
+    count: u32,
+}
+
+/// A bounding-volume hierarchy over triangles (median splits on the longest axis of the
+/// centroids).
+#[derive(Clone, Debug)]
+pub struct Bvh {
+    nodes: Vec<Node>,
+    /// The triangles, in leaf order.
+    triangles: Vec<Triangle>,
+    /// For each triangle in leaf order, its index in the list it was built from.
+    ids: Vec<u32>,
+}
+
+/// The first crossing of a ray found in a [`Bvh`].
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct FirstCrossing {
+    /// The first root of the union of the triangles along the ray, as a root finder states
+    /// it: [`RootResult::NoRoot`] is a proof that no triangle is crossed in the window.
+    pub result: RootResult,
+    /// The triangle (its index in the list the hierarchy was built from) whose crossing
+    /// is the earliest candidate, where there is one.
+    pub triangle: Option<u32>,
+}
+
+impl Bvh {
+    /// The hierarchy of `triangles` (any number, none included).
+    pub fn new(triangles: &[Triangle]) -> Self {
+        let mut order: Vec<u32> = (0..triangles.len() as u32).collect();
+        let mut nodes = Vec::new();
+        if !triangles.is_empty() {
+            build(triangles, &mut order, 0, &mut nodes);
+        }
+        Self {
+            nodes,
+            triangles: order.iter().map(|&i| triangles[i as usize]).collect(),
+            ids: order,
+        }
+    }
+
+    /// The box of every triangle (`None` when there is none).
+    pub fn bounds(&self) -> Option<IBox> {
+        self.nodes.first().map(|n| n.bounds)
+    }
+
+    /// The number of triangles.
+    pub fn len(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// Whether there are no triangles.
+    pub fn is_empty(&self) -> bool {
+        self.triangles.is_empty()
+    }
+
+    /// The first crossing of `ray` with a triangle for parameters in `window`.
+    ///
+    /// Every crossing that may come before the earliest proven one is a candidate; the
+    /// result's enclosure runs from the earliest candidate's start to the end of the
+    /// earliest proven crossing, proven to hold a crossing where one is proven (unique
+    /// where a single candidate is left), else [`Proof::Possible`].
+    pub fn first_crossing(&self, ray: &Ray, window: Interval<f64>) -> FirstCrossing {
+        let none = FirstCrossing {
+            result: RootResult::NoRoot,
+            triangle: None,
+        };
+        if self.nodes.is_empty() || window.is_empty() {
+            return none;
+        }
+        let beam = ray.beam();
+        // The end of the earliest proven crossing: nothing after it can come first.
+        let mut bound = f64::INFINITY;
+        let mut candidates: Vec<(Crossing, u32)> = Vec::new();
+        let mut stack = vec![0u32];
+        while let Some(i) = stack.pop() {
+            let node = &self.nodes[i as usize];
+            let Some(t) = beam.t_range_within(&node.bounds, window) else {
+                continue;
+            };
+            if t.inf() > bound {
+                continue;
+            }
+            if node.count > 0 {
+                let run = node.start as usize..(node.start + node.count) as usize;
+                for k in run {
+                    if let Some(c) = self.triangles[k].crossing(ray.origin, ray.dir, window) {
+                        if c.proven {
+                            bound = bound.min(c.t.sup());
+                        }
+                        candidates.push((c, self.ids[k]));
+                    }
+                }
+            } else {
+                // Nearer child last, so that it is searched first.
+                let (a, b) = (i + 1, node.start);
+                let entry = |j: u32| {
+                    beam.t_range_within(&self.nodes[j as usize].bounds, window)
+                        .map_or(f64::INFINITY, |t| t.inf())
+                };
+                if entry(a) <= entry(b) {
+                    stack.extend([b, a]);
+                } else {
+                    stack.extend([a, b]);
+                }
+            }
+        }
+        candidates.retain(|(c, _)| c.t.inf() <= bound);
+        let Some(&(first, id)) = candidates
+            .iter()
+            .min_by(|x, y| x.0.t.inf().total_cmp(&y.0.t.inf()))
+        else {
+            return none;
+        };
+        let lo = first.t.inf();
+        let result = if bound.is_finite() {
+            let proof = if candidates.len() == 1 {
+                Proof::Unique
+            } else {
+                Proof::Exists
+            };
+            RootResult::Root {
+                t: Interval::new_unchecked(lo, bound),
+                proof,
+            }
+        } else {
+            let hi = candidates
+                .iter()
+                .map(|(c, _)| c.t.sup())
+                .fold(f64::NEG_INFINITY, f64::max);
+            RootResult::Root {
+                t: Interval::new_unchecked(lo, hi),
+                proof: Proof::Possible,
+            }
+        };
+        FirstCrossing {
+            result,
+            triangle: Some(id),
+        }
+    }
+
+    /// Whether some triangle may meet the box `b` (`false` is a proof that none does).
+    pub fn may_meet(&self, b: &IBox) -> bool {
+        if self.nodes.is_empty() {
+            return false;
+        }
+        let mut stack = vec![0u32];
+        while let Some(i) = stack.pop() {
+            let node = &self.nodes[i as usize];
+            if (0..3).any(|k| node.bounds[k].disjoint(b[k])) {
+                continue;
+            }
+            if node.count > 0 {
+                let run = node.start as usize..(node.start + node.count) as usize;
+                if self.triangles[run].iter().any(|t| t.may_meet(b)) {
+                    return true;
+                }
+            } else {
+                stack.extend([i + 1, node.start]);
+            }
+        }
+        false
+    }
+
+    /// The first range of parameters in `window` where some ray of `beam` may meet a
+    /// triangle: `None` is a proof that no ray of the beam meets one there. The window is
+    /// clipped to the hierarchy's box and halved, nearer half first, while the points of
+    /// the beam over a piece may meet a triangle ([`Bvh::may_meet`]), at most
+    /// [`BEAM_DEPTH`] times.
+    pub fn beam_first(&self, beam: &Beam, window: Interval<f64>) -> Option<Interval<f64>> {
+        let t = beam.t_range_within(&self.bounds()?, window)?;
+        self.beam_piece(beam, t, BEAM_DEPTH)
+    }
+
+    fn beam_piece(&self, beam: &Beam, t: Interval<f64>, depth: u32) -> Option<Interval<f64>> {
+        if !self.may_meet(&beam.points(t)) {
+            return None;
+        }
+        let mid = t.mid();
+        if depth == 0 || !(mid > t.inf() && mid < t.sup()) || !mid.is_finite() {
+            return Some(t);
+        }
+        let near = Interval::new_unchecked(t.inf(), mid);
+        let far = Interval::new_unchecked(mid, t.sup());
+        self.beam_piece(beam, near, depth - 1)
+            .or_else(|| self.beam_piece(beam, far, depth - 1))
+    }
+}
+
+/// Builds the subtree of `order` (indices into `triangles`) at the end of `nodes`.
+fn build(triangles: &[Triangle], order: &mut [u32], offset: u32, nodes: &mut Vec<Node>) {
+    let me = nodes.len();
+    let bounds = order
+        .iter()
+        .map(|&i| triangles[i as usize].bounds())
+        .reduce(|a, b| hull(&a, &b))
+        .expect("a node holds a triangle");
+    nodes.push(Node {
+        bounds,
+        start: offset,
+        count: order.len() as u32,
+    });
+    if order.len() <= LEAF_SIZE {
+        return;
+    }
+    let centre = |i: u32| {
+        let v = triangles[i as usize].v;
+        (v[0] + v[1] + v[2]) / 3.0
+    };
+    let (lo, hi) = order.iter().fold(
+        (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+        |(lo, hi), &i| (lo.min(centre(i)), hi.max(centre(i))),
+    );
+    let axis = (hi - lo).max_position();
+    let half = order.len() / 2;
+    order.select_nth_unstable_by(half, |&a, &b| centre(a)[axis].total_cmp(&centre(b)[axis]));
+    let (left, right) = order.split_at_mut(half);
+    build(triangles, left, offset, nodes);
+    let second = nodes.len() as u32;
+    build(triangles, right, offset + half as u32, nodes);
+    nodes[me].start = second;
+    nodes[me].count = 0;
+}

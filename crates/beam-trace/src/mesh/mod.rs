@@ -1,0 +1,74 @@
+//! Triangle meshes next to the implicit surfaces: triangles, a bounding-volume hierarchy,
+//! and the proofs the renderer needs of them.
+//!
+//! Every test is made in outward-rounded interval arithmetic on the triangles' `f64`
+//! vertices, so what it proves holds of those exact triangles:
+//!
+//! * a ray or segment **misses** a triangle when two of the signed volumes
+//!   `dir · (a × b)` of its vertices seen from the origin have proven opposite signs, or
+//!   when the crossing parameter is proven outside the searched window;
+//! * it **crosses** it when all three are proven of one sign and the parameter is proven
+//!   inside the window; otherwise the crossing is possible, and it counts as a possible
+//!   root ([`Proof::Possible`](crate::root::Proof::Possible)): a shadow ray through an edge
+//!   is never proven lit;
+//! * a **beam** misses the triangles over a parameter range when the box of its points
+//!   there is disjoint from every triangle's box or from its plane (the plane's equation
+//!   enclosed over the box excludes zero), with the range halved while this fails.
+//!
+//! The renderer asks these beside the implicit surfaces' searches and keeps the first of
+//! the two answers ([`RootResult::first_of`](crate::root::RootResult::first_of)).
+
+mod bvh;
+mod obj;
+mod triangle;
+
+use glam::DVec3;
+
+pub use bvh::{Bvh, FirstCrossing};
+pub use obj::read_obj;
+pub use triangle::{Crossing, Triangle};
+
+/// The triangles of several meshes in one hierarchy, each knowing the mesh it came from.
+#[derive(Clone, Debug)]
+pub struct MeshIndex {
+    bvh: Bvh,
+    /// Per triangle (in the order given), the mesh it belongs to.
+    owner: Vec<u32>,
+    /// Per triangle, its unit geometric normal.
+    normals: Vec<DVec3>,
+}
+
+impl MeshIndex {
+    /// The index of the meshes `meshes` (mesh `k` is the `k`-th slice).
+    pub fn new<'a>(meshes: impl IntoIterator<Item = &'a [Triangle]>) -> Self {
+        let mut all = Vec::new();
+        let mut owner = Vec::new();
+        for (k, m) in meshes.into_iter().enumerate() {
+            all.extend_from_slice(m);
+            owner.extend(std::iter::repeat_n(k as u32, m.len()));
+        }
+        Self {
+            normals: all.iter().map(Triangle::normal).collect(),
+            bvh: Bvh::new(&all),
+            owner,
+        }
+    }
+
+    /// The hierarchy; its triangle indices are those of [`MeshIndex::owner`].
+    pub fn bvh(&self) -> &Bvh {
+        &self.bvh
+    }
+
+    /// The mesh of triangle `triangle`.
+    pub fn owner(&self, triangle: u32) -> u32 {
+        self.owner[triangle as usize]
+    }
+
+    /// The unit geometric normal of triangle `triangle`.
+    pub fn normal(&self, triangle: u32) -> DVec3 {
+        self.normals[triangle as usize]
+    }
+}
+
+#[cfg(test)]
+mod tests;

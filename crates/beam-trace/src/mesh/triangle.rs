@@ -1,0 +1,162 @@
+//! One triangle, and what a ray or a box proves about it in outward-rounded interval
+//! arithmetic.
+
+use glam::DVec3;
+use interval_core::Interval;
+
+use crate::ibox::{IBox, ipoint};
+
+/// A triangle of a mesh, by its three vertices (in world coordinates).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Triangle {
+    /// The vertices; their order gives the geometric normal `(v1 − v0) × (v2 − v0)`.
+    pub v: [DVec3; 3],
+}
+
+/// Where a ray crosses a triangle, as far as outward-rounded arithmetic proves it.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Crossing {
+    /// An enclosure of the ray parameter of the crossing.
+    pub t: Interval<f64>,
+    /// `true`: the ray is proven to cross the triangle at a parameter in `t`; `false`: it
+    /// may (it passes within rounding of an edge or of the triangle's plane), and no
+    /// crossing lies outside `t`.
+    pub proven: bool,
+}
+
+/// An interval vector.
+type IVec = [Interval<f64>; 3];
+
+fn ivec(p: DVec3) -> IVec {
+    [ipoint(p.x), ipoint(p.y), ipoint(p.z)]
+}
+
+fn sub(a: &IVec, b: &IVec) -> IVec {
+    std::array::from_fn(|i| a[i].sub(b[i]))
+}
+
+fn dot(a: &IVec, b: &IVec) -> Interval<f64> {
+    a[0].mul(b[0]).add(a[1].mul(b[1])).add(a[2].mul(b[2]))
+}
+
+fn cross(a: &IVec, b: &IVec) -> IVec {
+    [
+        a[1].mul(b[2]).sub(a[2].mul(b[1])),
+        a[2].mul(b[0]).sub(a[0].mul(b[2])),
+        a[0].mul(b[1]).sub(a[1].mul(b[0])),
+    ]
+}
+
+/// The sign an interval proves: `Some(true)` positive, `Some(false)` negative, `None`
+/// where it holds zero (or is NaN).
+fn sign(x: Interval<f64>) -> Option<bool> {
+    if x.inf() > 0.0 {
+        Some(true)
+    } else if x.sup() < 0.0 {
+        Some(false)
+    } else {
+        None
+    }
+}
+
+impl Triangle {
+    /// The triangle `a, b, c`.
+    pub fn new(a: DVec3, b: DVec3, c: DVec3) -> Self {
+        Self { v: [a, b, c] }
+    }
+
+    /// The unit geometric normal `(v1 − v0) × (v2 − v0)` normalised (zero for a degenerate
+    /// triangle).
+    pub fn normal(&self) -> DVec3 {
+        (self.v[1] - self.v[0])
+            .cross(self.v[2] - self.v[0])
+            .normalize_or_zero()
+    }
+
+    /// Whether the three vertices lie on one line, exactly (every coordinate projection's
+    /// orientation is zero by an exact predicate): such a triangle has no area and meets
+    /// no ray in a set of positive measure.
+    pub fn is_degenerate(&self) -> bool {
+        let proj = |p: DVec3, i: usize, j: usize| robust::Coord { x: p[i], y: p[j] };
+        [(0, 1), (1, 2), (2, 0)].iter().all(|&(i, j)| {
+            robust::orient2d(
+                proj(self.v[0], i, j),
+                proj(self.v[1], i, j),
+                proj(self.v[2], i, j),
+            ) == 0.0
+        })
+    }
+
+    /// Whether every coordinate is finite.
+    pub fn is_finite(&self) -> bool {
+        self.v.iter().all(|p| p.is_finite())
+    }
+
+    /// The box of the vertices.
+    pub fn bounds(&self) -> IBox {
+        std::array::from_fn(|i| {
+            let lo = self.v[0][i].min(self.v[1][i]).min(self.v[2][i]);
+            let hi = self.v[0][i].max(self.v[1][i]).max(self.v[2][i]);
+            Interval::new_unchecked(lo, hi)
+        })
+    }
+
+    /// The crossing of the ray `origin + t·dir` with the triangle for `t` in `window`:
+    /// `None` is a proof that there is none.
+    ///
+    /// The line meets the triangle where the three signed volumes `dir · (a × b)` of the
+    /// vertices taken from the origin (`a = v_i − origin`) share one sign; they are enclosed
+    /// in interval arithmetic, so a sign proven the other way is a proof of a miss, and three
+    /// proven alike a proof of a crossing. The parameter is `n · (v0 − origin) / (n · dir)`
+    /// with the normal `n`, enclosed the same way; where the enclosure does not lie inside
+    /// `window`, a crossing is not proven inside it.
+    pub fn crossing(&self, origin: DVec3, dir: DVec3, window: Interval<f64>) -> Option<Crossing> {
+        let o = ivec(origin);
+        let d = ivec(dir);
+        let a = sub(&ivec(self.v[0]), &o);
+        let b = sub(&ivec(self.v[1]), &o);
+        let c = sub(&ivec(self.v[2]), &o);
+        let w = [
+            dot(&d, &cross(&b, &c)),
+            dot(&d, &cross(&c, &a)),
+            dot(&d, &cross(&a, &b)),
+        ];
+        let s = w.map(sign);
+        let positive = s.contains(&Some(true));
+        let negative = s.contains(&Some(false));
+        if positive && negative {
+            return None;
+        }
+        let inside = s.iter().all(|x| x.is_some());
+        let n = cross(&sub(&b, &a), &sub(&c, &a));
+        let t = dot(&n, &a).div(dot(&n, &d));
+        // A ray in (or within rounding of) the triangle's plane: the division gives no
+        // bound, and any parameter of the window may be a crossing.
+        let t = if t.is_empty() || t.inf().is_nan() || t.sup().is_nan() {
+            window
+        } else {
+            t
+        };
+        let within = t.intersection(window);
+        if within.is_empty() {
+            return None;
+        }
+        Some(Crossing {
+            t: within,
+            proven: inside && within == t,
+        })
+    }
+
+    /// Whether no point of the box `b` is proven off the triangle: `false` is a proof that
+    /// the triangle misses the box (the boxes are disjoint, or the plane misses the box).
+    pub fn may_meet(&self, b: &IBox) -> bool {
+        let tb = self.bounds();
+        if (0..3).any(|i| tb[i].disjoint(b[i])) {
+            return false;
+        }
+        let v0 = ivec(self.v[0]);
+        let n = cross(&sub(&ivec(self.v[1]), &v0), &sub(&ivec(self.v[2]), &v0));
+        let h = dot(&n, &sub(b, &v0));
+        sign(h).is_none()
+    }
+}
