@@ -1,0 +1,207 @@
+//! Triangle meshes in scenes: a mesh renders, shadows and is proven like the implicit
+//! surface of the same shape, beside implicit surfaces.
+
+use beam_trace::{NoProgress, Scene, render};
+use glam::DVec3;
+
+/// A unit cube `[-0.5, 0.5]³` as six quads.
+const CUBE_POLYGONS: &str = r#"polygons = [
+    [[-0.5, -0.5, -0.5], [-0.5, 0.5, -0.5], [0.5, 0.5, -0.5], [0.5, -0.5, -0.5]],
+    [[-0.5, -0.5, 0.5], [0.5, -0.5, 0.5], [0.5, 0.5, 0.5], [-0.5, 0.5, 0.5]],
+    [[-0.5, -0.5, -0.5], [0.5, -0.5, -0.5], [0.5, -0.5, 0.5], [-0.5, -0.5, 0.5]],
+    [[-0.5, 0.5, -0.5], [-0.5, 0.5, 0.5], [0.5, 0.5, 0.5], [0.5, 0.5, -0.5]],
+    [[-0.5, -0.5, -0.5], [-0.5, -0.5, 0.5], [-0.5, 0.5, 0.5], [-0.5, 0.5, -0.5]],
+    [[0.5, -0.5, -0.5], [0.5, 0.5, -0.5], [0.5, 0.5, 0.5], [0.5, -0.5, 0.5]],
+]"#;
+
+const TRANSFORM: &str = "transform = { translate = [0.2, -0.3, 0.1], rotate = [20.0, 35.0, 0.0] }";
+
+/// The scene: a floor, a ball and the cube, as a mesh or as an implicit surface.
+fn scene(cube_as_mesh: bool, extra: &str) -> Scene {
+    let cube = if cube_as_mesh {
+        format!("[[meshes]]\nname = \"cube\"\n{CUBE_POLYGONS}\n{TRANSFORM}\n")
+    } else {
+        format!(
+            "[[surfaces]]\nname = \"cube\"\nformula = \"max(abs(x), abs(y), abs(z)) - 0.5\"\n\
+             bounds = [[-0.5, -0.5, -0.5], [0.5, 0.5, 0.5]]\n{TRANSFORM}\n"
+        )
+    };
+    let text = format!(
+        r#"
+        [camera]
+        eye = [0.5, 2.5, 4.0]
+        look_at = [0.0, -0.4, 0.0]
+        width = 64
+        height = 48
+
+        [[surfaces]]
+        name = "floor"
+        formula = "y + 1.0"
+        bounds = [[-3.0, -1.2, -3.0], [3.0, -1.0, 3.0]]
+        clip = true
+
+        [[surfaces]]
+        name = "ball"
+        formula = "x^2 + y^2 + z^2 - 0.16"
+        bounds = [[-0.4, -0.4, -0.4], [0.4, 0.4, 0.4]]
+        transform = {{ translate = [-1.0, -0.5, -0.5] }}
+
+        {cube}
+
+        [[lights]]
+        type = "point"
+        position = [1.0, 4.0, 2.0]
+
+        [render]
+        aa = "none"
+        {extra}
+        "#
+    );
+    Scene::from_toml(&text, "cube.toml", None).unwrap()
+}
+
+/// Whether the ray from `eye` through `p` meets the transformed cube: the slab test in the
+/// cube's own coordinates (for pixels proven one way or the other, far from the edges).
+fn meets_cube(scene: &Scene, x: u32, y: u32) -> bool {
+    let ray = scene.camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+    let m = &scene.meshes[0];
+    // The cube's frame from three of its vertices' triangles: centre and axes.
+    let pts: Vec<DVec3> = m.triangles.iter().flat_map(|t| t.v).collect();
+    let centre = pts.iter().copied().sum::<DVec3>() / pts.len() as f64;
+    let t0 = m.triangles[0].v;
+    // Face 0 is z = -0.5: its edges are the x and y axes.
+    let ax = [
+        (t0[2] - t0[1]).normalize(),
+        (t0[1] - t0[0]).normalize(),
+        (t0[1] - t0[0]).cross(t0[2] - t0[1]).normalize(),
+    ];
+    let (mut lo, mut hi) = (0.0f64, f64::INFINITY);
+    for a in ax {
+        let o = (ray.origin - centre).dot(a);
+        let d = ray.dir.dot(a);
+        let (t1, t2) = ((-0.5 - o) / d, (0.5 - o) / d);
+        lo = lo.max(t1.min(t2));
+        hi = hi.min(t1.max(t2));
+    }
+    lo <= hi
+}
+
+#[test]
+fn a_mesh_cube_looks_like_the_implicit_cube_and_its_proofs_hold() {
+    let mesh = scene(true, "");
+    let implicit = scene(false, "");
+    let a = render(&mesh, &NoProgress).unwrap();
+    let b = render(&implicit, &NoProgress).unwrap();
+    let (w, h) = (64u32, 48u32);
+    let differ = differing(&a.image, &b.image);
+    // Only edge pixels (the cube's outline is about 80 pixels long) may differ.
+    assert!(differ < 60, "{differ} pixels differ");
+    // Pixels proven missed see no surface; the cube's proven pixels really see it or the
+    // other surfaces.
+    let mut cube_pixels = 0;
+    for y in 0..h {
+        for x in 0..w {
+            let cov = a.coverage[(y * w + x) as usize];
+            if cov.possible == 0.0 {
+                assert!(!meets_cube(&mesh, x, y), "pixel ({x}, {y}) proven empty");
+            }
+            if meets_cube(&mesh, x, y) {
+                cube_pixels += 1;
+            }
+        }
+    }
+    assert!(cube_pixels > 100, "{cube_pixels}");
+}
+
+/// Pixels whose colours differ by more than 0.1 in a channel.
+fn differing(a: &beam_trace::Image, b: &beam_trace::Image) -> usize {
+    let mut n = 0;
+    for y in 0..48 {
+        for x in 0..64 {
+            let (p, q) = (a.get(x, y), b.get(x, y));
+            if p.iter().zip(&q).any(|(u, v)| (u - v).abs() > 0.1) {
+                n += 1;
+            }
+        }
+    }
+    n
+}
+
+#[test]
+fn a_mesh_casts_the_hard_shadow_of_the_implicit_cube() {
+    let a = render(&scene(true, ""), &NoProgress).unwrap();
+    let b = render(&scene(false, ""), &NoProgress).unwrap();
+    // Dark pixels: the floor and the ball in the cube's shadow (ambient only), and the
+    // sides of the objects turned away from the light.
+    let dark = |img: &beam_trace::Image| {
+        let mut n = 0usize;
+        for y in 0..48 {
+            for x in 0..64 {
+                if img.get(x, y).iter().all(|&c| c < 0.2) {
+                    n += 1;
+                }
+            }
+        }
+        n
+    };
+    let (da, db) = (dark(&a.image), dark(&b.image));
+    assert!(db > 100, "{db}");
+    assert!(da.abs_diff(db) <= db / 10, "{da} against {db} dark pixels");
+    assert!(a.stats.pass("hard-shadows").unwrap().counter("occluded") > 50);
+}
+
+#[test]
+fn every_primary_mode_but_the_octree_renders_a_mesh() {
+    for mode in ["screen-boxes", "screen-rays", "per-pixel"] {
+        let extra = format!("primary = \"{mode}\"");
+        let a = render(&scene(true, &extra), &NoProgress).unwrap();
+        let b = render(&scene(false, &extra), &NoProgress).unwrap();
+        let n = differing(&a.image, &b.image);
+        assert!(n < 60, "{mode}: {n} pixels differ");
+    }
+    let err = render(&scene(true, "primary = \"octree\""), &NoProgress).unwrap_err();
+    assert!(
+        err.to_string().contains("does not search triangle meshes"),
+        "{err}"
+    );
+}
+
+#[test]
+fn soft_shadows_of_a_mesh_keep_their_proofs() {
+    // An area light: certified bounds and the stochastic estimate of the same pixels.
+    let area =
+        "[[lights]]\ntype = \"area\"\ncenter = [0.5, 3.0, 1.0]\nsize = 1.0\nnormal = \"y\"\n";
+    let with = |method: &str| {
+        let mut text = format!("shadow_method = \"{method}\"");
+        text.push('\n');
+        let mut s = scene(true, &text);
+        let light = Scene::from_toml(
+            &format!("[camera]\n[[surfaces]]\ncatalog = \"sphere\"\n{area}"),
+            "light.toml",
+            None,
+        )
+        .unwrap()
+        .lights[0];
+        s.lights = vec![light];
+        render(&s, &NoProgress).unwrap()
+    };
+    let certified = with("certified:0.05");
+    let reference = with("stochastic:256");
+    let c = certified.shadows.as_ref().unwrap();
+    let r = reference.shadows.as_ref().unwrap();
+    let mut checked = 0;
+    for i in 0..c.lower[0].len() {
+        let (lo, hi, f) = (c.lower[0][i], c.upper[0][i], r.fractions[0][i]);
+        if f.is_nan() || lo.is_nan() {
+            continue;
+        }
+        // 4 standard deviations of 256 samples.
+        let sd = (f * (1.0 - f) / 256.0).sqrt().max(1.0 / 256.0);
+        assert!(
+            f >= lo - 4.0 * sd && f <= hi + 4.0 * sd,
+            "pixel {i}: {f} outside [{lo}, {hi}]"
+        );
+        checked += 1;
+    }
+    assert!(checked > 1000, "{checked}");
+}
