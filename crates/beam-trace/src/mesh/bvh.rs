@@ -190,7 +190,7 @@ impl Bvh {
     /// triangle: `None` is a proof that no ray of the beam meets one there. The window is
     /// clipped to the hierarchy's box and halved, nearer half first, while the points of
     /// the beam over a piece may meet a triangle ([`Bvh::may_meet`]), at most
-    /// [`BEAM_DEPTH`] times.
+    /// 10 times.
     pub fn beam_first(&self, beam: &Beam, window: Interval<f64>) -> Option<Interval<f64>> {
         let t = beam.t_range_within(&self.bounds()?, window)?;
         self.beam_piece(beam, t, BEAM_DEPTH)

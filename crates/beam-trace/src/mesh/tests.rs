@@ -227,6 +227,47 @@ fn a_ray_through_a_shared_edge_is_a_possible_crossing_and_never_a_miss() {
 }
 
 #[test]
+fn a_ray_in_the_plane_of_a_triangle_is_never_called_a_miss() {
+    // The ray runs inside the triangle for t in [10, 35]; n · d rounds to an interval
+    // around 0 and n · (v0 − o) is exactly 0.
+    let tri = Triangle::new(
+        DVec3::ZERO,
+        DVec3::new(3.0, -3.0, 0.0),
+        DVec3::new(0.0, 0.0, 3.0),
+    );
+    let (o, d) = (DVec3::new(-1.0, 1.0, 0.5), DVec3::new(0.1, -0.1, 0.0));
+    let c = tri.crossing(o, d, ival(1.0, 100.0)).expect("not a miss");
+    assert!(
+        !c.proven && c.t.contains(10.0) && c.t.contains(35.0),
+        "{c:?}"
+    );
+    let c = tri
+        .crossing(o, d, ival(0.0, f64::INFINITY))
+        .expect("not a miss");
+    assert!(c.t.contains(10.0) && c.t.contains(35.0), "{c:?}");
+    let bvh = Bvh::new(&[tri]);
+    let ray = Ray { origin: o, dir: d };
+    assert_ne!(
+        bvh.first_crossing(&ray, ival(1.0, 100.0)).result,
+        RootResult::NoRoot
+    );
+    // Nothing is proven of a ray that is not finite.
+    let c = tri.crossing(DVec3::new(f64::NAN, 0.0, 0.0), d, ival(0.0, 1.0));
+    assert!(c.is_some_and(|c| !c.proven));
+}
+
+#[test]
+fn only_triangles_proven_flat_are_degenerate() {
+    assert!(Triangle::new(DVec3::ZERO, DVec3::ONE, DVec3::splat(2.0)).is_degenerate());
+    let tiny = Triangle::new(
+        DVec3::ZERO,
+        DVec3::new(1e-170, 0.0, 0.0),
+        DVec3::new(0.0, 1e-170, 0.0),
+    );
+    assert!(!tiny.is_degenerate());
+}
+
+#[test]
 fn first_of_keeps_the_earlier_root_and_the_weaker_proof_where_they_overlap() {
     let root = |lo, hi, proof| RootResult::Root {
         t: ival(lo, hi),

@@ -50,7 +50,9 @@ fn cross(a: &IVec, b: &IVec) -> IVec {
 /// The sign an interval proves: `Some(true)` positive, `Some(false)` negative, `None`
 /// where it holds zero (or is NaN).
 fn sign(x: Interval<f64>) -> Option<bool> {
-    if x.inf() > 0.0 {
+    if x.is_empty() {
+        None
+    } else if x.inf() > 0.0 {
         Some(true)
     } else if x.sup() < 0.0 {
         Some(false)
@@ -73,18 +75,15 @@ impl Triangle {
             .normalize_or_zero()
     }
 
-    /// Whether the three vertices lie on one line, exactly (every coordinate projection's
-    /// orientation is zero by an exact predicate): such a triangle has no area and meets
-    /// no ray in a set of positive measure.
+    /// Whether the three vertices lie on one line, proven: every component of the cross
+    /// product `(v1 − v0) × (v2 − v0)`, enclosed in outward-rounded interval arithmetic, is
+    /// exactly zero. Such a triangle has no area and meets no ray in a set of positive
+    /// measure; a tiny triangle whose products underflow keeps a non-zero bound and is not
+    /// called degenerate.
     pub fn is_degenerate(&self) -> bool {
-        let proj = |p: DVec3, i: usize, j: usize| robust::Coord { x: p[i], y: p[j] };
-        [(0, 1), (1, 2), (2, 0)].iter().all(|&(i, j)| {
-            robust::orient2d(
-                proj(self.v[0], i, j),
-                proj(self.v[1], i, j),
-                proj(self.v[2], i, j),
-            ) == 0.0
-        })
+        let v0 = ivec(self.v[0]);
+        let n = cross(&sub(&ivec(self.v[1]), &v0), &sub(&ivec(self.v[2]), &v0));
+        n.iter().all(|c| c.inf() == 0.0 && c.sup() == 0.0)
     }
 
     /// Whether every coordinate is finite.
@@ -111,6 +110,13 @@ impl Triangle {
     /// with the normal `n`, enclosed the same way; where the enclosure does not lie inside
     /// `window`, a crossing is not proven inside it.
     pub fn crossing(&self, origin: DVec3, dir: DVec3, window: Interval<f64>) -> Option<Crossing> {
+        if !(origin.is_finite() && dir.is_finite()) {
+            // Nothing can be proven of such a ray.
+            return (!window.is_empty()).then_some(Crossing {
+                t: window,
+                proven: false,
+            });
+        }
         let o = ivec(origin);
         let d = ivec(dir);
         let a = sub(&ivec(self.v[0]), &o);
@@ -129,14 +135,20 @@ impl Triangle {
         }
         let inside = s.iter().all(|x| x.is_some());
         let n = cross(&sub(&b, &a), &sub(&c, &a));
-        let t = dot(&n, &a).div(dot(&n, &d));
-        // A ray in (or within rounding of) the triangle's plane: the division gives no
+        let (num, den) = (dot(&n, &a), dot(&n, &d));
+        // Where the three volumes share a proven sign, `n · d` (their sum) is not zero, and
+        // the quotient encloses the crossing even where the divisor's enclosure holds 0. Else
+        // a ray in (or within rounding of) the triangle's plane meets it at every parameter
+        // where it lies inside: the quotient of `[0, 0]` by an enclosure of zero is no
         // bound, and any parameter of the window may be a crossing.
-        let t = if t.is_empty() || t.inf().is_nan() || t.sup().is_nan() {
+        let t = if inside && !den.is_empty() {
+            num.div(den)
+        } else if den.is_empty() || num.is_empty() || den.contains(0.0) {
             window
         } else {
-            t
+            num.div(den)
         };
+        let t = if t.is_empty() { window } else { t };
         let within = t.intersection(window);
         if within.is_empty() {
             return None;

@@ -274,7 +274,8 @@ impl Scene {
     /// `[0, 1]`.
     ///
     /// **Top level**: `background` (colour), `ambient` (in `[0, 1]`), the tables `camera`,
-    /// `render`, and the arrays of tables `surfaces` (at least one), `csg` and `lights`.
+    /// `render`, and the arrays of tables `surfaces` (at least one), `csg`, `meshes` and
+    /// `lights`.
     ///
     /// **`[camera]`**: `eye` and `look_at` (points), `up` (not zero, not parallel to the view
     /// direction), `fov` (in `(0, 180)`), `width` and `height` (1 to 16384). Without `eye`
@@ -313,6 +314,15 @@ impl Scene {
     /// csg nodes, in any order; cycles are errors), `visible` as for surfaces. The drawn
     /// objects are the visible surfaces and csg nodes that no csg node uses; each leaf keeps
     /// its own material. Names of surfaces and csg nodes share one namespace and are unique.
+    ///
+    /// **`[[meshes]]`**: a triangle mesh beside the implicit surfaces
+    /// ([`crate::mesh`]). Exactly one of `obj` (a Wavefront OBJ file, relative to the scene
+    /// file's folder; polygons split into fans) and `polygons` (a list of polygons, each a
+    /// list of at least 3 `[x, y, z]` vertices, split into fans from the first vertex);
+    /// `transform` and `material` as for surfaces; `name` (default: the OBJ file's stem or
+    /// `mesh-N`) in the surfaces' namespace. The vertices as computed in `f64` (`M · p + t`)
+    /// are the rendered mesh; triangles without area are left out, and a mesh with none is
+    /// an error. Meshes are not csg children.
     ///
     /// **`[[lights]]`**: `type = "point"` with `position`, `color` and `intensity` (`≥ 0`);
     /// the light's colour is `color · intensity`. `type = "area"` with the same `color` and
