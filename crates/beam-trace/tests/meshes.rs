@@ -86,6 +86,20 @@ fn meets_cube(scene: &Scene, x: u32, y: u32) -> bool {
     lo <= hi
 }
 
+/// Whether the ray through the centre of pixel `(x, y)` meets the floor's slab or the ball.
+fn meets_others(scene: &Scene, x: u32, y: u32) -> bool {
+    let ray = scene.camera.ray(f64::from(x) + 0.5, f64::from(y) + 0.5);
+    let (o, d) = (ray.origin, ray.dir);
+    let floor = {
+        let t = (-1.0 - o.y) / d.y;
+        let p = o + t * d;
+        t > 0.0 && p.x.abs() <= 3.0 && p.z.abs() <= 3.0
+    };
+    let c = o - DVec3::new(-1.0, -0.5, -0.5);
+    let (qa, qb, qc) = (d.dot(d), 2.0 * c.dot(d), c.dot(c) - 0.16);
+    floor || qb * qb - 4.0 * qa * qc >= 0.0
+}
+
 #[test]
 fn a_mesh_cube_looks_like_the_implicit_cube_and_its_proofs_hold() {
     let mesh = scene(true, "");
@@ -99,18 +113,24 @@ fn a_mesh_cube_looks_like_the_implicit_cube_and_its_proofs_hold() {
     // Pixels proven missed see no surface; the cube's proven pixels really see it or the
     // other surfaces.
     let mut cube_pixels = 0;
+    let mut proven_cube = 0;
     for y in 0..h {
         for x in 0..w {
             let cov = a.coverage[(y * w + x) as usize];
+            let cube = meets_cube(&mesh, x, y);
             if cov.possible == 0.0 {
-                assert!(!meets_cube(&mesh, x, y), "pixel ({x}, {y}) proven empty");
+                assert!(!cube, "pixel ({x}, {y}) proven empty");
             }
-            if meets_cube(&mesh, x, y) {
-                cube_pixels += 1;
+            if cov.proven == 1.0 {
+                assert!(cube || meets_others(&mesh, x, y), "pixel ({x}, {y}) proven covered");
+                proven_cube += usize::from(cube);
             }
+            cube_pixels += usize::from(cube);
         }
     }
     assert!(cube_pixels > 100, "{cube_pixels}");
+    // Beams inside one triangle are proven to hit it.
+    assert!(proven_cube > cube_pixels / 3, "{proven_cube} of {cube_pixels}");
 }
 
 /// Pixels whose colours differ by more than 0.1 in a channel.

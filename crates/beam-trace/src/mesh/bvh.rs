@@ -35,6 +35,8 @@ pub struct Bvh {
     triangles: Vec<Triangle>,
     /// For each triangle in leaf order, its index in the list it was built from.
     ids: Vec<u32>,
+    /// For each index in the list it was built from, the triangle's place in leaf order.
+    slots: Vec<u32>,
 }
 
 /// The first crossing of a ray found in a [`Bvh`].
@@ -56,11 +58,21 @@ impl Bvh {
         if !triangles.is_empty() {
             build(triangles, &mut order, 0, &mut nodes);
         }
+        let mut slots = vec![0; order.len()];
+        for (k, &i) in order.iter().enumerate() {
+            slots[i as usize] = k as u32;
+        }
         Self {
             nodes,
             triangles: order.iter().map(|&i| triangles[i as usize]).collect(),
             ids: order,
+            slots,
         }
+    }
+
+    /// The triangle of index `id` in the list the hierarchy was built from.
+    pub fn triangle(&self, id: u32) -> &Triangle {
+        &self.triangles[self.slots[id as usize] as usize]
     }
 
     /// The box of every triangle (`None` when there is none).
@@ -165,6 +177,13 @@ impl Bvh {
 
     /// Whether some triangle may meet the box `b` (`false` is a proof that none does).
     pub fn may_meet(&self, b: &IBox) -> bool {
+        self.may_meet_except(b, None, None)
+    }
+
+    /// [`Bvh::may_meet`] for every triangle but `except` (an index in the list the
+    /// hierarchy was built from), and only for the triangles that some line of `beam` may
+    /// meet ([`Triangle::beam_misses`]) where a beam is given.
+    fn may_meet_except(&self, b: &IBox, beam: Option<&Beam>, except: Option<u32>) -> bool {
         if self.nodes.is_empty() {
             return false;
         }
@@ -176,7 +195,11 @@ impl Bvh {
             }
             if node.count > 0 {
                 let run = node.start as usize..(node.start + node.count) as usize;
-                if self.triangles[run].iter().any(|t| t.may_meet(b)) {
+                let skip = except.map(|e| self.slots[e as usize] as usize);
+                if run.filter(|&k| Some(k) != skip).any(|k| {
+                    let t = &self.triangles[k];
+                    t.may_meet(b) && beam.is_none_or(|bm| !t.beam_misses(bm))
+                }) {
                     return true;
                 }
             } else {
@@ -192,12 +215,47 @@ impl Bvh {
     /// the beam over a piece may meet a triangle ([`Bvh::may_meet`]), at most
     /// 10 times.
     pub fn beam_first(&self, beam: &Beam, window: Interval<f64>) -> Option<Interval<f64>> {
-        let t = beam.t_range_within(&self.bounds()?, window)?;
-        self.beam_piece(beam, t, BEAM_DEPTH)
+        self.beam_first_except(beam, window, None)
     }
 
-    fn beam_piece(&self, beam: &Beam, t: Interval<f64>, depth: u32) -> Option<Interval<f64>> {
-        if !self.may_meet(&beam.points(t)) {
+    /// [`Bvh::beam_first`] for every triangle but `except` (an index in the list the
+    /// hierarchy was built from).
+    pub fn beam_first_except(
+        &self,
+        beam: &Beam,
+        window: Interval<f64>,
+        except: Option<u32>,
+    ) -> Option<Interval<f64>> {
+        let t = beam.t_range_within(&self.bounds()?, window)?;
+        self.beam_piece(beam, t, (BEAM_DEPTH, except))
+    }
+
+    /// A triangle that every ray of `beam` crosses inside `window`, and the enclosure of
+    /// the crossings' parameters ([`Triangle::covers`]); tried on the triangle that the
+    /// beam's central ray crosses first. `None` where none is proven.
+    pub fn covering(&self, beam: &Beam, window: Interval<f64>) -> Option<(Interval<f64>, u32)> {
+        let id = self.first_crossing(&beam.central_ray(), window).triangle?;
+        self.triangle(id).covers(beam, window).map(|t| (t, id))
+    }
+
+    /// The first crossing of every ray of `beam` inside `window`, where one triangle is
+    /// proven to hold it: every ray crosses that triangle ([`Bvh::covering`]) and no other
+    /// triangle meets the beam before the end of those crossings ([`Bvh::beam_first_except`]).
+    pub fn beam_hit(&self, beam: &Beam, window: Interval<f64>) -> Option<(Interval<f64>, u32)> {
+        let (t, id) = self.covering(beam, window)?;
+        let before = Interval::new_unchecked(window.inf(), t.sup());
+        self.beam_first_except(beam, before, Some(id))
+            .is_none()
+            .then_some((t, id))
+    }
+
+    fn beam_piece(
+        &self,
+        beam: &Beam,
+        t: Interval<f64>,
+        (depth, except): (u32, Option<u32>),
+    ) -> Option<Interval<f64>> {
+        if !self.may_meet_except(&beam.points(t), Some(beam), except) {
             return None;
         }
         let mid = t.mid();
@@ -206,8 +264,8 @@ impl Bvh {
         }
         let near = Interval::new_unchecked(t.inf(), mid);
         let far = Interval::new_unchecked(mid, t.sup());
-        self.beam_piece(beam, near, depth - 1)
-            .or_else(|| self.beam_piece(beam, far, depth - 1))
+        self.beam_piece(beam, near, (depth - 1, except))
+            .or_else(|| self.beam_piece(beam, far, (depth - 1, except)))
     }
 }
 

@@ -194,6 +194,67 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2048))]
+
+    /// What a beam proves of the triangles holds for rays picked inside it: a triangle
+    /// missed is crossed by none, a triangle covering it is crossed by each inside the
+    /// enclosure, and a proven first hit has no proven crossing of another triangle before
+    /// it.
+    #[test]
+    fn beam_proofs_hold_for_their_rays(tris in proptest::collection::vec(
+                                           [small_point(), small_point(), small_point()], 1..12),
+                                       o in small_point(), d in small_point(),
+                                       spread in 0.0f64..0.3, picks in proptest::collection::vec(
+                                           [0.0f64..=1.0, 0.0f64..=1.0, 0.0f64..=1.0], 8)) {
+        prop_assume!(d != [0, 0, 0]);
+        let list: Vec<Triangle> = tris.iter()
+            .map(|v| Triangle::new(dv(v[0]), dv(v[1]), dv(v[2]))).collect();
+        let bvh = Bvh::new(&list);
+        let dir = dv(d);
+        let beam = Beam {
+            origin: crate::ibox::point_box(dv(o)),
+            dir: std::array::from_fn(|i| ival(dir[i] - spread, dir[i] + spread)),
+        };
+        let window = ival(0.0, 50.0);
+        let rays: Vec<Ray> = picks.iter().map(|p| Ray {
+            origin: dv(o),
+            dir: DVec3::from_array(std::array::from_fn(|i| {
+                beam.dir[i].inf() + p[i] * (beam.dir[i].sup() - beam.dir[i].inf())
+            })),
+        }).collect();
+        let whole = ival(f64::NEG_INFINITY, f64::INFINITY);
+        for tri in &list {
+            if tri.beam_misses(&beam) {
+                for r in &rays {
+                    let c = tri.crossing(r.origin, r.dir, whole);
+                    prop_assert!(c.is_none_or(|c| !c.proven), "missed, yet {c:?}");
+                }
+            }
+            if let Some(t) = tri.covers(&beam, window) {
+                prop_assert!(t.inf() >= 0.0 && t.sup() <= 50.0);
+                for r in &rays {
+                    let c = tri.crossing(r.origin, r.dir, window);
+                    let c = c.expect("a covered ray misses");
+                    prop_assert!(c.t.inf() <= t.sup() && c.t.sup() >= t.inf(), "{c:?} outside {t:?}");
+                }
+            }
+        }
+        if let Some((t, id)) = bvh.beam_hit(&beam, window) {
+            for r in &rays {
+                for (k, tri) in list.iter().enumerate() {
+                    if k as u32 == id {
+                        continue;
+                    }
+                    if let Some(c) = tri.crossing(r.origin, r.dir, window) && c.proven {
+                        prop_assert!(c.t.sup() >= t.inf(), "triangle {k} crossed at {:?} before {t:?}", c.t);
+                    }
+                }
+            }
+        }
+    }
+}
+
 #[test]
 fn a_ray_through_a_shared_edge_is_a_possible_crossing_and_never_a_miss() {
     // Two triangles of the square [0, 1]² at z = 0 sharing the diagonal.

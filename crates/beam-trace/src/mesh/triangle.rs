@@ -5,6 +5,7 @@ use glam::DVec3;
 use interval_core::Interval;
 
 use crate::ibox::{IBox, ipoint};
+use crate::ray::Beam;
 
 /// A triangle of a mesh, by its three vertices (in world coordinates).
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -157,6 +158,55 @@ impl Triangle {
             t: within,
             proven: inside && within == t,
         })
+    }
+
+    /// An enclosure of the parameters at which the rays of `beam` cross the triangle, where
+    /// every ray of the beam is proven to cross it inside `window`; `None` where that is not
+    /// proven.
+    ///
+    /// The signed volumes `d · (a × b)` (with `a = v_i − o`) are enclosed over the beam's
+    /// boxes of origins and directions at once (the interval extension of the same
+    /// formulas as [`Triangle::crossing`]): three proven of one sign prove that every ray's
+    /// line crosses the triangle, and the parameter's enclosure over the boxes must lie in
+    /// the window.
+    pub fn covers(&self, beam: &Beam, window: Interval<f64>) -> Option<Interval<f64>> {
+        let (s, [a, b, c]) = self.beam_volumes(beam);
+        let one_sign = s[0].is_some() && s[1] == s[0] && s[2] == s[0];
+        if !one_sign {
+            return None;
+        }
+        let d = &beam.dir;
+        let n = cross(&sub(&b, &a), &sub(&c, &a));
+        let (num, den) = (dot(&n, &a), dot(&n, d));
+        if den.is_empty() || num.is_empty() || den.contains(0.0) {
+            return None;
+        }
+        let t = num.div(den);
+        (!t.is_empty() && t.intersection(window) == t).then_some(t)
+    }
+
+    /// Whether no ray's line of `beam` meets the triangle, proven: two of the signed
+    /// volumes of [`Triangle::covers`] have opposite signs over the whole beam (every line
+    /// passes outside one edge).
+    pub fn beam_misses(&self, beam: &Beam) -> bool {
+        let (s, _) = self.beam_volumes(beam);
+        s.contains(&Some(true)) && s.contains(&Some(false))
+    }
+
+    /// The signs of the three signed volumes over the beam's boxes, and the vertices taken
+    /// from its origins.
+    fn beam_volumes(&self, beam: &Beam) -> ([Option<bool>; 3], [IVec; 3]) {
+        let (o, d) = (&beam.origin, &beam.dir);
+        let a = sub(&ivec(self.v[0]), o);
+        let b = sub(&ivec(self.v[1]), o);
+        let c = sub(&ivec(self.v[2]), o);
+        let s = [
+            dot(d, &cross(&b, &c)),
+            dot(d, &cross(&c, &a)),
+            dot(d, &cross(&a, &b)),
+        ]
+        .map(sign);
+        (s, [a, b, c])
     }
 
     /// Whether no point of the box `b` is proven off the triangle: `false` is a proof that

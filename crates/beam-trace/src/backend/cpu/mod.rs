@@ -23,6 +23,7 @@ use crate::aa::{LightSource, shading_variation};
 use crate::error::Error;
 use crate::frustum::TileCells;
 use crate::grid::Grid;
+use crate::ibox::point_box;
 use crate::mesh::MeshIndex;
 use crate::plan::{Pass, Plan};
 use crate::root::{Escalating, RootFinder, RootResult};
@@ -147,14 +148,31 @@ impl Queries for CpuQueries<'_> {
             .collect();
         Ok(self.map(queries, true, |ev, q, c| {
             let region = q.beam.points(q.t_final);
-            let (_, grad) = ev.geo.gradient_box(&region);
-            let leaves = self.scene.geometry.leaves();
-            let materials: Vec<Material> = ev
-                .geo
-                .leaves_over(&region)
-                .into_iter()
-                .map(|i| leaves[i].material)
-                .collect();
+            // A beam proven to hit one triangle ([`Bvh::beam_hit`]) has that triangle's
+            // normal and material over its region; inside `T_final` its central ray
+            // crosses a triangle only then.
+            let on_mesh = self.meshes.as_ref().and_then(|m| {
+                let tri = m
+                    .bvh()
+                    .first_crossing(&q.beam.central_ray(), q.t_final)
+                    .triangle?;
+                let mesh = &self.scene.meshes[m.owner(tri) as usize];
+                Some((point_box(m.normal(tri)), vec![mesh.material]))
+            });
+            let (grad, materials) = match on_mesh {
+                Some(x) => x,
+                None => {
+                    let (_, grad) = ev.geo.gradient_box(&region);
+                    let leaves = self.scene.geometry.leaves();
+                    let materials: Vec<Material> = ev
+                        .geo
+                        .leaves_over(&region)
+                        .into_iter()
+                        .map(|i| leaves[i].material)
+                        .collect();
+                    (grad, materials)
+                }
+            };
             let v = shading_variation(
                 grad,
                 region,

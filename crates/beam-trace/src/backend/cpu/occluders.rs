@@ -200,10 +200,19 @@ impl CpuQueries<'_> {
     ) -> BoxClass {
         let window = Interval::new_unchecked(start, 1.0);
         let implicit = self.shadow_beam_implicit(ev, beam, (start, inclusion), settings, c);
-        // Blocked by the implicit surfaces is blocked whatever the triangles do.
+        // Blocked by the implicit surfaces, or by one triangle, is blocked whatever the
+        // other occluders do.
         match (implicit, self.mesh_beam(beam, window)) {
             (class @ BoxClass::Hit { .. }, _) | (class, None) => class,
-            (class, Some(tm)) => with_mesh(class, tm),
+            (class, Some(tm)) => {
+                let covered = inclusion
+                    .then(|| self.meshes.as_ref()?.bvh().covering(beam, window))
+                    .flatten();
+                match covered {
+                    Some((t_final, _)) => BoxClass::Hit { t_final },
+                    None => with_mesh(class, tm, None),
+                }
+            }
         }
     }
 

@@ -238,18 +238,23 @@ impl CpuQueries<'_> {
         c: &mut RootCounters,
     ) -> Classified {
         let implicit = self.classify_implicit(ev, query, c);
-        let window = child_window(query.parent.as_ref());
-        match self.mesh_beam(&query.beam, window) {
-            None => implicit,
-            Some(tm) => match with_mesh(implicit.class, tm) {
-                // The triangles lie behind every ray's first root.
-                class @ BoxClass::Hit { .. } => Classified {
-                    class,
-                    scope: implicit.scope,
-                },
-                class => class.into(),
-            },
-        }
+        let window = child_window(query.parent.as_ref()).intersection(forward());
+        let Some(tm) = self.mesh_beam(&query.beam, window) else {
+            return implicit;
+        };
+        let covered = self
+            .meshes
+            .as_ref()
+            .and_then(|m| m.bvh().beam_hit(&query.beam, window))
+            .map(|(t, _)| t);
+        let class = with_mesh(implicit.class.clone(), tm, covered);
+        // The implicit surfaces' scope goes with their own Hit only.
+        let scope = if class == implicit.class {
+            implicit.scope
+        } else {
+            None
+        };
+        Classified { class, scope }
     }
 
     /// The first parameter range in `window` where a ray of `beam` may meet a triangle of
@@ -505,15 +510,29 @@ impl CpuQueries<'_> {
 }
 
 /// The class of a beam whose implicit class is `implicit`, where its rays may meet a
-/// triangle first in `tm` (and in no range before): a beam is Hit only where the triangles
-/// lie behind its `T_final`; else it is Undecided from the earlier of the two ranges on.
-pub(super) fn with_mesh(implicit: BoxClass, tm: Interval<f64>) -> BoxClass {
+/// triangle first in `tm` (and in no range before), and where, if `covered` is given, every
+/// ray's first crossing of a triangle is proven to lie in it ([`Bvh::beam_hit`](crate::mesh::Bvh::beam_hit)).
+/// The beam is Hit where the first of the two is proven for every ray; else it is Undecided
+/// from the earlier of the two ranges on.
+pub(super) fn with_mesh(
+    implicit: BoxClass,
+    tm: Interval<f64>,
+    covered: Option<Interval<f64>>,
+) -> BoxClass {
     let earlier = |t: Interval<f64>| if tm.inf() < t.inf() { tm } else { t };
-    match implicit {
-        BoxClass::Miss => BoxClass::Undecided { t: tm },
-        BoxClass::Undecided { t } => BoxClass::Undecided { t: earlier(t) },
-        BoxClass::Hit { t_final } if tm.inf() > t_final.sup() => implicit,
-        BoxClass::Hit { t_final } => BoxClass::Undecided {
+    match (implicit, covered) {
+        (BoxClass::Miss, Some(t)) => BoxClass::Hit { t_final: t },
+        (BoxClass::Miss, None) => BoxClass::Undecided { t: tm },
+        (BoxClass::Undecided { t }, Some(tc)) if tc.sup() < t.inf() => {
+            BoxClass::Hit { t_final: tc }
+        }
+        (BoxClass::Undecided { t }, _) => BoxClass::Undecided { t: earlier(t) },
+        (BoxClass::Hit { t_final }, _) if tm.inf() > t_final.sup() => implicit,
+        (BoxClass::Hit { t_final }, Some(tc)) if t_final.sup() < tc.inf() => implicit,
+        (BoxClass::Hit { t_final }, Some(tc)) if tc.sup() < t_final.inf() => {
+            BoxClass::Hit { t_final: tc }
+        }
+        (BoxClass::Hit { t_final }, _) => BoxClass::Undecided {
             t: earlier(t_final),
         },
     }
