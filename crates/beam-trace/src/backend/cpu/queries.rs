@@ -247,7 +247,7 @@ impl CpuQueries<'_> {
             .as_ref()
             .and_then(|m| m.bvh().beam_hit(&query.beam, window))
             .map(|(t, _)| t);
-        let class = with_mesh(implicit.class.clone(), tm, covered);
+        let class = with_mesh(implicit.class, tm, covered);
         // The implicit surfaces' scope goes with their own Hit only.
         let scope = if class == implicit.class {
             implicit.scope
