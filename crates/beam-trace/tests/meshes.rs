@@ -122,7 +122,10 @@ fn a_mesh_cube_looks_like_the_implicit_cube_and_its_proofs_hold() {
                 assert!(!cube, "pixel ({x}, {y}) proven empty");
             }
             if cov.proven == 1.0 {
-                assert!(cube || meets_others(&mesh, x, y), "pixel ({x}, {y}) proven covered");
+                assert!(
+                    cube || meets_others(&mesh, x, y),
+                    "pixel ({x}, {y}) proven covered"
+                );
                 proven_cube += usize::from(cube);
             }
             cube_pixels += usize::from(cube);
@@ -130,7 +133,10 @@ fn a_mesh_cube_looks_like_the_implicit_cube_and_its_proofs_hold() {
     }
     assert!(cube_pixels > 100, "{cube_pixels}");
     // Beams inside one triangle are proven to hit it.
-    assert!(proven_cube > cube_pixels / 3, "{proven_cube} of {cube_pixels}");
+    assert!(
+        proven_cube > cube_pixels / 3,
+        "{proven_cube} of {cube_pixels}"
+    );
 }
 
 /// Pixels whose colours differ by more than 0.1 in a channel.
@@ -224,4 +230,140 @@ fn soft_shadows_of_a_mesh_keep_their_proofs() {
         checked += 1;
     }
     assert!(checked > 1000, "{checked}");
+}
+
+mod exact {
+    use beam_trace::backend::{Backend, QueryKind};
+    use beam_trace::shadow::{Patch, ShadowQuery, ShadowSpec};
+    use beam_trace::{Cpu, Plan, Scene};
+    use glam::DVec3;
+
+    /// A floor at `y = 0`, a square occluder of side 1 centred at `(0.2, 1, 0.1)` (two
+    /// triangles, parallel to the floor), a ball off to the side, and a square light of side
+    /// 1 at height 2 centred above the origin.
+    fn scene(with_ball_in_the_way: bool) -> Scene {
+        let ball = if with_ball_in_the_way {
+            "[[surfaces]]\nname = \"ball\"\nformula = \"x^2 + y^2 + z^2 - 0.04\"\n\
+             bounds = [[-0.2, -0.2, -0.2], [0.2, 0.2, 0.2]]\n\
+             transform = { translate = [-0.9, 1.2, 0.0] }\n"
+        } else {
+            ""
+        };
+        let text = format!(
+            r#"
+            [camera]
+            [[surfaces]]
+            name = "floor"
+            formula = "y"
+            bounds = [[-4.0, -0.5, -4.0], [4.0, 0.0, 4.0]]
+            clip = true
+            {ball}
+            [[meshes]]
+            name = "square"
+            polygons = [[[-0.3, 1.0, -0.4], [0.7, 1.0, -0.4], [0.7, 1.0, 0.6], [-0.3, 1.0, 0.6]]]
+
+            [[lights]]
+            type = "area"
+            center = [0.0, 2.0, 0.0]
+            size = 1.0
+            normal = "y"
+            "#
+        );
+        Scene::from_toml(&text, "exact.toml", None).unwrap()
+    }
+
+    /// The visible fraction from `x` (below the occluder's plane) in closed form: the
+    /// occluder projected from `x` onto the light's plane, overlapped with the light.
+    fn closed_form(x: DVec3) -> f64 {
+        let k = (2.0 - x.y) / (1.0 - x.y);
+        let proj = |lo: f64, hi: f64, xc: f64| (xc + (lo - xc) * k, xc + (hi - xc) * k);
+        let (ax0, ax1) = proj(-0.3, 0.7, x.x);
+        let (az0, az1) = proj(-0.4, 0.6, x.z);
+        let overlap = |a0: f64, a1: f64| (a1.min(0.5) - a0.max(-0.5)).max(0.0);
+        1.0 - overlap(ax0, ax1) * overlap(az0, az1)
+    }
+
+    fn light(scene: &Scene) -> Patch {
+        scene.lights[0].as_area().unwrap().patch
+    }
+
+    fn fractions(
+        scene: &Scene,
+        spec: &str,
+        points: &[DVec3],
+    ) -> Vec<beam_trace::shadow::LightVisibility> {
+        let plan = Plan::for_scene(scene);
+        let prepared = Cpu
+            .prepare(scene, &plan, &[QueryKind::SoftShadows])
+            .unwrap();
+        let spec: ShadowSpec = spec.parse().unwrap();
+        let queries: Vec<ShadowQuery> = points
+            .iter()
+            .enumerate()
+            .map(|(i, &origin)| ShadowQuery {
+                origin,
+                light: light(scene),
+                seed: i as u64 * 7919 + 1,
+            })
+            .collect();
+        prepared
+            .queries
+            .soft_shadows(&spec, &queries)
+            .unwrap()
+            .visibility
+    }
+
+    fn floor_points() -> Vec<DVec3> {
+        let mut out = Vec::new();
+        for i in 0..15 {
+            for j in 0..15 {
+                let (x, z) = (-1.6 + 0.23 * f64::from(i), -1.5 + 0.21 * f64::from(j));
+                out.push(DVec3::new(x, 1e-3, z));
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn the_exact_method_matches_the_closed_form_of_a_parallel_square() {
+        let s = scene(false);
+        let points = floor_points();
+        let got = fractions(&s, "exact", &points);
+        let mut penumbra = 0;
+        for (p, v) in points.iter().zip(&got) {
+            let want = closed_form(*p);
+            assert!(
+                (f64::from(v.fraction) - want).abs() < 1e-6,
+                "at {p}: {} against {want}",
+                v.fraction
+            );
+            // No certificate where a triangle is in the shaft; a proof where none is.
+            assert!(v.lower <= v.fraction && v.fraction <= v.upper);
+            penumbra += usize::from(want > 1e-9 && want < 1.0 - 1e-9);
+        }
+        assert!(penumbra > 20, "{penumbra}");
+    }
+
+    #[test]
+    fn with_an_implicit_occluder_the_exact_method_agrees_with_sampling() {
+        let s = scene(true);
+        let points = floor_points();
+        let exact = fractions(&s, "exact", &points);
+        let reference = fractions(&s, "stochastic:4096", &points);
+        let mut shaded_by_ball = 0;
+        for ((p, e), r) in points.iter().zip(&exact).zip(&reference) {
+            let sd = (r.fraction * (1.0 - r.fraction) / 4096.0)
+                .sqrt()
+                .max(1.0 / 4096.0);
+            assert!(
+                (e.fraction - r.fraction).abs() <= 4.0 * sd + 1e-3,
+                "at {p}: exact {} against sampled {}",
+                e.fraction,
+                r.fraction
+            );
+            assert!(e.lower - 4.0 * sd <= r.fraction && r.fraction <= e.upper + 4.0 * sd);
+            shaded_by_ball += usize::from((f64::from(r.fraction) - closed_form(*p)).abs() > 0.02);
+        }
+        assert!(shaded_by_ball > 5, "{shaded_by_ball}");
+    }
 }

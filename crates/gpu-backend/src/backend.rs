@@ -83,6 +83,9 @@ impl Backend for GpuBackend {
                 ShadowSpec::Stochastic { cache: true, .. } => {
                     no("the last-occluder cache searches single objects")
                 }
+                ShadowSpec::Exact { .. } => {
+                    no("the exact method grows a BSP of the triangles' edges per point")
+                }
                 _ => Support::Yes,
             },
             QueryKind::Shade if scene.lights.len() > MAX_LIGHTS => Support::No(format!(

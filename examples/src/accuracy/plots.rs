@@ -149,6 +149,7 @@ fn color(family: Family) -> RGBColor {
         Family::MinkowskiStochastic => RGBColor(44, 160, 44),
         Family::MinkowskiBeam => RGBColor(148, 103, 189),
         Family::Certified => RGBColor(0, 0, 0),
+        Family::Exact => RGBColor(188, 189, 34),
         Family::Epsilon => RGBColor(140, 86, 75),
         Family::F32 => RGBColor(227, 119, 194),
     }

@@ -16,12 +16,13 @@ pub(crate) enum Family {
     MinkowskiStochastic,
     MinkowskiBeam,
     Certified,
+    Exact,
     Epsilon,
     F32,
 }
 
 impl Family {
-    pub(crate) const ALL: [Family; 9] = [
+    pub(crate) const ALL: [Family; 10] = [
         Family::Stochastic,
         Family::StochasticCache,
         Family::Beam,
@@ -29,6 +30,7 @@ impl Family {
         Family::MinkowskiStochastic,
         Family::MinkowskiBeam,
         Family::Certified,
+        Family::Exact,
         Family::Epsilon,
         Family::F32,
     ];
@@ -42,6 +44,7 @@ impl Family {
             Family::MinkowskiStochastic => "minkowski:stochastic:N",
             Family::MinkowskiBeam => "minkowski:beam:n",
             Family::Certified => "certified:TOL",
+            Family::Exact => "exact",
             Family::Epsilon => "root epsilon varied",
             Family::F32 => "f32 precision",
         }
@@ -185,6 +188,7 @@ impl Setting {
                 let settings = written.trim_start_matches("certified:");
                 format!("c{}", settings.replace(':', "/"))
             }
+            ShadowSpec::Exact { depth } => format!("e{depth}"),
         };
         match self.variant {
             Variant::Default => method,
@@ -215,6 +219,7 @@ impl Setting {
             ) => Family::MinkowskiStochastic,
             (_, ShadowSpec::Minkowski { .. }) => Family::MinkowskiBeam,
             (_, ShadowSpec::Certified { .. }) => Family::Certified,
+            (_, ShadowSpec::Exact { .. }) => Family::Exact,
         }
     }
 }

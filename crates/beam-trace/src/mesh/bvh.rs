@@ -175,6 +175,33 @@ impl Bvh {
         }
     }
 
+    /// The triangles (indices in the list the hierarchy was built from) whose boxes meet
+    /// the box `b`, in leaf order.
+    pub fn in_box(&self, b: &IBox) -> Vec<u32> {
+        let mut out = Vec::new();
+        let mut stack = if self.nodes.is_empty() {
+            vec![]
+        } else {
+            vec![0u32]
+        };
+        while let Some(i) = stack.pop() {
+            let node = &self.nodes[i as usize];
+            if (0..3).any(|k| node.bounds[k].disjoint(b[k])) {
+                continue;
+            }
+            if node.count > 0 {
+                let run = node.start as usize..(node.start + node.count) as usize;
+                out.extend(run.filter_map(|k| {
+                    let tb = self.triangles[k].bounds();
+                    (!(0..3).any(|a| tb[a].disjoint(b[a]))).then_some(self.ids[k])
+                }));
+            } else {
+                stack.extend([node.start, i + 1]);
+            }
+        }
+        out
+    }
+
     /// Whether some triangle may meet the box `b` (`false` is a proof that none does).
     pub fn may_meet(&self, b: &IBox) -> bool {
         self.may_meet_except(b, None, None)

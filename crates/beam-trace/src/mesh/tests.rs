@@ -85,6 +85,32 @@ fn exact_crossing(v: [I3; 3], o: I3, d: I3) -> Option<(i128, i128)> {
     Some(if den < 0 { (-num, -den) } else { (num, den) })
 }
 
+/// The triangles of integer vertex triples.
+fn triangles(tris: &[[I3; 3]]) -> Vec<Triangle> {
+    tris.iter()
+        .map(|v| Triangle::new(dv(v[0]), dv(v[1]), dv(v[2])))
+        .collect()
+}
+
+/// The beam from `o` with the directions `d ± spread`.
+fn beam_around(o: I3, d: I3, spread: f64) -> Beam {
+    let dir = dv(d);
+    Beam {
+        origin: crate::ibox::point_box(dv(o)),
+        dir: std::array::from_fn(|i| ival(dir[i] - spread, dir[i] + spread)),
+    }
+}
+
+/// The ray of a point-origin `beam` at the fractions `p` of its direction intervals.
+fn ray_in(beam: &Beam, p: &[f64; 3]) -> Ray {
+    Ray {
+        origin: DVec3::from_array(std::array::from_fn(|i| beam.origin[i].inf())),
+        dir: DVec3::from_array(std::array::from_fn(|i| {
+            beam.dir[i].inf() + p[i] * (beam.dir[i].sup() - beam.dir[i].inf())
+        })),
+    }
+}
+
 const R: i64 = 1 << 20;
 
 fn coord() -> impl Strategy<Value = i128> {
@@ -137,9 +163,7 @@ proptest! {
                                      [small_point(), small_point(), small_point()], 1..40),
                                  o in small_point(), d in small_point()) {
         prop_assume!(d != [0, 0, 0]);
-        let list: Vec<Triangle> = tris.iter()
-            .map(|v| Triangle::new(dv(v[0]), dv(v[1]), dv(v[2]))).collect();
-        let bvh = Bvh::new(&list);
+        let bvh = Bvh::new(&triangles(&tris));
         let ray = Ray { origin: dv(o), dir: dv(d) };
         let window = ival(0.0, f64::INFINITY);
         let got = bvh.first_crossing(&ray, window).result;
@@ -171,22 +195,12 @@ proptest! {
                            spread in 0.0f64..0.5, picks in proptest::collection::vec(
                                [0.0f64..1.0, 0.0f64..1.0, 0.0f64..1.0], 8)) {
         prop_assume!(d != [0, 0, 0]);
-        let list: Vec<Triangle> = tris.iter()
-            .map(|v| Triangle::new(dv(v[0]), dv(v[1]), dv(v[2]))).collect();
-        let bvh = Bvh::new(&list);
-        let dir = dv(d);
-        let beam = Beam {
-            origin: crate::ibox::point_box(dv(o)),
-            dir: std::array::from_fn(|i| ival(dir[i] - spread, dir[i] + spread)),
-        };
+        let bvh = Bvh::new(&triangles(&tris));
+        let beam = beam_around(o, d, spread);
         let window = ival(0.0, 50.0);
         if bvh.beam_first(&beam, window).is_none() {
             for p in &picks {
-                let dir = DVec3::from_array(std::array::from_fn(|i| {
-                    beam.dir[i].inf() + p[i] * (beam.dir[i].sup() - beam.dir[i].inf())
-                }));
-                let ray = Ray { origin: dv(o), dir };
-                let hit = bvh.first_crossing(&ray, window).result;
+                let hit = bvh.first_crossing(&ray_in(&beam, p), window).result;
                 prop_assert!(!matches!(hit, RootResult::Root { proof, .. } if proof != Proof::Possible),
                     "a ray of a free beam crosses a triangle: {hit:?}");
             }
@@ -208,21 +222,11 @@ proptest! {
                                        spread in 0.0f64..0.3, picks in proptest::collection::vec(
                                            [0.0f64..=1.0, 0.0f64..=1.0, 0.0f64..=1.0], 8)) {
         prop_assume!(d != [0, 0, 0]);
-        let list: Vec<Triangle> = tris.iter()
-            .map(|v| Triangle::new(dv(v[0]), dv(v[1]), dv(v[2]))).collect();
+        let list = triangles(&tris);
         let bvh = Bvh::new(&list);
-        let dir = dv(d);
-        let beam = Beam {
-            origin: crate::ibox::point_box(dv(o)),
-            dir: std::array::from_fn(|i| ival(dir[i] - spread, dir[i] + spread)),
-        };
+        let beam = beam_around(o, d, spread);
         let window = ival(0.0, 50.0);
-        let rays: Vec<Ray> = picks.iter().map(|p| Ray {
-            origin: dv(o),
-            dir: DVec3::from_array(std::array::from_fn(|i| {
-                beam.dir[i].inf() + p[i] * (beam.dir[i].sup() - beam.dir[i].inf())
-            })),
-        }).collect();
+        let rays: Vec<Ray> = picks.iter().map(|p| ray_in(&beam, p)).collect();
         let whole = ival(f64::NEG_INFINITY, f64::INFINITY);
         for tri in &list {
             if tri.beam_misses(&beam) {

@@ -93,6 +93,10 @@ pub(super) fn soft_shadows(
             c.sub_beams += a.work.sub_beams;
             c.rays += a.work.rays;
             c.cache_hits += a.work.cache_hits;
+            c.shaft_triangles += a.work.shaft_triangles;
+            c.bsp_nodes += a.work.bsp.inner_nodes;
+            c.bsp_peak_nodes = c.bsp_peak_nodes.max(a.work.bsp.peak_nodes);
+            c.bsp_fragments += a.work.bsp.fragments;
             c.search.add(&a.work.root);
             answers.extend(a.visibility);
             progress.advance(chunk.len() as u64);

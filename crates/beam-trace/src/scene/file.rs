@@ -25,7 +25,7 @@ use super::csg::{Ref, csg_tree, ref_path, resolve_csg};
 use super::diagnostics::Doc;
 use super::geometry::{Csg, Geometry, Leaf};
 use super::lights::lights;
-use super::mesh::{build_meshes, scene_bounds};
+use super::mesh_file::{build_meshes, scene_bounds};
 use super::model::{Light, PointLight, Scene};
 use super::schema::{RawCamera, RawRender, RawScene, RawSurface};
 use super::settings::render_settings;

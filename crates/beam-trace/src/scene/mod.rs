@@ -18,6 +18,7 @@ pub mod geometry;
 mod lights;
 mod material;
 mod mesh;
+mod mesh_file;
 mod model;
 mod schema;
 mod settings;

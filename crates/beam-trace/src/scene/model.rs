@@ -5,6 +5,7 @@ use std::sync::Arc;
 use glam::DVec3;
 
 use super::geometry::Geometry;
+use super::material::Material;
 use super::mesh::MeshSurface;
 use crate::camera::Camera;
 use crate::free_ranges::BlockProofs;
@@ -342,4 +343,33 @@ pub struct Scene {
     /// [`render_blocks`](crate::blocks::render_blocks), for scenes the block encloses
     /// ([`BlockProofs`] cannot be made elsewhere).
     pub proofs: Option<Arc<BlockProofs>>,
+}
+
+impl Scene {
+    /// The material of the samples of leaf `leaf`: an implicit leaf's, or for
+    /// `leaf = geometry.leaves().len() + k` mesh `k`'s (the default material for any other
+    /// number).
+    pub fn material_of(&self, leaf: u32) -> Material {
+        let leaves = self.geometry.leaves();
+        let i = leaf as usize;
+        match leaves.get(i) {
+            Some(l) => l.material,
+            None => self
+                .meshes
+                .get(i - leaves.len())
+                .map_or_else(Material::default, |m| m.material),
+        }
+    }
+
+    /// The mesh that leaf `leaf` names, if it names one.
+    pub fn mesh_of_leaf(&self, leaf: u32) -> Option<usize> {
+        (leaf as usize)
+            .checked_sub(self.geometry.leaves().len())
+            .filter(|&k| k < self.meshes.len())
+    }
+
+    /// The leaf number of mesh `mesh`.
+    pub fn mesh_leaf(&self, mesh: usize) -> u32 {
+        (self.geometry.leaves().len() + mesh) as u32
+    }
 }

@@ -4,6 +4,7 @@
 
 use glam::DVec3;
 
+use super::exact_work::BspWork;
 use super::hard::Visibility;
 use super::patch::Patch;
 use crate::beam::BoxClass;
@@ -136,6 +137,28 @@ pub trait Occluders {
         inclusion: bool,
         c: &mut RootCounters,
     ) -> BoxClass;
+
+    /// The triangles of the scene's meshes that may block a segment from `from` to a
+    /// point of `light`: every triangle whose box meets the box of `from` and the light's
+    /// corners (none where the scene has no meshes).
+    fn triangles(&mut self, from: DVec3, light: &Patch) -> Vec<[DVec3; 3]> {
+        let _ = (from, light);
+        Vec::new()
+    }
+
+    /// [`Occluders::beam`] against the implicit surfaces alone, for a method that treats
+    /// the [`triangles`](Occluders::triangles) itself (the same as `beam` where the scene
+    /// has no meshes).
+    fn implicit_beam(
+        &mut self,
+        from: DVec3,
+        light: &Patch,
+        start: f64,
+        inclusion: bool,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        self.beam(from, light, start, inclusion, c)
+    }
 }
 
 /// Work counters of soft shadows (the columns of the soft-shadow paper's Table 1 and more).
@@ -155,6 +178,10 @@ pub struct ShadowWork {
     pub rays: u64,
     /// Samples decided by the last-occluder cache.
     pub cache_hits: u64,
+    /// Triangles kept by the exact method's shaft culling, summed over its queries.
+    pub shaft_triangles: u64,
+    /// The exact method's BSP work.
+    pub bsp: BspWork,
     /// Root-search counters of every test.
     pub root: RootCounters,
 }
@@ -169,6 +196,8 @@ impl ShadowWork {
         self.sub_beams += o.sub_beams;
         self.rays += o.rays;
         self.cache_hits += o.cache_hits;
+        self.shaft_triangles += o.shaft_triangles;
+        self.bsp.add(&o.bsp);
         self.root.add(&o.root);
     }
 }

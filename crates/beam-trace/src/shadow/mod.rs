@@ -16,7 +16,9 @@
 //!   proven to lie in a bound no wider than a tolerance, with an estimate inside it;
 //! * [`minkowski`]: the penumbra detection of the Minkowski-operator method carried to
 //!   implicit surfaces: a lit test on the occluders grown by the light, an umbra test,
-//!   and a fine method only in the penumbra left.
+//!   and a fine method only in the penumbra left;
+//! * [`exact`]: the shadows of the scene's triangles by the lazy BSP in Plücker space
+//!   (seed 003), and of its implicit surfaces by shadow beams over the visible fragments.
 //!
 //! Every method works through the scene's [`Occluders`] (segment and beam queries the
 //! renderer answers through its regular grid), returns a [`LightVisibility`] with proven
@@ -25,6 +27,7 @@
 pub mod beam;
 pub mod certified;
 pub mod exact;
+mod exact_work;
 pub mod hard;
 mod method;
 pub mod minkowski;
@@ -60,6 +63,7 @@ impl ShadowSpec {
                 budget,
                 segments,
             }),
+            ShadowSpec::Exact { depth } => Box::new(exact::Exact { depth }),
         }
     }
 }

@@ -120,6 +120,12 @@ pub enum ShadowSpec {
         /// Stratified segments of the estimate inside the bound, per point and light.
         segments: u32,
     },
+    /// The triangles' shadows by the lazy BSP in Plücker space, the implicit surfaces'
+    /// by shadow beams over the visible fragments ([`crate::shadow::exact::Exact`]).
+    Exact {
+        /// Halvings of a visible fragment against the implicit surfaces.
+        depth: u32,
+    },
 }
 
 impl ShadowSpec {
@@ -131,6 +137,8 @@ impl ShadowSpec {
     pub const DEFAULT_BUDGET: u32 = 1024;
     /// Largest budget of beams per point and light.
     pub const MAX_BUDGET: u32 = 1 << 20;
+    /// Largest number of halvings of `exact:D`.
+    pub const MAX_EXACT_DEPTH: u32 = 24;
     /// Segments of `certified:TOL`'s estimate without a count
     /// ([`ESTIMATE_SEGMENTS`](crate::shadow::certified::ESTIMATE_SEGMENTS)).
     pub const DEFAULT_SEGMENTS: u32 = crate::shadow::certified::ESTIMATE_SEGMENTS;
@@ -183,13 +191,20 @@ impl fmt::Display for ShadowSpec {
                     write!(f, "certified:{tolerance}")
                 }
             }
+            ShadowSpec::Exact { depth } => {
+                if depth == crate::shadow::exact::DEFAULT_DEPTH {
+                    write!(f, "exact")
+                } else {
+                    write!(f, "exact:{depth}")
+                }
+            }
         }
     }
 }
 
 const FORMS: &str = "stochastic:N, stochastic:N:cache, beam:n, beam-all:n, beam-quadtree:n, \
                      minkowski:stochastic:N, minkowski:beam:n, certified:TOL, \
-                     certified:TOL:BUDGET, certified:TOL:BUDGET:SEGMENTS";
+                     certified:TOL:BUDGET, certified:TOL:BUDGET:SEGMENTS, exact, exact:D";
 
 fn count(s: &str, text: &str, what: &str, max: u32) -> Result<u32, String> {
     match text.parse::<u32>() {
@@ -254,6 +269,18 @@ impl FromStr for ShadowSpec {
                     ShadowSpec::MAX_SAMPLES,
                 )?,
             }),
+            ["exact"] => Ok(ShadowSpec::Exact {
+                depth: crate::shadow::exact::DEFAULT_DEPTH,
+            }),
+            ["exact", d] => match d.parse::<u32>() {
+                Ok(depth) if depth <= ShadowSpec::MAX_EXACT_DEPTH => {
+                    Ok(ShadowSpec::Exact { depth })
+                }
+                _ => Err(format!(
+                    "'{s}': the number of halvings must be an integer from 0 to {}, got '{d}'",
+                    ShadowSpec::MAX_EXACT_DEPTH
+                )),
+            },
             _ => Err(format!("unknown shadow method '{s}' (one of: {FORMS})")),
         }
     }
@@ -278,6 +305,8 @@ mod tests {
             "certified:1",
             "certified:0.9:1024:64",
             "certified:0.5:16:8",
+            "exact",
+            "exact:3",
         ] {
             let spec: ShadowSpec = s.parse().unwrap();
             assert_eq!(spec.to_string(), s);
@@ -302,6 +331,8 @@ mod tests {
         assert!(e.contains("budget of beams"), "{e}");
         let e = "certified:0.05:64:0".parse::<ShadowSpec>().unwrap_err();
         assert!(e.contains("number of estimate segments"), "{e}");
+        let e = "exact:25".parse::<ShadowSpec>().unwrap_err();
+        assert!(e.contains("number of halvings"), "{e}");
         let e = "certified:x".parse::<ShadowSpec>().unwrap_err();
         assert!(e.contains("'certified:x'") && e.contains("a number"), "{e}");
         assert_eq!(

@@ -202,6 +202,14 @@ counters! {
         rays,
         /// Segments decided by the last-occluder cache.
         cache_hits,
+        /// Triangles kept by the exact method's shaft culling, over its queries.
+        shaft_triangles,
+        /// Inner nodes the exact method's BSPs created.
+        bsp_nodes,
+        /// The most nodes of one BSP alive at once (its peak memory, in nodes).
+        bsp_peak_nodes,
+        /// Visible fragments the exact method's queries returned.
+        bsp_fragments,
         /// Pixels whose proven bound on the visible fraction is at most the method's
         /// tolerance wide (0 for methods without one: proven lit or umbra).
         certified_pixels,

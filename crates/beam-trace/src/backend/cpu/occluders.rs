@@ -7,7 +7,7 @@ use interval_core::Interval;
 use super::queries::{CpuQueries, Evals, with_mesh};
 use crate::aa::{facing, shadow_origins};
 use crate::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
-use crate::ibox::{IBox, ipoint};
+use crate::ibox::{IBox, hull, ipoint};
 use crate::ray::{Beam, Ray, point_box};
 use crate::root::{Proof, RootCounters, RootFinder, RootResult};
 use crate::sample::SHADOW_OFFSET;
@@ -93,6 +93,40 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         inclusion: bool,
         c: &mut RootCounters,
     ) -> BoxClass {
+        let (beam, settings) = self.light_beam(from, light);
+        self.queries
+            .shadow_beam(self.ev, &beam, (start, inclusion), &settings, c)
+    }
+
+    fn triangles(&mut self, from: DVec3, light: &Patch) -> Vec<[DVec3; 3]> {
+        let Some(m) = &self.queries.meshes else {
+            return Vec::new();
+        };
+        let shaft = hull(&point_box(from), &light.bounding_box());
+        m.bvh()
+            .in_box(&shaft)
+            .into_iter()
+            .map(|i| m.bvh().triangle(i).v)
+            .collect()
+    }
+
+    fn implicit_beam(
+        &mut self,
+        from: DVec3,
+        light: &Patch,
+        start: f64,
+        inclusion: bool,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        let (beam, settings) = self.light_beam(from, light);
+        self.queries
+            .shadow_beam_implicit(self.ev, &beam, (start, inclusion), &settings, c)
+    }
+}
+
+impl SceneOccluders<'_, '_, '_> {
+    /// The shadow beam from `from` over `light`, and its search settings.
+    fn light_beam(&self, from: DVec3, light: &Patch) -> (Beam, BeamSettings) {
         let beam = Beam {
             origin: point_box(from),
             dir: light.directions_from(from),
@@ -103,8 +137,7 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
             from,
             light,
         );
-        self.queries
-            .shadow_beam(self.ev, &beam, (start, inclusion), &settings, c)
+        (beam, settings)
     }
 }
 
@@ -217,7 +250,7 @@ impl CpuQueries<'_> {
     }
 
     /// [`shadow_beam`](Self::shadow_beam) against the implicit surfaces alone.
-    fn shadow_beam_implicit(
+    pub(super) fn shadow_beam_implicit(
         &self,
         ev: &mut Evals,
         beam: &Beam,

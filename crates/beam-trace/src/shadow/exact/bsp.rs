@@ -17,6 +17,7 @@ use glam::DVec3;
 use super::fragment::{Affine, Fragment, Side};
 use super::orient::{side, side_sign};
 use crate::shadow::Patch;
+use crate::shadow::exact_work::BspWork;
 
 /// An occluder: a convex polygon inside the slab between the light and the receiver.
 #[derive(Clone, Debug)]
@@ -43,38 +44,6 @@ enum Node {
         visible: bool,
         occluders: Vec<u32>,
     },
-}
-
-/// What the BSP did, for the per-light table.
-#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
-pub struct BspWork {
-    /// Queries answered.
-    pub queries: u64,
-    /// Leaves expanded (an occluder turned into its chain of edges).
-    pub merges: u64,
-    /// Inner nodes created.
-    pub inner_nodes: u64,
-    /// Fragments split by a query plane.
-    pub splits: u64,
-    /// Visible fragments emitted.
-    pub fragments: u64,
-    /// Query points on an edge's line (the fragment sent to the positive side).
-    pub degenerate: u64,
-    /// The most nodes alive at once.
-    pub peak_nodes: u64,
-}
-
-impl BspWork {
-    /// Adds `other`'s counts to these (the peak is the larger one).
-    pub fn add(&mut self, other: &BspWork) {
-        self.queries += other.queries;
-        self.merges += other.merges;
-        self.inner_nodes += other.inner_nodes;
-        self.splits += other.splits;
-        self.fragments += other.fragments;
-        self.degenerate += other.degenerate;
-        self.peak_nodes = self.peak_nodes.max(other.peak_nodes);
-    }
 }
 
 /// Whether some line `p → q` (`p` of `from`, `q` of `to`) lies on the positive side of the
@@ -284,6 +253,16 @@ impl Bsp {
     /// `fragment` (the light above `x`'s horizon), expanding the tree where the query
     /// reaches undefined leaves.
     pub fn query(&mut self, x: DVec3, fragment: Fragment) -> f64 {
+        self.query_parts(x, fragment, None)
+    }
+
+    /// [`Bsp::query`], also handing each visible fragment to `parts` where given.
+    pub fn query_parts(
+        &mut self,
+        x: DVec3,
+        fragment: Fragment,
+        mut parts: Option<&mut Vec<Fragment>>,
+    ) -> f64 {
         self.work.queries += 1;
         let Patch {
             corner: c,
@@ -301,6 +280,9 @@ impl Bsp {
                 } if occluders.is_empty() => {
                     self.work.fragments += 1;
                     visible += f.area();
+                    if let Some(p) = parts.as_deref_mut() {
+                        p.push(f);
+                    }
                 }
                 Node::Leaf { .. } => {
                     self.expand(n);

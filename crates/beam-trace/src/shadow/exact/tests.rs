@@ -3,7 +3,10 @@
 //! projections, rectangles) and against dense stratified segment tests (triangles in any
 //! position, occluders reaching behind the receiver or through the light's plane).
 
+use glam::DVec3;
+
 use super::*;
+use crate::shadow::Patch;
 
 /// The square light of side 1 at height 2 above the origin, the floor `y = 0`.
 fn setup() -> (Patch, Plane) {
