@@ -232,6 +232,48 @@ fn soft_shadows_of_a_mesh_keep_their_proofs() {
     assert!(checked > 1000, "{checked}");
 }
 
+#[test]
+fn a_scene_of_meshes_alone_renders_and_casts_shadows() {
+    let text = format!(
+        r#"
+        [camera]
+        eye = [0.5, 2.5, 4.0]
+        look_at = [0.0, -0.4, 0.0]
+        width = 48
+        height = 36
+
+        [[meshes]]
+        name = "floor"
+        polygons = [[[-3.0, -1.0, -3.0], [-3.0, -1.0, 3.0], [3.0, -1.0, 3.0], [3.0, -1.0, -3.0]]]
+
+        [[meshes]]
+        name = "cube"
+        {CUBE_POLYGONS}
+        {TRANSFORM}
+
+        [[lights]]
+        type = "point"
+        position = [1.0, 4.0, 2.0]
+
+        [render]
+        aa = "none"
+        "#
+    );
+    let scene = Scene::from_toml(&text, "meshes-only.toml", None).unwrap();
+    assert_eq!(scene.meshes.len(), 2);
+    let out = render(&scene, &NoProgress).unwrap();
+    let mut covered = 0;
+    for y in 0..36 {
+        for x in 0..48 {
+            covered += usize::from(out.image.get(x, y) != scene.background);
+        }
+    }
+    assert!(covered > 48 * 36 / 2, "{covered}");
+    let shadows = out.stats.pass("hard-shadows").unwrap();
+    assert!(shadows.counter("occluded") > 20, "{shadows:?}");
+    assert!(shadows.counter("lit") > 500, "{shadows:?}");
+}
+
 mod exact {
     use beam_trace::backend::{Backend, QueryKind};
     use beam_trace::shadow::{Patch, ShadowQuery, ShadowSpec};

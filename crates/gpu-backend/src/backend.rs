@@ -120,7 +120,7 @@ impl Backend for GpuBackend {
             ],
         );
         let diag = geometry.diagonal();
-        let offset = SHADOW_OFFSET * diag;
+        let offset = SHADOW_OFFSET * scene.diagonal();
         Ok(Prepared {
             queries: Box::new(GpuQueries {
                 gpu: &self.gpu,

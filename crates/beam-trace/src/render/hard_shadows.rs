@@ -28,7 +28,7 @@ pub(super) fn hard_shadows(
 ) -> Result<PassStats, Error> {
     let nl = lights.len();
     let t0 = Instant::now();
-    let offset = SHADOW_OFFSET * scene.geometry.diagonal();
+    let offset = SHADOW_OFFSET * scene.diagonal();
     let mut c = HardShadowCounters::default();
     // Where each segment's answer goes in `vis`.
     let mut slots = Vec::new();

@@ -52,7 +52,7 @@ pub(super) fn soft_shadows(
 ) -> Result<SoftShadows, Error> {
     let t0 = Instant::now();
     let nl = scene.lights.len();
-    let offset = SHADOW_OFFSET * scene.geometry.diagonal();
+    let offset = SHADOW_OFFSET * scene.diagonal();
     let name = plan.shadow_method.to_string();
     let npix = pixels.len();
     let mut classes: Vec<Option<ShadowClass>> = vec![None; npix];

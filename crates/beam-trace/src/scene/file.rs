@@ -58,7 +58,7 @@ fn build(
     if raw.surfaces.is_empty() {
         return Err(doc.err(
             "surfaces",
-            "the scene has no surfaces (add a [[surfaces]] table)",
+            "the scene has no surfaces (add a [[surfaces]] or [[meshes]] table)",
         ));
     }
     // Surfaces: source, parameters, bounds, transform, material.
@@ -191,6 +191,17 @@ fn build(
     ))
 }
 
+/// The implicit surface of a scene of meshes alone: `f = 1` (no point of it) over a small
+/// box at the origin, so that the implicit searches end at once.
+fn empty_implicit_surface() -> RawSurface {
+    RawSurface {
+        name: Some("no-implicit-surface".into()),
+        formula: Some("1".into()),
+        bounds: Some([[-1e-3; 3], [1e-3; 3]]),
+        ..RawSurface::default()
+    }
+}
+
 impl Scene {
     /// Reads a scene from TOML text.
     ///
@@ -274,8 +285,9 @@ impl Scene {
     /// `[0, 1]`.
     ///
     /// **Top level**: `background` (colour), `ambient` (in `[0, 1]`), the tables `camera`,
-    /// `render`, and the arrays of tables `surfaces` (at least one), `csg`, `meshes` and
-    /// `lights`.
+    /// `render`, and the arrays of tables `surfaces`, `csg`, `meshes` and `lights` (at least
+    /// one surface or mesh; a scene of meshes alone gets the empty implicit surface `f = 1`
+    /// over a small box at the origin, named `no-implicit-surface`).
     ///
     /// **`[camera]`**: `eye` and `look_at` (points), `up` (not zero, not parallel to the view
     /// direction), `fov` (in `(0, 180)`), `width` and `height` (1 to 16384). Without `eye`
@@ -391,8 +403,11 @@ impl Scene {
     /// The scene of a parsed static document (see [`Scene::from_toml_at`]).
     fn from_doc(doc: &Doc<'_>, base_dir: Option<&Path>, time: Option<f64>) -> Result<Scene, Error> {
         let tree = doc.tree.clone().expect("a parsed document");
-        let raw = RawScene::deserialize(toml::Deserializer::from(tree))
+        let mut raw = RawScene::deserialize(toml::Deserializer::from(tree))
             .map_err(|e| doc.serde_error(&e))?;
+        if raw.surfaces.is_empty() && !raw.meshes.is_empty() {
+            raw.surfaces.push(empty_implicit_surface());
+        }
         build(doc, &raw, base_dir, time).map(|(s, _)| s)
     }
 

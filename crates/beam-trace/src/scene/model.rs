@@ -368,6 +368,19 @@ impl Scene {
             .filter(|&k| k < self.meshes.len())
     }
 
+    /// The length of the diagonal of the box of the implicit surfaces and the meshes (the
+    /// scale of the shadow segments' offset, [`SHADOW_OFFSET`](crate::sample::SHADOW_OFFSET)).
+    pub fn diagonal(&self) -> f64 {
+        let b = self
+            .meshes
+            .iter()
+            .flat_map(|m| &m.triangles)
+            .fold(self.geometry.bounds(), |b, t| {
+                crate::ibox::hull(&b, &t.bounds())
+            });
+        b.iter().map(|i| i.wid() * i.wid()).sum::<f64>().sqrt()
+    }
+
     /// The leaf number of mesh `mesh`.
     pub fn mesh_leaf(&self, mesh: usize) -> u32 {
         (self.geometry.leaves().len() + mesh) as u32

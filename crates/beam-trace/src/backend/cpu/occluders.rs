@@ -102,11 +102,19 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         let Some(m) = &self.queries.meshes else {
             return Vec::new();
         };
+        // The box of the shaft, then the triangles that some line of the shadow beam over
+        // the whole light may meet (the others are proven outside the shaft).
         let shaft = hull(&point_box(from), &light.bounding_box());
+        let beam = Beam {
+            origin: point_box(from),
+            dir: light.directions_from(from),
+        };
         m.bvh()
             .in_box(&shaft)
             .into_iter()
-            .map(|i| m.bvh().triangle(i).v)
+            .map(|i| m.bvh().triangle(i))
+            .filter(|t| !t.beam_misses(&beam))
+            .map(|t| t.v)
             .collect()
     }
 
@@ -165,7 +173,7 @@ impl CpuQueries<'_> {
             return true;
         }
         let diagonal = self.scene.geometry.diagonal();
-        let offset = SHADOW_OFFSET * diagonal;
+        let offset = SHADOW_OFFSET * self.scene.diagonal();
         let Some(starts) = shadow_origins(gradient, region, eye, offset) else {
             return false;
         };

@@ -45,7 +45,7 @@ pub enum ExactError {
 }
 
 /// The exact visibility of one area light from the points of one planar receiver, through
-/// convex polygonal occluders (see the [module documentation](self)).
+/// convex polygonal occluders (see the [module documentation](super)).
 #[derive(Clone, Debug)]
 pub struct ExactShadows {
     light: Patch,
