@@ -4,7 +4,6 @@
 use std::path::Path;
 
 use beam_trace::scene::AaMode;
-use beam_trace::shadow::ShadowSpec;
 use beam_trace::{Image, NoProgress, RenderOutput, Scene, render};
 
 use super::metrics::{RunResult, SceneReport, fractions, measure, ms, percent, shadow_time};
@@ -59,10 +58,7 @@ pub(crate) fn scene_name(path: &Path) -> String {
 pub(crate) fn run_scene(path: &Path, opts: &Options) -> Result<SceneReport, String> {
     let scene = load_scene(path, opts.width, opts.height)?;
     let name = scene_name(path);
-    let reference_spec = ShadowSpec::Stochastic {
-        samples: opts.reference_samples,
-        cache: false,
-    };
+    let reference_spec = opts.reference.spec();
     println!(
         "{}: {}x{}, reference {reference_spec} ...",
         path.display(),
@@ -78,7 +74,7 @@ pub(crate) fn run_scene(path: &Path, opts: &Options) -> Result<SceneReport, Stri
         path: path.to_path_buf(),
         width: opts.width,
         height: opts.height,
-        reference_samples: opts.reference_samples,
+        reference: opts.reference,
         reference_time,
         runs: Vec::with_capacity(opts.settings.len()),
     };
@@ -87,7 +83,7 @@ pub(crate) fn run_scene(path: &Path, opts: &Options) -> Result<SceneReport, Stri
     save(&reference_out.image, "reference")?;
     for &setting in &opts.settings {
         let out = render_with(&scene, &setting)?;
-        let run = measure(setting, &out, &reference, opts.reference_samples)?;
+        let run = measure(setting, &out, &reference, opts.reference)?;
         print_run(&run);
         if setting.is(CLASS_IMAGE)
             && let Some(maps) = &out.shadows

@@ -7,7 +7,7 @@ use std::time::Duration;
 use beam_trace::shadow::ShadowClass;
 use beam_trace::{RenderOutput, ShadowMaps};
 
-use super::options::BASELINE;
+use super::options::{BASELINE, Reference};
 use super::setting::{Setting, Variant, image_name};
 
 /// The visible fraction of a render against the reference.
@@ -114,7 +114,7 @@ pub(crate) struct SceneReport {
     pub(crate) path: PathBuf,
     pub(crate) width: u32,
     pub(crate) height: u32,
-    pub(crate) reference_samples: u32,
+    pub(crate) reference: Reference,
     pub(crate) reference_time: Duration,
     pub(crate) runs: Vec<RunResult>,
 }
@@ -177,7 +177,12 @@ pub(crate) fn compare(fraction: &[f32], reference: &[f32]) -> Errors {
     }
 }
 
-pub(crate) fn check_proofs(classes: &[Option<ShadowClass>], reference: &[f32]) -> Proofs {
+pub(crate) fn check_proofs(
+    classes: &[Option<ShadowClass>],
+    reference: &[f32],
+    of: Reference,
+) -> Proofs {
+    let tolerance = of.rounding() as f32;
     let mut p = Proofs::default();
     for (class, &r) in classes.iter().zip(reference) {
         let Some(class) = class else { continue };
@@ -185,11 +190,11 @@ pub(crate) fn check_proofs(classes: &[Option<ShadowClass>], reference: &[f32]) -
         let contradicted = match class {
             ShadowClass::Lit => {
                 p.lit += 1;
-                r.is_finite() && r < 1.0
+                r.is_finite() && r < 1.0 - tolerance
             }
             ShadowClass::Umbra => {
                 p.umbra += 1;
-                r.is_finite() && r > 0.0
+                r.is_finite() && r > tolerance
             }
             ShadowClass::BackFacing => {
                 p.back_facing += 1;
@@ -202,19 +207,19 @@ pub(crate) fn check_proofs(classes: &[Option<ShadowClass>], reference: &[f32]) -
     p
 }
 
-/// Checks each pixel's proven bound against the reference mean of `samples` samples.
-fn check_bounds(maps: &ShadowMaps, reference: &[f32], samples: u32, p: &mut Proofs) {
+/// Checks each pixel's proven bound against the reference fractions `reference` of the
+/// render `of`.
+fn check_bounds(maps: &ShadowMaps, reference: &[f32], of: Reference, p: &mut Proofs) {
     let (Some(lower), Some(upper)) = (maps.lower.first(), maps.upper.first()) else {
         return;
     };
-    let n = f64::from(samples);
     for ((&lo, &hi), &r) in lower.iter().zip(upper).zip(reference) {
         if !(lo.is_finite() && hi.is_finite() && r.is_finite()) {
             continue;
         }
         p.widest_bound = p.widest_bound.max(hi - lo);
         let r = f64::from(r);
-        let slack = 4.0 * (r * (1.0 - r) / n).sqrt().max(1.0 / n);
+        let slack = of.slack(r);
         if f64::from(lo) > r + slack || f64::from(hi) < r - slack {
             p.bound_violations += 1;
         }
@@ -225,11 +230,11 @@ pub(crate) fn measure(
     setting: Setting,
     out: &RenderOutput,
     reference: &[f32],
-    reference_samples: u32,
+    of: Reference,
 ) -> Result<RunResult, String> {
     let maps = out.shadows.as_ref().ok_or("no soft-shadow maps")?;
-    let mut proofs = check_proofs(&maps.classes, reference);
-    check_bounds(maps, reference, reference_samples, &mut proofs);
+    let mut proofs = check_proofs(&maps.classes, reference, of);
+    check_bounds(maps, reference, of, &mut proofs);
     Ok(RunResult {
         setting,
         shadow_time: shadow_time(out),

@@ -3,6 +3,7 @@
 
 use std::path::PathBuf;
 
+use beam_trace::shadow::ShadowSpec;
 use clap::Parser;
 
 use super::setting::{Setting, settings};
@@ -23,6 +24,11 @@ pub struct Args {
     /// Samples of the stochastic reference (default 4096; 256 with --quick).
     #[arg(long)]
     pub reference_samples: Option<u32>,
+    /// Measure against the `exact` method instead of sampling: for scenes whose occluders
+    /// are triangle meshes, where its fractions are exact up to rounding (with implicit
+    /// occluders its pieces left open are estimated by segments).
+    #[arg(long, conflicts_with = "reference_samples")]
+    pub exact_reference: bool,
     /// Folder of the report (`accuracy.md`) and of its `images/` (default `docs`; the
     /// system's temporary folder with --quick).
     #[arg(long)]
@@ -48,11 +54,66 @@ pub(crate) const ERROR_MAPS: [(&str, &str); 2] = [
     ("stochastic:64", "stochastic64-error"),
 ];
 
+/// The render every setting is measured against.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) enum Reference {
+    /// `stochastic:N`.
+    Stochastic(u32),
+    /// `exact` (its default refinement against implicit occluders).
+    Exact,
+}
+
+impl Reference {
+    /// The method of the reference render.
+    pub(crate) fn spec(self) -> ShadowSpec {
+        match self {
+            Reference::Stochastic(samples) => ShadowSpec::Stochastic {
+                samples,
+                cache: false,
+            },
+            Reference::Exact => ShadowSpec::Exact {
+                depth: beam_trace::shadow::exact::DEFAULT_DEPTH,
+            },
+        }
+    }
+
+    /// How far a proven bound may miss the reference fraction `r` before it counts as a
+    /// violation: 4 standard deviations of a stochastic reference's mean (at least `4 /
+    /// N`), or for the exact reference `1e-6` (its fractions are `f32`).
+    pub(crate) fn slack(self, r: f64) -> f64 {
+        match self {
+            Reference::Stochastic(samples) => {
+                let n = f64::from(samples);
+                4.0 * (r * (1.0 - r) / n).sqrt().max(1.0 / n)
+            }
+            Reference::Exact => Self::EXACT_ROUNDING,
+        }
+    }
+
+    /// How far the reference's fraction may lie from a true 0 or 1 by rounding alone (0 for
+    /// sampling, whose fractions are counts).
+    pub(crate) fn rounding(self) -> f64 {
+        match self {
+            Reference::Stochastic(_) => 0.0,
+            Reference::Exact => Self::EXACT_ROUNDING,
+        }
+    }
+
+    /// The rounding of the exact method's `f32` fractions (sums of fragment areas).
+    const EXACT_ROUNDING: f64 = 1e-6;
+}
+
+impl std::fmt::Display for Reference {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}", self.spec())
+    }
+}
+
 /// Options resolved from the command line.
 pub(crate) struct Options {
     pub(crate) width: u32,
     pub(crate) height: u32,
-    pub(crate) reference_samples: u32,
+    pub(crate) reference: Reference,
     pub(crate) out_dir: PathBuf,
     pub(crate) settings: Vec<Setting>,
 }
@@ -79,7 +140,11 @@ impl Options {
         Ok(Options {
             width,
             height,
-            reference_samples: args.reference_samples.unwrap_or(n),
+            reference: if args.exact_reference {
+                Reference::Exact
+            } else {
+                Reference::Stochastic(args.reference_samples.unwrap_or(n))
+            },
             out_dir,
             settings: match &args.methods {
                 Some(methods) => methods
@@ -93,5 +158,45 @@ impl Options {
 
     pub(crate) fn images(&self) -> PathBuf {
         self.out_dir.join("images")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn references_name_their_method_and_their_slack() {
+        let s = Reference::Stochastic(4096);
+        assert_eq!(s.to_string(), "stochastic:4096");
+        // 4 standard deviations of a mean of 4096 samples at 1/2, and at least 4/N.
+        assert!((s.slack(0.5) - 4.0 * (0.25f64 / 4096.0).sqrt()).abs() < 1e-15);
+        assert_eq!(s.slack(1.0), 4.0 / 4096.0);
+        assert_eq!(s.rounding(), 0.0);
+        let e = Reference::Exact;
+        assert_eq!(e.to_string(), "exact");
+        assert_eq!(e.slack(0.5), 1e-6);
+        assert_eq!(e.rounding(), 1e-6);
+    }
+
+    #[test]
+    fn the_exact_reference_is_chosen_by_its_flag() {
+        let args = Args::parse_from(["accuracy-cost", "--exact-reference", "--quick"]);
+        assert_eq!(
+            Options::from_args(&args).unwrap().reference,
+            Reference::Exact
+        );
+        let args = Args::parse_from(["accuracy-cost", "--reference-samples", "64"]);
+        let opts = Options::from_args(&args).unwrap();
+        assert_eq!(opts.reference, Reference::Stochastic(64));
+        assert!(
+            Args::try_parse_from([
+                "accuracy-cost",
+                "--exact-reference",
+                "--reference-samples",
+                "64"
+            ])
+            .is_err()
+        );
     }
 }

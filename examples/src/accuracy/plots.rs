@@ -44,12 +44,12 @@ pub(crate) fn draw_plot(
     let mut chart = ChartBuilder::on(&plot_area)
         .caption(
             format!(
-                "{}: soft-shadow time against {} ({}x{}, reference stochastic:{})",
+                "{}: soft-shadow time against {} ({}x{}, reference {})",
                 report.name,
                 metric.title(),
                 report.width,
                 report.height,
-                report.reference_samples
+                report.reference
             ),
             ("sans-serif", 19),
         )

@@ -168,10 +168,10 @@ pub(crate) fn scene_section(md: &mut String, report: &SceneReport) -> fmt::Resul
     writeln!(md, "## Scene `{}`\n", report.path.display())?;
     writeln!(
         md,
-        "{}×{} pixels; reference `stochastic:{}` (soft shadows {:.0} ms). Contradictions over all runs: **{}**.\n",
+        "{}×{} pixels; reference `{}` (soft shadows {:.0} ms). Contradictions over all runs: **{}**.\n",
         report.width,
         report.height,
-        report.reference_samples,
+        report.reference,
         ms(report.reference_time),
         report.contradictions()
     )?;
@@ -374,11 +374,11 @@ pub(crate) fn markdown(reports: &[SceneReport], opts: &Options, elapsed: Duratio
         writeln!(md, "{INTRO}\n")?;
         writeln!(
             md,
-            "Reproduce with `{COMMAND}` (options: `--width`, `--height`, `--reference-samples`, `--out-dir`, `--quick`; scene files as arguments). \
-             This report: {}×{} pixels, reference `stochastic:{}`, {} settings per scene; the whole run took {:.0} s.\n",
+            "Reproduce with `{COMMAND}` (options: `--width`, `--height`, `--reference-samples` or `--exact-reference`, `--out-dir`, `--quick`; scene files as arguments). \
+             This report: {}×{} pixels, reference `{}`, {} settings per scene; the whole run took {:.0} s.\n",
             opts.width,
             opts.height,
-            opts.reference_samples,
+            opts.reference,
             opts.settings.len(),
             elapsed.as_secs_f64()
         )?;

@@ -4,14 +4,15 @@
 //! time-against-error plots.
 //!
 //! ```text
-//! accuracy-cost [SCENE.toml ...] [--width W --height H] [--reference-samples N]
+//! accuracy-cost [SCENE.toml ...] [--width W --height H] [--reference-samples N | --exact-reference]
 //!               [--out-dir DIR] [--quick]
 //! ```
 //!
 //! For each scene (default: `scenes/soft-shadows.toml` and `scenes/thin-occluder.toml`, at
 //! 128 × 96 pixels; about three minutes on two cores):
 //!
-//! 1. a reference render with `stochastic:N` (`--reference-samples`, default 4096);
+//! 1. a reference render with `stochastic:N` (`--reference-samples`, default 4096), or with
+//!    the `exact` method (`--exact-reference`, for scenes whose occluders are meshes);
 //! 2. one render per setting: `stochastic:N` for N in 4..1024 (two with the last-occluder
 //!    cache), `beam:n` for n in 2..16, `beam-all:7`, `beam-quadtree:8`,
 //!    `minkowski:stochastic:N`, `minkowski:beam:n`, and `beam:7` and `stochastic:64` with

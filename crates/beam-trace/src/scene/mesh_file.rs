@@ -8,7 +8,7 @@ use glam::DVec3;
 use super::diagnostics::Doc;
 use super::mesh::MeshSurface;
 use super::schema::RawMesh;
-use super::surface::material;
+use super::surface::{material, resolve};
 use super::transform::transform;
 use crate::error::Error;
 use crate::mesh::{Triangle, read_obj};
@@ -26,12 +26,7 @@ pub(super) fn build_meshes(
         let at = |field: &str| format!("meshes[{i}].{field}");
         let (local, default_name) = match (&m.obj, &m.polygons) {
             (Some(file), None) => {
-                let mut full = Path::new(file).to_path_buf();
-                if full.is_relative()
-                    && let Some(b) = base
-                {
-                    full = b.join(full);
-                }
+                let full = resolve(file, base);
                 let tris = read_obj(&full).map_err(|e| {
                     doc.err(&at("obj"), format!("cannot read '{}': {e}", full.display()))
                 })?;

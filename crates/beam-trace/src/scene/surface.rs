@@ -2,7 +2,7 @@
 //! bounds and material, built in its own context and placed in the scene's.
 
 use std::io::Read;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use implicit_expr::parse::{is_valid_param, parse, suggest};
 use implicit_expr::vm::import_vm;
@@ -90,18 +90,22 @@ pub(super) struct Built {
     pub(super) clip: bool,
 }
 
+/// The path of a file a scene names: relative paths against `base` (the scene file's
+/// folder) where there is one.
+pub(super) fn resolve(file: &str, base: Option<&Path>) -> PathBuf {
+    match base {
+        Some(b) if Path::new(file).is_relative() => b.join(file),
+        _ => PathBuf::from(file),
+    }
+}
+
 pub(super) fn read_vm(
     doc: &Doc<'_>,
     path: &str,
     file: &str,
     base: Option<&Path>,
 ) -> Result<String, Error> {
-    let mut full = Path::new(file).to_path_buf();
-    if full.is_relative()
-        && let Some(b) = base
-    {
-        full = b.join(full);
-    }
+    let full = resolve(file, base);
     let fail = |m: String| doc.err(path, format!("cannot read '{}': {m}", full.display()));
     let meta = std::fs::metadata(&full).map_err(|e| fail(e.to_string()))?;
     if !meta.is_file() {
