@@ -8,6 +8,7 @@ use super::exact_work::BspWork;
 use super::hard::Visibility;
 use super::patch::Patch;
 use crate::beam::BoxClass;
+use crate::ibox::IBox;
 use crate::root::RootCounters;
 
 /// The proven class of a point's view of a light.
@@ -138,10 +139,9 @@ pub trait Occluders {
         c: &mut RootCounters,
     ) -> BoxClass;
 
-    /// The triangles of the scene's meshes that may block a segment from `from` to a
-    /// point of `light`: every triangle whose box meets the box of `from` and the light's
-    /// corners (none where the scene has no meshes).
-    fn triangles(&mut self, from: DVec3, light: &Patch) -> Vec<[DVec3; 3]> {
+    /// The triangles of the scene's meshes that may block a segment from a point of the
+    /// box `from` to a point of `light` (none where the scene has no meshes).
+    fn triangles(&mut self, from: &IBox, light: &Patch) -> Vec<[DVec3; 3]> {
         let _ = (from, light);
         Vec::new()
     }
@@ -220,4 +220,19 @@ pub trait ShadowMethod: Send + Sync {
         q: &ShadowQuery,
         work: &mut ShadowWork,
     ) -> LightVisibility;
+
+    /// The visible fractions of a run of queries (neighbouring samples of the image, in
+    /// their order), which a method may answer together to share work between neighbours;
+    /// one at a time by default.
+    fn visibility_run(
+        &self,
+        occluders: &mut dyn Occluders,
+        queries: &[ShadowQuery],
+        work: &mut ShadowWork,
+    ) -> Vec<LightVisibility> {
+        queries
+            .iter()
+            .map(|q| self.visibility(occluders, q, work))
+            .collect()
+    }
 }

@@ -36,6 +36,11 @@ use crate::stats::PassStats;
 use crate::stats::counters::GridCounters;
 use occluders::SceneOccluders;
 
+/// Soft-shadow queries per run handed to a method together
+/// ([`ShadowMethod::visibility_run`](crate::shadow::ShadowMethod::visibility_run)): a few
+/// rows of a tile's samples.
+const SHADOW_RUN: usize = 16;
+
 /// The CPU backend.
 #[derive(Copy, Clone, Debug, Default)]
 pub struct Cpu;
@@ -223,25 +228,25 @@ impl Queries for CpuQueries<'_> {
         queries: &[ShadowQuery],
     ) -> Result<SoftAnswers, Error> {
         let method = method.method();
+        // Runs of neighbouring samples, which a method may answer together; the runs are
+        // cut at fixed places of the batch, so the answers do not depend on the threads.
         let answers: Vec<_> = queries
-            .par_iter()
+            .par_chunks(SHADOW_RUN)
             .map_init(
                 || self.evals(),
-                |ev, q| {
+                |ev, run| {
                     let mut work = ShadowWork::default();
                     let mut occluders = SceneOccluders { queries: self, ev };
-                    (method.visibility(&mut occluders, q, &mut work), work)
+                    (method.visibility_run(&mut occluders, run, &mut work), work)
                 },
             )
             .collect();
         let mut work = ShadowWork::default();
-        let visibility = answers
-            .into_iter()
-            .map(|(v, w)| {
-                work.add(&w);
-                v
-            })
-            .collect();
+        let mut visibility = Vec::with_capacity(queries.len());
+        for (v, w) in answers {
+            work.add(&w);
+            visibility.extend(v);
+        }
         Ok(SoftAnswers { visibility, work })
     }
 

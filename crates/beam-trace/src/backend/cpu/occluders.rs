@@ -98,16 +98,18 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
             .shadow_beam(self.ev, &beam, (start, inclusion), &settings, c)
     }
 
-    fn triangles(&mut self, from: DVec3, light: &Patch) -> Vec<[DVec3; 3]> {
+    fn triangles(&mut self, from: &IBox, light: &Patch) -> Vec<[DVec3; 3]> {
         let Some(m) = &self.queries.meshes else {
             return Vec::new();
         };
-        // The box of the shaft, then the triangles that some line of the shadow beam over
-        // the whole light may meet (the others are proven outside the shaft).
-        let shaft = hull(&point_box(from), &light.bounding_box());
+        // The box of the shaft, then the triangles that some line of the shadow beam from
+        // the points `from` over the whole light may meet (the others are proven outside
+        // the shaft).
+        let light_box = light.bounding_box();
+        let shaft = hull(from, &light_box);
         let beam = Beam {
-            origin: point_box(from),
-            dir: light.directions_from(from),
+            origin: *from,
+            dir: std::array::from_fn(|k| light_box[k] - from[k]),
         };
         m.bvh()
             .in_box(&shaft)

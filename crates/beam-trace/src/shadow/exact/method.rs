@@ -7,6 +7,7 @@ use glam::DVec3;
 use super::fragment::{Affine, Fragment};
 use super::group::{ExactShadows, Plane};
 use crate::beam::BoxClass;
+use crate::ibox::{IBox, ival, point_box};
 use crate::shadow::hard::Visibility;
 use crate::shadow::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
 use crate::shadow::stochastic::Stochastic;
@@ -19,16 +20,18 @@ pub const DEFAULT_DEPTH: u32 = 8;
 /// the light's own plane).
 const FALLBACK_SAMPLES: u32 = 64;
 
-/// The exact method of seed 003 for one point and light at a time.
+/// The exact method of seed 003, for groups of neighbouring points of one light.
 ///
-/// 1. **Shaft culling**: the triangles whose box meets the box of the point and the light
-///    ([`Occluders::triangles`]).
-/// 2. **The BSP**: the point's receiver plane is the plane through it parallel to the
-///    light, the occluders are those triangles clipped to the slab between it and the
-///    light, and the tree is grown for that one point (its region is the point, so an
-///    insertion goes only where the lines through the point reach). Its visible fragments
-///    are the parts of the light that no triangle hides, exact up to the rounding of the
-///    fragments' vertices.
+/// 1. **Shaft culling**: the triangles that some segment from the group's points to the
+///    light may meet ([`Occluders::triangles`]).
+/// 2. **The BSP**, one per group of neighbouring queries ([`ShadowMethod::visibility_run`])
+///    whose points lie on one plane parallel to the light (within `1e-6` of their distance
+///    to it):
+///    that plane is the receiver plane, the occluders are the group's triangles clipped to
+///    the slab between it and the light, and the tree's region is the box of the points
+///    (moved onto the plane). Its visible fragments are the parts of the light that no
+///    triangle hides, exact up to the rounding of the fragments' vertices. A point on a
+///    curved receiver is a group of its own.
 /// 3. **Implicit occluders**: one shadow beam over the whole light against the implicit
 ///    surfaces alone ([`Occluders::implicit_beam`]); where it is not rejected, each
 ///    visible fragment's beam (over its bounding rectangle) is rejected (visible), proven
@@ -37,9 +40,10 @@ const FALLBACK_SAMPLES: u32 = 64;
 ///    centroid.
 ///
 /// The visible fraction is the visible fragments' area. Its bounds are proven where no
-/// triangle lies in the shaft (the fragments are then halves of the parameter square, of
+/// triangle lies in the group's shaft, or where the point's query met no edge and its own
+/// shaft holds no triangle (the fragments are then halves of the parameter square, of
 /// exact areas, and every test is a proof); the areas of fragments cut by triangle edges are
-/// not proven, so a point that a triangle may shade carries no certificate (`[0, 1]`).
+/// not proven, so such a point carries no certificate (`[0, 1]`).
 ///
 /// The paper gives no formula for the irradiance over the visible parts; the renderer
 /// shades a point with the light's colour times the visible fraction at the light's centre
@@ -132,56 +136,95 @@ fn bounding_rect(f: &Fragment) -> ([f64; 2], [f64; 2]) {
     )
 }
 
-impl ShadowMethod for Exact {
-    fn name(&self) -> String {
-        if self.depth == DEFAULT_DEPTH {
-            "exact".into()
-        } else {
-            format!("exact:{}", self.depth)
+impl Exact {
+    /// The answers of a group of queries of one light whose points share one plane
+    /// parallel to it ([`group_len`]): one BSP grown by all of them, its region their box.
+    fn group(
+        &self,
+        occluders: &mut dyn Occluders,
+        queries: &[ShadowQuery],
+        work: &mut ShadowWork,
+        out: &mut Vec<LightVisibility>,
+    ) {
+        let first = &queries[0];
+        let n = first.light.edge_u.cross(first.light.edge_v);
+        // The points moved onto the first one's plane parallel to the light (by at most
+        // `GROUP_TOLERANCE` of their distance to the light, see `group_len`).
+        let on_plane: Vec<DVec3> = queries
+            .iter()
+            .map(|q| q.origin - n * ((q.origin - first.origin).dot(n) / n.length_squared()))
+            .collect();
+        let (lo, hi) = on_plane
+            .iter()
+            .fold((first.origin, first.origin), |(lo, hi), &x| {
+                (lo.min(x), hi.max(x))
+            });
+        let region: IBox = std::array::from_fn(|k| ival(lo[k], hi[k]));
+        let triangles = occluders.triangles(&region, &first.light);
+        if triangles.is_empty() {
+            for q in queries {
+                out.push(self.finish(occluders, q, (vec![Fragment::whole()], true), work));
+            }
+            return;
         }
+        work.shaft_triangles += triangles.len() as u64;
+        let polygons: Vec<Vec<DVec3>> = triangles.iter().map(|t| t.to_vec()).collect();
+        let receiver = Plane {
+            point: first.origin,
+            normal: n,
+        };
+        let built =
+            ExactShadows::new(first.light, receiver, &polygons, first.seed).and_then(|mut e| {
+                e.set_region(lo, hi)?;
+                Ok(e)
+            });
+        let Ok(mut tree) = built else {
+            // The points lie in the light's own plane: no slab separates them.
+            for q in queries {
+                out.push(fallback(occluders, q, work));
+            }
+            return;
+        };
+        for (q, &x) in queries.iter().zip(&on_plane) {
+            let Ok(parts) = tree.visible_parts(x, None) else {
+                out.push(fallback(occluders, q, work));
+                continue;
+            };
+            // A point whose query met no edge of the group's tree (the whole light, one
+            // fragment) is proven to see it exactly where its own shaft holds none of the
+            // triangles. (Points whose fragments were split by edges outside their own
+            // shaft keep only the estimate: testing every point's shaft cost as much as
+            // the rest of the method on `scenes/mesh-shadows.toml`.)
+            let lit = parts.len() == 1
+                && parts[0] == Fragment::whole()
+                && occluders
+                    .triangles(&point_box(q.origin), &q.light)
+                    .is_empty();
+            let answer = if lit {
+                self.finish(occluders, q, (vec![Fragment::whole()], true), work)
+            } else {
+                self.finish(occluders, q, (parts, false), work)
+            };
+            out.push(answer);
+        }
+        work.bsp.add(&tree.work());
     }
 
-    fn visibility(
+    /// The answer of one query from the visible parts of its light past the triangles,
+    /// `proven` where they are exact (no triangle in the point's shaft): the implicit
+    /// surfaces tested over them.
+    fn finish(
         &self,
         occluders: &mut dyn Occluders,
         q: &ShadowQuery,
+        (parts, proven): (Vec<Fragment>, bool),
         work: &mut ShadowWork,
     ) -> LightVisibility {
-        let x = q.origin;
-        let triangles = occluders.triangles(x, &q.light);
-        let parts = if triangles.is_empty() {
-            vec![Fragment::whole()]
-        } else {
-            work.shaft_triangles += triangles.len() as u64;
-            let polygons: Vec<Vec<DVec3>> = triangles.iter().map(|t| t.to_vec()).collect();
-            let receiver = Plane {
-                point: x,
-                normal: q.light.edge_u.cross(q.light.edge_v),
-            };
-            let built =
-                ExactShadows::new(q.light, receiver, &polygons, q.seed).and_then(|mut e| {
-                    e.set_region(x, x)?;
-                    let parts = e.visible_parts(x, None);
-                    work.bsp.add(&e.work());
-                    parts
-                });
-            match built {
-                Ok(parts) => parts,
-                // The point lies in the light's plane: no slab separates them.
-                Err(_) => {
-                    let fallback = Stochastic {
-                        samples: FALLBACK_SAMPLES,
-                        cache: false,
-                    };
-                    return fallback.visibility(occluders, q, work);
-                }
-            }
-        };
         work.queries += 1;
         let visible: f64 = parts.iter().map(Fragment::area).sum();
         // The implicit surfaces: one beam over the whole light first.
         work.initial_beams += 1;
-        let whole = occluders.implicit_beam(x, &q.light, 0.0, true, &mut work.root);
+        let whole = occluders.implicit_beam(q.origin, &q.light, 0.0, true, &mut work.root);
         let sums = match whole {
             BoxClass::Miss => Sums {
                 lower: visible,
@@ -203,7 +246,7 @@ impl ShadowMethod for Exact {
             }
         };
         let clamp = |v: f64| v.clamp(0.0, 1.0) as f32;
-        if triangles.is_empty() {
+        if proven {
             LightVisibility {
                 fraction: clamp(sums.estimate),
                 lower: clamp(sums.lower),
@@ -212,5 +255,79 @@ impl ShadowMethod for Exact {
         } else {
             LightVisibility::estimate(clamp(sums.estimate))
         }
+    }
+}
+
+/// The estimate of a point that no slab separates from the light (it lies in the light's
+/// plane): stratified shadow segments.
+fn fallback(
+    occluders: &mut dyn Occluders,
+    q: &ShadowQuery,
+    work: &mut ShadowWork,
+) -> LightVisibility {
+    let sampling = Stochastic {
+        samples: FALLBACK_SAMPLES,
+        cache: false,
+    };
+    sampling.visibility(occluders, q, work)
+}
+
+/// How far, as a share of its distance to the light's centre, a point may lie off the plane
+/// of its group: the points a root search places on a plane (a floor) scatter by about
+/// its tolerance. A group's points are moved onto the plane by this much at most, far less
+/// than the offset of shadow origins off their surfaces (`1e-4` of the scene's diagonal).
+const GROUP_TOLERANCE: f64 = 1e-6;
+
+/// How many queries from the first on share its light and lie on its plane parallel to the
+/// light (within [`GROUP_TOLERANCE`]): one group.
+fn group_len(queries: &[ShadowQuery]) -> usize {
+    let first = &queries[0];
+    let n = first
+        .light
+        .edge_u
+        .cross(first.light.edge_v)
+        .normalize_or_zero();
+    let reach = GROUP_TOLERANCE * (first.light.center() - first.origin).length();
+    let on_plane =
+        |q: &ShadowQuery| q.light == first.light && (q.origin - first.origin).dot(n).abs() <= reach;
+    1 + queries[1..].iter().take_while(|q| on_plane(q)).count()
+}
+
+impl ShadowMethod for Exact {
+    fn name(&self) -> String {
+        if self.depth == DEFAULT_DEPTH {
+            "exact".into()
+        } else {
+            format!("exact:{}", self.depth)
+        }
+    }
+
+    fn visibility(
+        &self,
+        occluders: &mut dyn Occluders,
+        q: &ShadowQuery,
+        work: &mut ShadowWork,
+    ) -> LightVisibility {
+        let mut out = Vec::with_capacity(1);
+        self.group(occluders, std::slice::from_ref(q), work, &mut out);
+        out.pop().expect("one answer per query")
+    }
+
+    /// Groups of neighbouring queries on one plane parallel to the light share one BSP
+    /// (the coherence of the paper's receiver groups).
+    fn visibility_run(
+        &self,
+        occluders: &mut dyn Occluders,
+        queries: &[ShadowQuery],
+        work: &mut ShadowWork,
+    ) -> Vec<LightVisibility> {
+        let mut out = Vec::with_capacity(queries.len());
+        let mut rest = queries;
+        while !rest.is_empty() {
+            let n = group_len(rest);
+            self.group(occluders, &rest[..n], work, &mut out);
+            rest = &rest[n..];
+        }
+        out
     }
 }
