@@ -25,6 +25,17 @@ pub fn point_box(p: DVec3) -> IBox {
     [ipoint(p.x), ipoint(p.y), ipoint(p.z)]
 }
 
+/// Whether the boxes `a` and `b` share no point (on some axis their intervals are
+/// disjoint).
+pub fn disjoint(a: &IBox, b: &IBox) -> bool {
+    (0..3).any(|k| a[k].disjoint(b[k]))
+}
+
+/// The length of the box's diagonal.
+pub fn diagonal(b: &IBox) -> f64 {
+    b.iter().map(|i| i.wid() * i.wid()).sum::<f64>().sqrt()
+}
+
 /// The smallest box holding `a` and `b`.
 pub fn hull(a: &IBox, b: &IBox) -> IBox {
     std::array::from_fn(|k| a[k].convex_hull(b[k]))

@@ -3,9 +3,10 @@
 
 use glam::DVec3;
 use interval_core::Interval;
+use rustc_hash::FxHashMap;
 
 use super::triangle::{Crossing, Triangle};
-use crate::ibox::{IBox, hull};
+use crate::ibox::{IBox, disjoint, hull};
 use crate::ray::{Beam, Ray};
 use crate::root::{Proof, RootResult};
 
@@ -175,10 +176,9 @@ impl Bvh {
         }
     }
 
-    /// The triangles (indices in the list the hierarchy was built from) whose boxes meet
-    /// the box `b`, in leaf order.
-    pub fn in_box(&self, b: &IBox) -> Vec<u32> {
-        let mut out = Vec::new();
+    /// Visits, in leaf order, the triangles (their places in leaf order) of the leaves whose
+    /// boxes meet the box `b`, until `visit` returns `true`; whether it did.
+    fn visit_in_box(&self, b: &IBox, mut visit: impl FnMut(usize) -> bool) -> bool {
         let mut stack = if self.nodes.is_empty() {
             vec![]
         } else {
@@ -186,19 +186,31 @@ impl Bvh {
         };
         while let Some(i) = stack.pop() {
             let node = &self.nodes[i as usize];
-            if (0..3).any(|k| node.bounds[k].disjoint(b[k])) {
+            if disjoint(&node.bounds, b) {
                 continue;
             }
             if node.count > 0 {
                 let run = node.start as usize..(node.start + node.count) as usize;
-                out.extend(run.filter_map(|k| {
-                    let tb = self.triangles[k].bounds();
-                    (!(0..3).any(|a| tb[a].disjoint(b[a]))).then_some(self.ids[k])
-                }));
+                if run.into_iter().any(&mut visit) {
+                    return true;
+                }
             } else {
                 stack.extend([node.start, i + 1]);
             }
         }
+        false
+    }
+
+    /// The triangles (indices in the list the hierarchy was built from) whose boxes meet
+    /// the box `b`, in leaf order.
+    pub fn in_box(&self, b: &IBox) -> Vec<u32> {
+        let mut out = Vec::new();
+        self.visit_in_box(b, |k| {
+            if !disjoint(&self.triangles[k].bounds(), b) {
+                out.push(self.ids[k]);
+            }
+            false
+        });
         out
     }
 
@@ -208,32 +220,19 @@ impl Bvh {
     }
 
     /// [`Bvh::may_meet`] for every triangle but `except` (an index in the list the
-    /// hierarchy was built from), and only for the triangles that some line of `beam` may
-    /// meet ([`Triangle::beam_misses`]) where a beam is given.
-    fn may_meet_except(&self, b: &IBox, beam: Option<&Beam>, except: Option<u32>) -> bool {
-        if self.nodes.is_empty() {
-            return false;
-        }
-        let mut stack = vec![0u32];
-        while let Some(i) = stack.pop() {
-            let node = &self.nodes[i as usize];
-            if (0..3).any(|k| node.bounds[k].disjoint(b[k])) {
-                continue;
-            }
-            if node.count > 0 {
-                let run = node.start as usize..(node.start + node.count) as usize;
-                let skip = except.map(|e| self.slots[e as usize] as usize);
-                if run.filter(|&k| Some(k) != skip).any(|k| {
-                    let t = &self.triangles[k];
-                    t.may_meet(b) && beam.is_none_or(|bm| !t.beam_misses(bm))
-                }) {
-                    return true;
-                }
-            } else {
-                stack.extend([i + 1, node.start]);
-            }
-        }
-        false
+    /// hierarchy was built from), and only for the triangles that some line of the beam
+    /// of `lines` may meet where they are given.
+    fn may_meet_except(
+        &self,
+        b: &IBox,
+        mut lines: Option<&mut LineTests<'_>>,
+        except: Option<u32>,
+    ) -> bool {
+        let skip = except.map(|e| self.slots[e as usize] as usize);
+        self.visit_in_box(b, |k| {
+            let t = &self.triangles[k];
+            Some(k) != skip && t.may_meet(b) && lines.as_deref_mut().is_none_or(|l| !l.misses(k, t))
+        })
     }
 
     /// The first range of parameters in `window` where some ray of `beam` may meet a
@@ -254,7 +253,11 @@ impl Bvh {
         except: Option<u32>,
     ) -> Option<Interval<f64>> {
         let t = beam.t_range_within(&self.bounds()?, window)?;
-        self.beam_piece(beam, t, (BEAM_DEPTH, except))
+        let mut lines = LineTests {
+            beam,
+            known: FxHashMap::default(),
+        };
+        self.beam_piece(&mut lines, t, (BEAM_DEPTH, except))
     }
 
     /// A triangle that every ray of `beam` crosses inside `window`, and the enclosure of
@@ -278,11 +281,11 @@ impl Bvh {
 
     fn beam_piece(
         &self,
-        beam: &Beam,
+        lines: &mut LineTests<'_>,
         t: Interval<f64>,
         (depth, except): (u32, Option<u32>),
     ) -> Option<Interval<f64>> {
-        if !self.may_meet_except(&beam.points(t), Some(beam), except) {
+        if !self.may_meet_except(&lines.beam.points(t), Some(lines), except) {
             return None;
         }
         let mid = t.mid();
@@ -291,8 +294,26 @@ impl Bvh {
         }
         let near = Interval::new_unchecked(t.inf(), mid);
         let far = Interval::new_unchecked(mid, t.sup());
-        self.beam_piece(beam, near, (depth - 1, except))
-            .or_else(|| self.beam_piece(beam, far, (depth - 1, except)))
+        self.beam_piece(lines, near, (depth - 1, except))
+            .or_else(|| self.beam_piece(lines, far, (depth - 1, except)))
+    }
+}
+
+/// What is known of a beam's lines against the triangles ([`Triangle::beam_misses`]),
+/// computed once per triangle (by its place in leaf order) for all the pieces of the beam's
+/// search.
+struct LineTests<'b> {
+    beam: &'b Beam,
+    known: FxHashMap<usize, bool>,
+}
+
+impl LineTests<'_> {
+    /// Whether every line of the beam passes outside the triangle `t` at place `k`.
+    fn misses(&mut self, k: usize, t: &Triangle) -> bool {
+        *self
+            .known
+            .entry(k)
+            .or_insert_with(|| t.beam_misses(self.beam))
     }
 }
 

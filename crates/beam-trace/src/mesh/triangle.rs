@@ -4,7 +4,7 @@
 use glam::DVec3;
 use interval_core::Interval;
 
-use crate::ibox::{IBox, ipoint};
+use crate::ibox::{IBox, disjoint, ipoint};
 use crate::ray::Beam;
 
 /// A triangle of a mesh, by its three vertices (in world coordinates).
@@ -82,9 +82,15 @@ impl Triangle {
     /// measure; a tiny triangle whose products underflow keeps a non-zero bound and is not
     /// called degenerate.
     pub fn is_degenerate(&self) -> bool {
+        self.interval_normal()
+            .iter()
+            .all(|c| c.inf() == 0.0 && c.sup() == 0.0)
+    }
+
+    /// The normal `(v1 − v0) × (v2 − v0)` enclosed in interval arithmetic.
+    fn interval_normal(&self) -> IVec {
         let v0 = ivec(self.v[0]);
-        let n = cross(&sub(&ivec(self.v[1]), &v0), &sub(&ivec(self.v[2]), &v0));
-        n.iter().all(|c| c.inf() == 0.0 && c.sup() == 0.0)
+        cross(&sub(&ivec(self.v[1]), &v0), &sub(&ivec(self.v[2]), &v0))
     }
 
     /// Whether every coordinate is finite.
@@ -118,17 +124,8 @@ impl Triangle {
                 proven: false,
             });
         }
-        let o = ivec(origin);
         let d = ivec(dir);
-        let a = sub(&ivec(self.v[0]), &o);
-        let b = sub(&ivec(self.v[1]), &o);
-        let c = sub(&ivec(self.v[2]), &o);
-        let w = [
-            dot(&d, &cross(&b, &c)),
-            dot(&d, &cross(&c, &a)),
-            dot(&d, &cross(&a, &b)),
-        ];
-        let s = w.map(sign);
+        let (s, [a, b, c]) = self.volumes(&ivec(origin), &d);
         let positive = s.contains(&Some(true));
         let negative = s.contains(&Some(false));
         if positive && negative {
@@ -196,7 +193,12 @@ impl Triangle {
     /// The signs of the three signed volumes over the beam's boxes, and the vertices taken
     /// from its origins.
     fn beam_volumes(&self, beam: &Beam) -> ([Option<bool>; 3], [IVec; 3]) {
-        let (o, d) = (&beam.origin, &beam.dir);
+        self.volumes(&beam.origin, &beam.dir)
+    }
+
+    /// The signs of the signed volumes `d · (a × b)` of the vertices taken from the origins
+    /// `o` (`a = v_i − o`), over the boxes `o` and `d`, and those vertices.
+    fn volumes(&self, o: &IVec, d: &IVec) -> ([Option<bool>; 3], [IVec; 3]) {
         let a = sub(&ivec(self.v[0]), o);
         let b = sub(&ivec(self.v[1]), o);
         let c = sub(&ivec(self.v[2]), o);
@@ -212,13 +214,10 @@ impl Triangle {
     /// Whether no point of the box `b` is proven off the triangle: `false` is a proof that
     /// the triangle misses the box (the boxes are disjoint, or the plane misses the box).
     pub fn may_meet(&self, b: &IBox) -> bool {
-        let tb = self.bounds();
-        if (0..3).any(|i| tb[i].disjoint(b[i])) {
+        if disjoint(&self.bounds(), b) {
             return false;
         }
-        let v0 = ivec(self.v[0]);
-        let n = cross(&sub(&ivec(self.v[1]), &v0), &sub(&ivec(self.v[2]), &v0));
-        let h = dot(&n, &sub(b, &v0));
+        let h = dot(&self.interval_normal(), &sub(b, &ivec(self.v[0])));
         sign(h).is_none()
     }
 }

@@ -25,7 +25,8 @@ use super::csg::{Ref, csg_tree, ref_path, resolve_csg};
 use super::diagnostics::Doc;
 use super::geometry::{Csg, Geometry, Leaf};
 use super::lights::lights;
-use super::mesh_file::{build_meshes, scene_bounds};
+use super::mesh::with_meshes;
+use super::mesh_file::build_meshes;
 use super::model::{Light, PointLight, Scene};
 use super::schema::{RawCamera, RawRender, RawScene, RawSurface};
 use super::settings::render_settings;
@@ -173,7 +174,7 @@ fn build(
         })
         .collect();
     let geometry = Geometry::new(geo, leaves, objects).map_err(|e| doc.err("", e))?;
-    let (camera, auto_light) = camera(doc, &raw.camera, &scene_bounds(&geometry, &meshes))?;
+    let (camera, auto_light) = camera(doc, &raw.camera, &with_meshes(geometry.bounds(), &meshes))?;
     let lights = lights(doc, &raw.lights)?;
     Ok((
         Scene {

@@ -250,11 +250,7 @@ impl Geometry {
     /// The length of the diagonal of [`bounds`](Self::bounds): the scene's scale, which
     /// tolerances are relative to.
     pub fn diagonal(&self) -> f64 {
-        self.bounds
-            .iter()
-            .map(|i| i.wid() * i.wid())
-            .sum::<f64>()
-            .sqrt()
+        crate::ibox::diagonal(&self.bounds)
     }
 
     /// `g` and `g'` of the scene function.

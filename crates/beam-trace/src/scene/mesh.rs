@@ -1,6 +1,7 @@
 //! A triangle mesh of a scene (built from the file's `[[meshes]]` by `mesh_file`).
 
 use super::material::Material;
+use crate::ibox::{IBox, hull};
 use crate::mesh::Triangle;
 
 /// A triangle mesh of the scene, its transform applied.
@@ -14,4 +15,12 @@ pub struct MeshSurface {
     pub triangles: Vec<Triangle>,
     /// Its Phong material.
     pub material: Material,
+}
+
+/// The box `bounds` (of the implicit surfaces) grown to hold every mesh's vertices.
+pub(super) fn with_meshes(bounds: IBox, meshes: &[MeshSurface]) -> IBox {
+    meshes
+        .iter()
+        .flat_map(|m| &m.triangles)
+        .fold(bounds, |b, t| hull(&b, &t.bounds()))
 }

@@ -115,14 +115,3 @@ fn polygons(doc: &Doc<'_>, path: &str, polys: &[Vec<[f64; 3]>]) -> Result<Vec<Tr
     }
     Ok(out)
 }
-
-/// The box of the implicit surfaces and of every mesh's vertices.
-pub(super) fn scene_bounds(
-    geometry: &super::Geometry,
-    meshes: &[MeshSurface],
-) -> crate::ibox::IBox {
-    meshes
-        .iter()
-        .flat_map(|m| &m.triangles)
-        .fold(geometry.bounds(), |b, t| crate::ibox::hull(&b, &t.bounds()))
-}

@@ -6,7 +6,7 @@ use glam::DVec3;
 
 use super::geometry::Geometry;
 use super::material::Material;
-use super::mesh::MeshSurface;
+use super::mesh::{MeshSurface, with_meshes};
 use crate::camera::Camera;
 use crate::free_ranges::BlockProofs;
 use crate::ray::Precision;
@@ -371,14 +371,7 @@ impl Scene {
     /// The length of the diagonal of the box of the implicit surfaces and the meshes (the
     /// scale of the shadow segments' offset, [`SHADOW_OFFSET`](crate::sample::SHADOW_OFFSET)).
     pub fn diagonal(&self) -> f64 {
-        let b = self
-            .meshes
-            .iter()
-            .flat_map(|m| &m.triangles)
-            .fold(self.geometry.bounds(), |b, t| {
-                crate::ibox::hull(&b, &t.bounds())
-            });
-        b.iter().map(|i| i.wid() * i.wid()).sum::<f64>().sqrt()
+        crate::ibox::diagonal(&with_meshes(self.geometry.bounds(), &self.meshes))
     }
 
     /// The leaf number of mesh `mesh`.

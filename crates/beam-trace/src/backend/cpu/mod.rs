@@ -95,6 +95,7 @@ impl Backend for Cpu {
                 scoped,
                 meshes: (!scene.meshes.is_empty())
                     .then(|| MeshIndex::new(scene.meshes.iter().map(|m| m.triangles.as_slice()))),
+                diagonal: scene.diagonal(),
                 pool: Mutex::new(Vec::new()),
             }),
             passes: vec![stats],

@@ -175,7 +175,7 @@ impl CpuQueries<'_> {
             return true;
         }
         let diagonal = self.scene.geometry.diagonal();
-        let offset = SHADOW_OFFSET * self.scene.diagonal();
+        let offset = SHADOW_OFFSET * self.diagonal;
         let Some(starts) = shadow_origins(gradient, region, eye, offset) else {
             return false;
         };

@@ -46,6 +46,9 @@ pub struct CpuQueries<'a> {
     /// The scene's triangle meshes, searched beside the implicit surfaces (`None` for a
     /// scene without meshes).
     pub(super) meshes: Option<MeshIndex>,
+    /// The diagonal of the implicit surfaces' and the meshes' box
+    /// ([`Scene::diagonal`], which walks every triangle), for the shadow offset.
+    pub(super) diagonal: f64,
     /// Evaluators given back by finished pieces of work, for the next ones: a scene's
     /// evaluators (of long tapes, of every object) cost more to make than many queries.
     pub(super) pool: Mutex<Vec<Evals>>,
