@@ -127,6 +127,7 @@ fn visibility(method: &str, points: &[DVec3]) -> Vec<LightVisibility> {
         .enumerate()
         .map(|(i, &origin)| ShadowQuery {
             origin,
+            normal: DVec3::Y,
             light,
             seed: i as u64,
         })

@@ -175,6 +175,11 @@ pub fn write_stats(w: &mut Writer, stats: &[PassStats]) {
             w.str(n);
             w.u64(*v);
         }
+        w.len(p.phases.len());
+        for (n, t) in &p.phases {
+            w.str(n);
+            w.duration(*t);
+        }
     }
 }
 
@@ -191,11 +196,17 @@ pub fn read_stats(r: &mut Reader<'_>) -> Result<Vec<PassStats>, ReadError> {
         for _ in 0..k {
             counters.push((r.str("counter name")?, r.u64("counter")?));
         }
+        let k = r.len("phases", 16)?;
+        let mut phases = Vec::with_capacity(k);
+        for _ in 0..k {
+            phases.push((r.str("phase name")?, r.duration("phase time")?));
+        }
         out.push(PassStats {
             name,
             ran,
             time,
             counters,
+            phases,
         });
     }
     Ok(out)

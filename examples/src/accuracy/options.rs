@@ -73,6 +73,7 @@ impl Reference {
             },
             Reference::Exact => ShadowSpec::Exact {
                 depth: beam_trace::shadow::exact::DEFAULT_DEPTH,
+                group: ShadowSpec::MAX_EXACT_GROUP,
             },
         }
     }

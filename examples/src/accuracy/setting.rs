@@ -188,7 +188,10 @@ impl Setting {
                 let settings = written.trim_start_matches("certified:");
                 format!("c{}", settings.replace(':', "/"))
             }
-            ShadowSpec::Exact { depth } => format!("e{depth}"),
+            ShadowSpec::Exact { depth, group } if group == ShadowSpec::MAX_EXACT_GROUP => {
+                format!("e{depth}")
+            }
+            ShadowSpec::Exact { depth, group } => format!("e{depth}/{group}"),
         };
         match self.variant {
             Variant::Default => method,

@@ -4,7 +4,7 @@
 use glam::DVec3;
 use interval_core::Interval;
 
-use crate::ibox::{IBox, disjoint, ipoint};
+use crate::ibox::{IBox, disjoint, hull, ipoint};
 use crate::ray::Beam;
 
 /// A triangle of a mesh, by its three vertices (in world coordinates).
@@ -180,6 +180,20 @@ impl Triangle {
         }
         let t = num.div(den);
         (!t.is_empty() && t.intersection(window) == t).then_some(t)
+    }
+
+    /// Whether some segment from a point of the box `from` to a point of the box `to` may
+    /// meet the triangle: its box meets the box of both, and the shadow beam from `from`
+    /// over `to` is not proven to miss it ([`Triangle::beam_misses`]). `false` is a proof.
+    pub fn in_shaft(&self, from: &IBox, to: &IBox) -> bool {
+        if disjoint(&self.bounds(), &hull(from, to)) {
+            return false;
+        }
+        let beam = Beam {
+            origin: *from,
+            dir: std::array::from_fn(|k| to[k] - from[k]),
+        };
+        !self.beam_misses(&beam)
     }
 
     /// Whether no ray's line of `beam` meets the triangle, proven: two of the signed

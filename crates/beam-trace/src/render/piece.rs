@@ -231,6 +231,12 @@ fn merge_stats(into: &mut Vec<PassStats>, more: Vec<PassStats>) -> Result<(), Er
         }
         a.ran |= b.ran;
         a.time += b.time;
+        for (name, t) in b.phases {
+            match a.phases.iter_mut().find(|(n, _)| *n == name) {
+                Some((_, sum)) => *sum += t,
+                None => a.phases.push((name, t)),
+            }
+        }
         for (name, v) in b.counters {
             match a.counters.iter_mut().find(|(n, _)| *n == name) {
                 Some((_, sum)) => *sum += v,

@@ -14,6 +14,7 @@ use crate::plan::{Pass, Plan};
 use crate::progress::Progress;
 use crate::sample::SHADOW_OFFSET;
 use crate::scene::Scene;
+use crate::shadow::exact::ExactTimes;
 use crate::shadow::{LightVisibility, ShadowClass, ShadowQuery, stochastic};
 use crate::stats::PassStats;
 use crate::stats::counters::SoftShadowCounters;
@@ -77,6 +78,7 @@ pub(super) fn soft_shadows(
                 slots.push(pixels.range(p).start + si);
                 queries.push(ShadowQuery {
                     origin: hit.shadow_origin(offset),
+                    normal: hit.facing_normal(),
                     light: light.patch,
                     seed: stochastic::seed(window.global(p) as u64, si as u32, li as u32),
                 });
@@ -84,6 +86,7 @@ pub(super) fn soft_shadows(
         }
         progress.begin(&format!("soft-shadows light {li}"), queries.len() as u64);
         let mut answers: Vec<LightVisibility> = Vec::with_capacity(queries.len());
+        let mut exact_times = ExactTimes::default();
         for chunk in queries.chunks(BATCH) {
             let a = q.soft_shadows(&plan.shadow_method, chunk)?;
             c.queries += a.work.queries;
@@ -97,6 +100,7 @@ pub(super) fn soft_shadows(
             c.bsp_nodes += a.work.bsp.inner_nodes;
             c.bsp_peak_nodes = c.bsp_peak_nodes.max(a.work.bsp.peak_nodes);
             c.bsp_fragments += a.work.bsp.fragments;
+            exact_times.add(&a.work.exact_times);
             c.search.add(&a.work.root);
             answers.extend(a.visibility);
             progress.advance(chunk.len() as u64);
@@ -145,11 +149,14 @@ pub(super) fn soft_shadows(
         }
         total.add(&c);
         maps.push(light_maps);
-        per_light.push(PassStats::new(
-            &format!("light {li} ({name})"),
-            tl.elapsed(),
-            &crate::stats::Counters::list(&c),
-        ));
+        per_light.push(
+            PassStats::new(
+                &format!("light {li} ({name})"),
+                tl.elapsed(),
+                &crate::stats::Counters::list(&c),
+            )
+            .with_phases(&exact_times.phases()),
+        );
     }
     let (mut fractions, mut lower, mut upper) = (Vec::new(), Vec::new(), Vec::new());
     for m in maps {

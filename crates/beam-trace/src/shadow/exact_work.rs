@@ -1,5 +1,7 @@
-//! The exact method's work counters (kept apart from the method, which the shadow
-//! methods' shared counters include).
+//! The exact method's work counters and phase times (kept apart from the method, which
+//! the shadow methods' shared counters include).
+
+use std::time::Duration;
 
 /// What the BSP did, for the per-light table.
 #[derive(Copy, Clone, Debug, Default, PartialEq, Eq, serde::Serialize)]
@@ -30,5 +32,40 @@ impl BspWork {
         self.fragments += other.fragments;
         self.degenerate += other.degenerate;
         self.peak_nodes = self.peak_nodes.max(other.peak_nodes);
+    }
+}
+
+/// Thread time the exact method spent in each phase of the seed's per-light table (not
+/// compared between runs: it is a time).
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq)]
+pub struct ExactTimes {
+    /// Shaft culling: the triangles that may shade a group, and the points' own shafts.
+    pub shaft: Duration,
+    /// Setting up the groups' trees: clipping the occluders, the stabbing signs.
+    pub init: Duration,
+    /// The queries: growing the trees and collecting the visible fragments.
+    pub queries: Duration,
+    /// The implicit occluders' beams and segments over the fragments (and the sampled
+    /// estimate of points in the light's own plane).
+    pub implicit: Duration,
+}
+
+impl ExactTimes {
+    /// Adds `other`'s times to these.
+    pub fn add(&mut self, other: &ExactTimes) {
+        self.shaft += other.shaft;
+        self.init += other.init;
+        self.queries += other.queries;
+        self.implicit += other.implicit;
+    }
+
+    /// The phases by name, in the order they run.
+    pub fn phases(&self) -> [(&'static str, Duration); 4] {
+        [
+            ("shaft culling", self.shaft),
+            ("bsp init", self.init),
+            ("bsp queries", self.queries),
+            ("implicit occluders", self.implicit),
+        ]
     }
 }

@@ -4,7 +4,7 @@
 
 use glam::DVec3;
 
-use super::exact_work::BspWork;
+use super::exact_work::{BspWork, ExactTimes};
 use super::hard::Visibility;
 use super::patch::Patch;
 use crate::beam::BoxClass;
@@ -88,6 +88,10 @@ impl LightVisibility {
 pub struct ShadowQuery {
     /// The shaded point, already moved off its surface.
     pub origin: DVec3,
+    /// The receiving surface's unit normal there, on the side `origin` was moved to
+    /// (zero where the query has no surface): methods may group queries whose points
+    /// share a tangent plane.
+    pub normal: DVec3,
     /// The light.
     pub light: Patch,
     /// Seed of the query's random numbers (the same seed gives the same samples).
@@ -182,6 +186,8 @@ pub struct ShadowWork {
     pub shaft_triangles: u64,
     /// The exact method's BSP work.
     pub bsp: BspWork,
+    /// The exact method's thread time per phase (zero for the other methods).
+    pub exact_times: ExactTimes,
     /// Root-search counters of every test.
     pub root: RootCounters,
 }
@@ -198,6 +204,7 @@ impl ShadowWork {
         self.cache_hits += o.cache_hits;
         self.shaft_triangles += o.shaft_triangles;
         self.bsp.add(&o.bsp);
+        self.exact_times.add(&o.exact_times);
         self.root.add(&o.root);
     }
 }

@@ -63,7 +63,7 @@ impl ShadowSpec {
                 budget,
                 segments,
             }),
-            ShadowSpec::Exact { depth } => Box::new(exact::Exact { depth }),
+            ShadowSpec::Exact { depth, group } => Box::new(exact::Exact { depth, group }),
         }
     }
 }

@@ -350,6 +350,7 @@ mod tests {
         (0..40)
             .map(|i| ShadowQuery {
                 origin: DVec3::new(f64::from(i) * 0.1, 0.2, -0.3),
+                normal: DVec3::Y,
                 light: Patch::square(DVec3::new(0.0, 4.0, 0.0), 1.0, 1),
                 seed: u64::from(i as u32),
             })

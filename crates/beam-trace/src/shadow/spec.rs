@@ -125,6 +125,9 @@ pub enum ShadowSpec {
     Exact {
         /// Halvings of a visible fragment against the implicit surfaces.
         depth: u32,
+        /// Most queries sharing one BSP (1: a tree per query, the method without
+        /// coherence).
+        group: u32,
     },
 }
 
@@ -139,6 +142,9 @@ impl ShadowSpec {
     pub const MAX_BUDGET: u32 = 1 << 20;
     /// Largest number of halvings of `exact:D`.
     pub const MAX_EXACT_DEPTH: u32 = 24;
+    /// Largest group of `exact:D:G`, and its default: the runs of neighbouring queries
+    /// that the renderer hands to a method together.
+    pub const MAX_EXACT_GROUP: u32 = crate::shadow::exact::DEFAULT_GROUP;
     /// Segments of `certified:TOL`'s estimate without a count
     /// ([`ESTIMATE_SEGMENTS`](crate::shadow::certified::ESTIMATE_SEGMENTS)).
     pub const DEFAULT_SEGMENTS: u32 = crate::shadow::certified::ESTIMATE_SEGMENTS;
@@ -191,11 +197,13 @@ impl fmt::Display for ShadowSpec {
                     write!(f, "certified:{tolerance}")
                 }
             }
-            ShadowSpec::Exact { depth } => {
-                if depth == crate::shadow::exact::DEFAULT_DEPTH {
-                    write!(f, "exact")
-                } else {
+            ShadowSpec::Exact { depth, group } => {
+                if group != ShadowSpec::MAX_EXACT_GROUP {
+                    write!(f, "exact:{depth}:{group}")
+                } else if depth != crate::shadow::exact::DEFAULT_DEPTH {
                     write!(f, "exact:{depth}")
+                } else {
+                    write!(f, "exact")
                 }
             }
         }
@@ -204,7 +212,7 @@ impl fmt::Display for ShadowSpec {
 
 const FORMS: &str = "stochastic:N, stochastic:N:cache, beam:n, beam-all:n, beam-quadtree:n, \
                      minkowski:stochastic:N, minkowski:beam:n, certified:TOL, \
-                     certified:TOL:BUDGET, certified:TOL:BUDGET:SEGMENTS, exact, exact:D";
+                     certified:TOL:BUDGET, certified:TOL:BUDGET:SEGMENTS, exact, exact:D, exact:D:G";
 
 fn count(s: &str, text: &str, what: &str, max: u32) -> Result<u32, String> {
     match text.parse::<u32>() {
@@ -223,6 +231,13 @@ impl FromStr for ShadowSpec {
         let samples = |t: &str| count(s, t, "number of samples", ShadowSpec::MAX_SAMPLES);
         let side = |t: &str| count(s, t, "number of sub-beams per side", ShadowSpec::MAX_SIDE);
         let tolerance = |t: &str| t.parse::<Tolerance>().map_err(|e| format!("'{s}': {e}"));
+        let halvings = |d: &str| match d.parse::<u32>() {
+            Ok(depth) if depth <= ShadowSpec::MAX_EXACT_DEPTH => Ok(depth),
+            _ => Err(format!(
+                "'{s}': the number of halvings must be an integer from 0 to {}, got '{d}'",
+                ShadowSpec::MAX_EXACT_DEPTH
+            )),
+        };
         let beam = |strategy, n: &str| {
             Ok(ShadowSpec::Beam {
                 n: side(n)?,
@@ -271,16 +286,16 @@ impl FromStr for ShadowSpec {
             }),
             ["exact"] => Ok(ShadowSpec::Exact {
                 depth: crate::shadow::exact::DEFAULT_DEPTH,
+                group: ShadowSpec::MAX_EXACT_GROUP,
             }),
-            ["exact", d] => match d.parse::<u32>() {
-                Ok(depth) if depth <= ShadowSpec::MAX_EXACT_DEPTH => {
-                    Ok(ShadowSpec::Exact { depth })
-                }
-                _ => Err(format!(
-                    "'{s}': the number of halvings must be an integer from 0 to {}, got '{d}'",
-                    ShadowSpec::MAX_EXACT_DEPTH
-                )),
-            },
+            ["exact", d] => Ok(ShadowSpec::Exact {
+                depth: halvings(d)?,
+                group: ShadowSpec::MAX_EXACT_GROUP,
+            }),
+            ["exact", d, g] => Ok(ShadowSpec::Exact {
+                depth: halvings(d)?,
+                group: count(s, g, "largest group", ShadowSpec::MAX_EXACT_GROUP)?,
+            }),
             _ => Err(format!("unknown shadow method '{s}' (one of: {FORMS})")),
         }
     }
@@ -307,6 +322,7 @@ mod tests {
             "certified:0.5:16:8",
             "exact",
             "exact:3",
+            "exact:8:1",
         ] {
             let spec: ShadowSpec = s.parse().unwrap();
             assert_eq!(spec.to_string(), s);
@@ -320,6 +336,12 @@ mod tests {
         assert!(e.contains("sub-beams per side"), "{e}");
         let e = "stochastic:0".parse::<ShadowSpec>().unwrap_err();
         assert!(e.contains("number of samples"), "{e}");
+        let e = "exact:8:17".parse::<ShadowSpec>().unwrap_err();
+        assert!(
+            e.contains("largest group must be an integer from 1 to 16"),
+            "{e}"
+        );
+        assert!("exact:8:0".parse::<ShadowSpec>().is_err());
         let e = "cone:3".parse::<ShadowSpec>().unwrap_err();
         assert!(e.contains("unknown shadow method 'cone:3'"), "{e}");
         assert!("minkowski:beam:65".parse::<ShadowSpec>().is_err());

@@ -21,6 +21,23 @@ pub struct PassStats {
     pub time: Duration,
     /// Work counters, in a fixed order.
     pub counters: Vec<(String, u64)>,
+    /// Thread time of the pass's phases where it reports them (the exact soft-shadow
+    /// method's shaft culling, BSP set-up and queries), summed over the threads; like
+    /// [`PassStats::time`], excluded from comparisons between runs.
+    #[serde(serialize_with = "phase_seconds")]
+    pub phases: Vec<(String, Duration)>,
+}
+
+fn phase_seconds<S: serde::Serializer>(
+    phases: &[(String, Duration)],
+    s: S,
+) -> Result<S::Ok, S::Error> {
+    use serde::ser::SerializeMap;
+    let mut map = s.serialize_map(Some(phases.len()))?;
+    for (name, t) in phases {
+        map.serialize_entry(name, &t.as_secs_f64())?;
+    }
+    map.end()
 }
 
 fn seconds<S: serde::Serializer>(d: &Duration, s: S) -> Result<S::Ok, S::Error> {
@@ -43,7 +60,19 @@ impl PassStats {
             ran: true,
             time,
             counters: counters.iter().map(|(n, v)| (n.to_string(), *v)).collect(),
+            phases: Vec::new(),
         }
+    }
+
+    /// The same with the thread time of its phases, in order (those of zero time left
+    /// out: a phase the pass did not enter).
+    pub fn with_phases(mut self, phases: &[(&str, Duration)]) -> Self {
+        self.phases = phases
+            .iter()
+            .filter(|(_, t)| !t.is_zero())
+            .map(|(n, t)| (n.to_string(), *t))
+            .collect();
+        self
     }
 
     /// A pass of the pipeline that ran, with its named counters.
@@ -133,6 +162,14 @@ impl fmt::Display for RenderStats {
                     l.time.as_secs_f64() * 1e3,
                     counters.join(" ")
                 )?;
+                if !l.phases.is_empty() {
+                    let phases: Vec<String> = l
+                        .phases
+                        .iter()
+                        .map(|(n, t)| format!("{n} {:.1}", t.as_secs_f64() * 1e3))
+                        .collect();
+                    write!(f, "\n    thread ms: {}", phases.join(", "))?;
+                }
             }
         }
         Ok(())

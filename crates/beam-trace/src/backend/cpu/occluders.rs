@@ -106,16 +106,11 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         // the points `from` over the whole light may meet (the others are proven outside
         // the shaft).
         let light_box = light.bounding_box();
-        let shaft = hull(from, &light_box);
-        let beam = Beam {
-            origin: *from,
-            dir: std::array::from_fn(|k| light_box[k] - from[k]),
-        };
         m.bvh()
-            .in_box(&shaft)
+            .in_box(&hull(from, &light_box))
             .into_iter()
             .map(|i| m.bvh().triangle(i))
-            .filter(|t| !t.beam_misses(&beam))
+            .filter(|t| t.in_shaft(from, &light_box))
             .map(|t| t.v)
             .collect()
     }

@@ -34,9 +34,9 @@ mod group;
 mod method;
 mod orient;
 
-pub use super::exact_work::BspWork;
+pub use super::exact_work::{BspWork, ExactTimes};
 pub use group::{ExactError, ExactShadows, Plane};
-pub use method::{DEFAULT_DEPTH, Exact};
+pub use method::{DEFAULT_DEPTH, DEFAULT_GROUP, Exact};
 
 #[cfg(test)]
 mod tests;
