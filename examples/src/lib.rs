@@ -4,6 +4,8 @@
 //!   of the `accuracy-cost` example, its metrics, plots and report.
 //! * [`catalog_view`]: a catalog surface set up for ray casting (the root finder
 //!   comparisons of the `root-finders` example and the benchmarks).
+//! * [`exact_sweeps`]: the exact soft-shadow method's experiments through the renderer
+//!   (the `soft-shadows exact` example).
 //! * [`soft_scene`]: catalog surfaces under a square area light (the soft-shadow paper's
 //!   set-up).
 //! * [`report`]: printing and saving a markdown report, and the exit status.
@@ -11,6 +13,7 @@
 #[cfg(feature = "plots")]
 pub mod accuracy;
 pub mod catalog_view;
+pub mod exact_sweeps;
 pub mod polygon_scene;
 pub mod report;
 pub mod soft_scene;

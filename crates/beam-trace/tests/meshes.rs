@@ -446,7 +446,13 @@ mod exact {
         // rises from `p.y` at `s = 0`), and the `X = 0.8 / s − 2` of their ends.
         let share = |height: f64| ((height - p.y) / (2.0 - p.y)).max(0.0);
         let (s_lo, s_hi) = (share(0.6), share(1.4));
-        let x_of = |s: f64| if s > 0.0 { 0.8 / s - 2.0 } else { f64::INFINITY };
+        let x_of = |s: f64| {
+            if s > 0.0 {
+                0.8 / s - 2.0
+            } else {
+                f64::INFINITY
+            }
+        };
         let (a, b) = (x_of(s_hi).max(-0.5), x_of(s_lo).min(0.5));
         if a >= b {
             return 1.0;
@@ -481,7 +487,11 @@ mod exact {
         let grouped = answers(&s, "exact", (&points, DVec3::X));
         let single = answers(&s, "exact:8:1", (&points, DVec3::X));
         let mut penumbra = 0;
-        for ((p, g), one) in points.iter().zip(&grouped.visibility).zip(&single.visibility) {
+        for ((p, g), one) in points
+            .iter()
+            .zip(&grouped.visibility)
+            .zip(&single.visibility)
+        {
             let want = wall_closed_form(*p);
             for v in [g, one] {
                 assert!(
@@ -502,5 +512,133 @@ mod exact {
             g.inner_nodes,
             one.inner_nodes
         );
+    }
+
+    /// The box `[−0.3, 0.5] × [0.8, 1.2] × [−0.4, 0.4]` as a closed mesh, every face wound
+    /// counter-clockwise seen from outside, above the floor of [`scene`] under its light.
+    fn box_scene() -> Scene {
+        let (x0, x1, y0, y1, z0, z1) = (-0.3, 0.5, 0.8, 1.2, -0.4, 0.4);
+        let faces = [
+            [(x0, y0, z0), (x1, y0, z0), (x1, y0, z1), (x0, y0, z1)],
+            [(x0, y1, z0), (x0, y1, z1), (x1, y1, z1), (x1, y1, z0)],
+            [(x0, y0, z0), (x0, y1, z0), (x1, y1, z0), (x1, y0, z0)],
+            [(x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)],
+            [(x0, y0, z0), (x0, y0, z1), (x0, y1, z1), (x0, y1, z0)],
+            [(x1, y0, z0), (x1, y1, z0), (x1, y1, z1), (x1, y0, z1)],
+        ];
+        let polygons: Vec<String> = faces
+            .iter()
+            .map(|f| {
+                let v: Vec<String> = f
+                    .iter()
+                    .map(|(x, y, z)| format!("[{x}, {y}, {z}]"))
+                    .collect();
+                format!("[{}]", v.join(", "))
+            })
+            .collect();
+        let text = format!(
+            r#"
+            [camera]
+            [[surfaces]]
+            name = "floor"
+            formula = "y"
+            bounds = [[-4.0, -0.5, -4.0], [4.0, 0.0, 4.0]]
+            clip = true
+            [[meshes]]
+            name = "box"
+            polygons = [{}]
+
+            [[lights]]
+            type = "area"
+            center = [0.0, 2.0, 0.0]
+            size = 1.0
+            normal = "y"
+            "#,
+            polygons.join(", ")
+        );
+        Scene::from_toml(&text, "box.toml", None).unwrap()
+    }
+
+    /// The visible fraction of the light from `x` (below the box) in closed form: the box
+    /// projected from `x` onto the light's plane is the convex hull of its corners'
+    /// projections; its overlap with the light is clipped by the light's four sides.
+    fn box_closed_form(x: DVec3) -> f64 {
+        let mut pts = Vec::new();
+        for cx in [-0.3, 0.5] {
+            for cy in [0.8, 1.2] {
+                for cz in [-0.4, 0.4] {
+                    let k = (2.0 - x.y) / (cy - x.y);
+                    pts.push([x.x + (cx - x.x) * k, x.z + (cz - x.z) * k]);
+                }
+            }
+        }
+        // Convex hull (monotone chain), counter-clockwise.
+        pts.sort_by(|a, b| a.partial_cmp(b).unwrap());
+        let turn = |o: [f64; 2], a: [f64; 2], b: [f64; 2]| {
+            (a[0] - o[0]) * (b[1] - o[1]) - (a[1] - o[1]) * (b[0] - o[0])
+        };
+        let mut hull: Vec<[f64; 2]> = Vec::new();
+        for pass in [pts.clone(), pts.iter().rev().copied().collect()] {
+            let start = hull.len();
+            for p in pass {
+                while hull.len() >= start + 2
+                    && turn(hull[hull.len() - 2], hull[hull.len() - 1], p) <= 0.0
+                {
+                    hull.pop();
+                }
+                hull.push(p);
+            }
+            hull.pop();
+        }
+        // Clipped by the light's sides: a·p ≤ c for (a, c) of each side.
+        for (axis, sign) in [(0, 1.0), (0, -1.0), (1, 1.0), (1, -1.0)] {
+            let inside = |p: &[f64; 2]| sign * p[axis] <= 0.5;
+            let mut out = Vec::new();
+            for i in 0..hull.len() {
+                let (p, q) = (hull[i], hull[(i + 1) % hull.len()]);
+                if inside(&p) {
+                    out.push(p);
+                }
+                if inside(&p) != inside(&q) {
+                    let t = (sign * 0.5 - p[axis]) / (q[axis] - p[axis]);
+                    out.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
+                }
+            }
+            hull = out;
+        }
+        let area: f64 = (0..hull.len())
+            .map(|i| {
+                let (p, q) = (hull[i], hull[(i + 1) % hull.len()]);
+                p[0] * q[1] - q[0] * p[1]
+            })
+            .sum::<f64>()
+            / 2.0;
+        1.0 - area.abs()
+    }
+
+    #[test]
+    fn the_shadow_of_a_closed_box_matches_the_closed_form_without_its_faces_turned_away() {
+        let s = box_scene();
+        // The bottom faces are turned away from the light above: the trees do without them.
+        let mesh = &s.meshes[0].triangles;
+        let index = beam_trace::mesh::MeshIndex::new([mesh.as_slice()]);
+        let patch = light(&s);
+        let away = (0..mesh.len() as u32)
+            .filter(|&t| index.turned_away(t, &patch.bounding_box(), &patch.corners()))
+            .count();
+        assert_eq!(away, 2);
+        let points = floor_points();
+        let got = fractions(&s, "exact", &points);
+        let mut penumbra = 0;
+        for (p, v) in points.iter().zip(&got) {
+            let want = box_closed_form(*p);
+            assert!(
+                (f64::from(v.fraction) - want).abs() < 1e-6,
+                "at {p}: {} against {want}",
+                v.fraction
+            );
+            penumbra += usize::from(want > 1e-6 && want < 1.0 - 1e-6);
+        }
+        assert!(penumbra > 20, "{penumbra}");
     }
 }

@@ -3,6 +3,8 @@
 //! ```text
 //! soft-shadows table1 [--size 512] [--sub 7] [--light-fraction 0.1] [--markdown FILE]
 //! soft-shadows penumbra [--size 256] [--samples 32] [--markdown FILE]
+//! soft-shadows exact [SCENE] [--width 320] [--height 240] [--samples 16,64,256,1024]
+//!                    [--sweep-samples 64] [--light-scales 1,2,5,10] [--light-counts 1,2,3,4,6]
 //! ```
 //!
 //! * `table1`: the reliable soft-shadow paper's Table 1. Orthocircle, Chubs, Kusner-Schmitt
@@ -14,6 +16,10 @@
 //!   umbra detection with stochastic sampling in the penumbra against plain stochastic
 //!   sampling, with and without the last-occluder cache, on the same catalog scenes and on
 //!   `scenes/soft-shadows.toml`, and the speedup as the light grows.
+//! * `exact`: the exact-shadow paper's experiments through the renderer on a scene of
+//!   polygonal occluders (`scenes/mesh-shadows.toml` by default): equal quality against
+//!   stochastic sampling, the coherence ablation, the light size and light count sweeps,
+//!   peak memory ([`examples::exact_sweeps`]).
 //!
 //! Times are wall-clock on this machine with every core; the ratios are what compares with
 //! the papers.
@@ -61,6 +67,31 @@ enum Table {
         /// Stochastic samples per point.
         #[arg(long, default_value_t = 32)]
         samples: u32,
+    },
+    /// The exact-shadow paper's experiments through the renderer.
+    Exact {
+        /// The scene file (its occluders polygons, so that the exact method is the
+        /// reference).
+        #[arg(default_value = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/mesh-shadows.toml"))]
+        scene: PathBuf,
+        /// Image width in pixels.
+        #[arg(long, default_value_t = 320)]
+        width: u32,
+        /// Image height in pixels.
+        #[arg(long, default_value_t = 240)]
+        height: u32,
+        /// Samples of the stochastic runs of the equal-quality table.
+        #[arg(long, value_delimiter = ',', default_value = "16,64,256,1024")]
+        samples: Vec<u32>,
+        /// Samples of the stochastic runs of the light sweeps.
+        #[arg(long, default_value_t = 64)]
+        sweep_samples: u32,
+        /// Multipliers of each light's side (area times their squares: 10 is 100 times).
+        #[arg(long, value_delimiter = ',', default_value = "1,2,5,10")]
+        light_scales: Vec<f64>,
+        /// Lights per side each area light is cut into (6: 36 lights).
+        #[arg(long, value_delimiter = ',', default_value = "1,2,3,4,6")]
+        light_counts: Vec<u32>,
     },
 }
 
@@ -261,6 +292,24 @@ fn run(args: Args) -> Result<(), String> {
             light_fraction,
         } => table1(size, sub, light_fraction)?,
         Table::Penumbra { size, samples } => penumbra(size, samples)?,
+        Table::Exact {
+            scene,
+            width,
+            height,
+            samples,
+            sweep_samples,
+            light_scales,
+            light_counts,
+        } => examples::exact_sweeps::report(
+            &scene,
+            &examples::exact_sweeps::Options {
+                size: (width, height),
+                samples,
+                sweep_samples,
+                light_scales,
+                light_counts,
+            },
+        )?,
     };
     examples::report::print_and_save(&md, args.markdown.as_deref())
 }

@@ -19,12 +19,16 @@
 //! the two answers ([`RootResult::first_of`](crate::root::RootResult::first_of)).
 
 mod bvh;
+mod closed;
 mod obj;
 mod triangle;
 
 use glam::DVec3;
 
+use crate::ibox::{IBox, disjoint, hull};
+
 pub use bvh::{Bvh, FirstCrossing};
+pub use closed::facing;
 pub use obj::read_obj;
 pub use triangle::{Crossing, Triangle};
 
@@ -36,6 +40,10 @@ pub struct MeshIndex {
     owner: Vec<u32>,
     /// Per triangle, its unit geometric normal.
     normals: Vec<DVec3>,
+    /// Per triangle, which way it faces on its mesh's closed surface ([`facing`]).
+    facing: Vec<i8>,
+    /// Per mesh, the box of its vertices.
+    bounds: Vec<IBox>,
 }
 
 impl MeshIndex {
@@ -43,14 +51,25 @@ impl MeshIndex {
     pub fn new<'a>(meshes: impl IntoIterator<Item = &'a [Triangle]>) -> Self {
         let mut all = Vec::new();
         let mut owner = Vec::new();
+        let mut facings = Vec::new();
+        let mut bounds = Vec::new();
         for (k, m) in meshes.into_iter().enumerate() {
             all.extend_from_slice(m);
             owner.extend(std::iter::repeat_n(k as u32, m.len()));
+            facings.extend(facing(m));
+            bounds.push(
+                m.iter()
+                    .map(Triangle::bounds)
+                    .reduce(|a, b| hull(&a, &b))
+                    .unwrap_or([interval_core::Interval::EMPTY; 3]),
+            );
         }
         Self {
             normals: all.iter().map(Triangle::normal).collect(),
             bvh: Bvh::new(&all),
             owner,
+            facing: facings,
+            bounds,
         }
     }
 
@@ -67,6 +86,24 @@ impl MeshIndex {
     /// The unit geometric normal of triangle `triangle`.
     pub fn normal(&self, triangle: u32) -> DVec3 {
         self.normals[triangle as usize]
+    }
+
+    /// Whether triangle `triangle` is a face of a closed mesh turned away from a light
+    /// whose points lie in the box `light`, outside the mesh's box, and whose `corners`
+    /// span it: every corner is proven behind the face's outward plane. A segment from any
+    /// point to the light that meets such a face meets the solid, and leaves it through a
+    /// face the light is not behind before it reaches the light (outside the solid), so
+    /// the face blocks no segment that another face of the mesh does not block. (This
+    /// holds of the boundary of a solid; the mesh's faces are taken as one, as
+    /// [`facing`] checks closure and orientation but not self-intersection.)
+    pub fn turned_away(&self, triangle: u32, light: &IBox, corners: &[DVec3]) -> bool {
+        let t = triangle as usize;
+        let facing = self.facing[t];
+        facing != 0
+            && disjoint(&self.bounds[self.owner[t] as usize], light)
+            && corners
+                .iter()
+                .all(|&c| self.bvh.triangle(triangle).side(c) == Some(facing < 0))
     }
 }
 

@@ -145,7 +145,7 @@ pub trait Occluders {
 
     /// The triangles of the scene's meshes that may block a segment from a point of the
     /// box `from` to a point of `light` (none where the scene has no meshes).
-    fn triangles(&mut self, from: &IBox, light: &Patch) -> Vec<[DVec3; 3]> {
+    fn triangles(&mut self, from: &IBox, light: &Patch) -> Vec<ShaftTriangle> {
         let _ = (from, light);
         Vec::new()
     }
@@ -163,6 +163,18 @@ pub trait Occluders {
     ) -> BoxClass {
         self.beam(from, light, start, inclusion, c)
     }
+}
+
+/// A triangle that may block a segment to a light ([`Occluders::triangles`]).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct ShaftTriangle {
+    /// Its vertices.
+    pub v: [DVec3; 3],
+    /// Whether every segment to the light that it blocks is blocked by a triangle of the
+    /// same mesh that is not redundant (a face of a closed mesh turned away from the whole
+    /// light: [`crate::mesh::MeshIndex::turned_away`]). The visible fractions need no
+    /// redundant triangle; a proof that no triangle meets a segment needs them all.
+    pub redundant: bool,
 }
 
 /// Work counters of soft shadows (the columns of the soft-shadow paper's Table 1 and more).

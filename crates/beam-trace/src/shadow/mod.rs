@@ -38,6 +38,7 @@ pub mod stochastic;
 
 pub use method::{
     LightVisibility, Occluders, Occlusion, ShadowClass, ShadowMethod, ShadowQuery, ShadowWork,
+    ShaftTriangle,
 };
 pub use patch::Patch;
 pub use spec::{Fine, ShadowSpec, Strategy, Tolerance};

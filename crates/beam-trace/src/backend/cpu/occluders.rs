@@ -13,7 +13,7 @@ use crate::root::{Proof, RootCounters, RootFinder, RootResult};
 use crate::sample::SHADOW_OFFSET;
 use crate::shadow::beam::shadow_beam_settings;
 use crate::shadow::hard::segment_visibility;
-use crate::shadow::{Occluders, Occlusion, Patch};
+use crate::shadow::{Occluders, Occlusion, Patch, ShaftTriangle};
 
 /// Pieces of a shadow beam asked to prove both ways (free or blocked) try the mean-value
 /// form where their natural enclosure holds 0 ([`crate::ray::BeamEval::set_centred_fallback`])
@@ -98,10 +98,11 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
             .shadow_beam(self.ev, &beam, (start, inclusion), &settings, c)
     }
 
-    fn triangles(&mut self, from: &IBox, light: &Patch) -> Vec<[DVec3; 3]> {
+    fn triangles(&mut self, from: &IBox, light: &Patch) -> Vec<ShaftTriangle> {
         let Some(m) = &self.queries.meshes else {
             return Vec::new();
         };
+        let corners = light.corners();
         // The box of the shaft, then the triangles that some line of the shadow beam from
         // the points `from` over the whole light may meet (the others are proven outside
         // the shaft).
@@ -109,9 +110,11 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         m.bvh()
             .in_box(&hull(from, &light_box))
             .into_iter()
-            .map(|i| m.bvh().triangle(i))
-            .filter(|t| t.in_shaft(from, &light_box))
-            .map(|t| t.v)
+            .filter(|&i| m.bvh().triangle(i).in_shaft(from, &light_box))
+            .map(|i| ShaftTriangle {
+                v: m.bvh().triangle(i).v,
+                redundant: m.turned_away(i, &light_box, &corners),
+            })
             .collect()
     }
 

@@ -31,6 +31,11 @@ pub(super) struct Occluder {
     pub stab: i8,
 }
 
+/// Bytes of one node of a tree's arena (an inner node's edge line and children, or a
+/// leaf's flag and list of occluders, whose entries come on top): what
+/// [`BspWork::peak_nodes`] costs in memory.
+pub const NODE_BYTES: usize = std::mem::size_of::<Node>();
+
 /// A node of the arena.
 #[derive(Clone, Debug)]
 enum Node {

@@ -189,8 +189,14 @@ impl Exact {
             }
             return;
         }
-        work.shaft_triangles += triangles.len() as u64;
-        let polygons: Vec<Vec<DVec3>> = triangles.iter().map(|t| t.to_vec()).collect();
+        // Faces of closed meshes turned away from the light block nothing that their
+        // mesh's other faces do not: the tree needs only the others.
+        let polygons: Vec<Vec<DVec3>> = triangles
+            .iter()
+            .filter(|t| !t.redundant)
+            .map(|t| t.v.to_vec())
+            .collect();
+        work.shaft_triangles += polygons.len() as u64;
         let receiver = Plane {
             point: first.origin,
             normal: n,
@@ -228,7 +234,7 @@ impl Exact {
                     let light_box = q.light.bounding_box();
                     !triangles
                         .iter()
-                        .any(|&v| Triangle { v }.in_shaft(&point_box(q.origin), &light_box))
+                        .any(|t| Triangle { v: t.v }.in_shaft(&point_box(q.origin), &light_box))
                 });
             let answer = if lit {
                 self.finish(occluders, q, (vec![Fragment::whole()], true), work)
