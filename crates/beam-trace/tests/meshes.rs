@@ -627,9 +627,15 @@ mod exact {
             .filter(|&t| index.turned_away(t, &patch.bounding_box(), &patch.corners()))
             .count();
         assert_eq!(away, 2);
-        let points = floor_points();
+        // The floor under the box, and two far edges of it that see the whole light.
+        let mut points = floor_points();
+        for i in 0..15 {
+            let a = -3.5 + 0.5 * f64::from(i);
+            points.push(DVec3::new(a, 1e-3, 3.6));
+            points.push(DVec3::new(3.6, 1e-3, a));
+        }
         let got = fractions(&s, "exact", &points);
-        let mut penumbra = 0;
+        let (mut penumbra, mut proven_lit) = (0, 0);
         for (p, v) in points.iter().zip(&got) {
             let want = box_closed_form(*p);
             assert!(
@@ -637,8 +643,17 @@ mod exact {
                 "at {p}: {} against {want}",
                 v.fraction
             );
+            // A bound is proven only where it holds the closed form.
+            assert!(
+                f64::from(v.lower) <= want + 1e-12 && want <= f64::from(v.upper) + 1e-12,
+                "at {p}: [{}, {}] against {want}",
+                v.lower,
+                v.upper
+            );
             penumbra += usize::from(want > 1e-6 && want < 1.0 - 1e-6);
+            proven_lit += usize::from(v.lower == 1.0);
         }
         assert!(penumbra > 20, "{penumbra}");
+        assert!(proven_lit > 20, "{proven_lit}");
     }
 }

@@ -5,6 +5,7 @@
 //! soft-shadows penumbra [--size 256] [--samples 32] [--markdown FILE]
 //! soft-shadows exact [SCENE] [--width 320] [--height 240] [--samples 16,64,256,1024]
 //!                    [--sweep-samples 64] [--light-scales 1,2,5,10] [--light-counts 1,2,3,4,6]
+//!                    [--generate TRIANGLES [--seed S]]
 //! ```
 //!
 //! * `table1`: the reliable soft-shadow paper's Table 1. Orthocircle, Chubs, Kusner-Schmitt
@@ -92,6 +93,13 @@ enum Table {
         /// Lights per side each area light is cut into (6: 36 lights).
         #[arg(long, value_delimiter = ',', default_value = "1,2,3,4,6")]
         light_counts: Vec<u32>,
+        /// Instead of the scene file, a generated lumpy ball and canopy of about this many
+        /// triangles on a floor (stand-ins for the paper's scanned models).
+        #[arg(long)]
+        generate: Option<usize>,
+        /// Seed of the generated scene.
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
     },
 }
 
@@ -300,8 +308,11 @@ fn run(args: Args) -> Result<(), String> {
             sweep_samples,
             light_scales,
             light_counts,
+            generate,
+            seed,
         } => examples::exact_sweeps::report(
             &scene,
+            generate.map(|n| (n, seed)),
             &examples::exact_sweeps::Options {
                 size: (width, height),
                 samples,

@@ -5,7 +5,7 @@ use glam::DVec3;
 use interval_core::Interval;
 use rustc_hash::FxHashMap;
 
-use super::triangle::{Crossing, Triangle};
+use super::triangle::{Crossing, Triangle, UNIT};
 use crate::ibox::{IBox, disjoint, hull};
 use crate::ray::{Beam, Ray};
 use crate::root::{Proof, RootResult};
@@ -178,7 +178,18 @@ impl Bvh {
 
     /// Visits, in leaf order, the triangles (their places in leaf order) of the leaves whose
     /// boxes meet the box `b`, until `visit` returns `true`; whether it did.
-    fn visit_in_box(&self, b: &IBox, mut visit: impl FnMut(usize) -> bool) -> bool {
+    fn visit_in_box(&self, b: &IBox, visit: impl FnMut(usize) -> bool) -> bool {
+        self.visit_where(|node| !disjoint(node, b), visit)
+    }
+
+    /// Visits, in leaf order, the triangles (their places in leaf order) of the leaves that
+    /// `keep` keeps, and of no node whose box it refuses, until `visit` returns `true`;
+    /// whether it did.
+    fn visit_where(
+        &self,
+        keep: impl Fn(&IBox) -> bool,
+        mut visit: impl FnMut(usize) -> bool,
+    ) -> bool {
         let mut stack = if self.nodes.is_empty() {
             vec![]
         } else {
@@ -186,7 +197,7 @@ impl Bvh {
         };
         while let Some(i) = stack.pop() {
             let node = &self.nodes[i as usize];
-            if disjoint(&node.bounds, b) {
+            if !keep(&node.bounds) {
                 continue;
             }
             if node.count > 0 {
@@ -211,6 +222,25 @@ impl Bvh {
             }
             false
         });
+        out
+    }
+
+    /// The triangles (indices in the list the hierarchy was built from) that some segment
+    /// from a point of the box `from` to a point of the box `to` may meet
+    /// ([`Triangle::in_shaft`]), in leaf order. Subtrees whose box no such segment reaches
+    /// (the shadow beam's parameter range inside the box is empty) are not visited.
+    pub fn in_shaft(&self, from: &IBox, to: &IBox) -> Vec<u32> {
+        let (shaft, beam) = (hull(from, to), Triangle::shaft_beam(from, to));
+        let mut out = Vec::new();
+        self.visit_where(
+            |node| !disjoint(node, &shaft) && beam.t_range_within(node, UNIT).is_some(),
+            |k| {
+                if self.triangles[k].in_shaft(from, to) {
+                    out.push(self.ids[k]);
+                }
+                false
+            },
+        );
         out
     }
 

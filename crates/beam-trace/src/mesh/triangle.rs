@@ -7,6 +7,9 @@ use interval_core::Interval;
 use crate::ibox::{IBox, disjoint, hull, ipoint};
 use crate::ray::Beam;
 
+/// The parameters `[0, 1]` of a segment's points.
+pub const UNIT: Interval<f64> = Interval::new_unchecked(0.0, 1.0);
+
 /// A triangle of a mesh, by its three vertices (in world coordinates).
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct Triangle {
@@ -212,14 +215,21 @@ impl Triangle {
     /// meet the triangle: its box meets the box of both, and the shadow beam from `from`
     /// over `to` is not proven to miss it ([`Triangle::beam_misses`]). `false` is a proof.
     pub fn in_shaft(&self, from: &IBox, to: &IBox) -> bool {
-        if disjoint(&self.bounds(), &hull(from, to)) {
+        let bounds = self.bounds();
+        if disjoint(&bounds, &hull(from, to)) {
             return false;
         }
-        let beam = Beam {
+        let beam = Self::shaft_beam(from, to);
+        beam.t_range_within(&bounds, UNIT).is_some() && !self.beam_misses(&beam)
+    }
+
+    /// The beam of the segments from the points of `from` to those of `to`: origins
+    /// `from`, directions `to − from`, parameters `[0, 1]` ([`UNIT`]).
+    pub fn shaft_beam(from: &IBox, to: &IBox) -> Beam {
+        Beam {
             origin: *from,
             dir: std::array::from_fn(|k| to[k] - from[k]),
-        };
-        !self.beam_misses(&beam)
+        }
     }
 
     /// Whether no ray's line of `beam` meets the triangle, proven: two of the signed

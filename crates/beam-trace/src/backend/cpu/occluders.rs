@@ -7,7 +7,7 @@ use interval_core::Interval;
 use super::queries::{CpuQueries, Evals, with_mesh};
 use crate::aa::{facing, shadow_origins};
 use crate::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
-use crate::ibox::{IBox, hull, ipoint};
+use crate::ibox::{IBox, ipoint};
 use crate::ray::{Beam, Ray, point_box};
 use crate::root::{Proof, RootCounters, RootFinder, RootResult};
 use crate::sample::SHADOW_OFFSET;
@@ -108,9 +108,8 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         // the shaft).
         let light_box = light.bounding_box();
         m.bvh()
-            .in_box(&hull(from, &light_box))
+            .in_shaft(from, &light_box)
             .into_iter()
-            .filter(|&i| m.bvh().triangle(i).in_shaft(from, &light_box))
             .map(|i| ShaftTriangle {
                 v: m.bvh().triangle(i).v,
                 redundant: m.turned_away(i, &light_box, &corners),

@@ -222,14 +222,13 @@ impl Exact {
                 out.push(fallback(occluders, q, work));
                 continue;
             };
-            // A point whose query met no edge of the group's tree (the whole light, one
-            // fragment) is proven to see it exactly where its own shaft holds none of the
-            // triangles. (Points whose fragments were split by edges outside their own
-            // shaft keep only the estimate: testing the shaft of every point whose
-            // fragments add up to the whole light proved 4.4 times the pixels lit on
-            // `scenes/mesh-shadows.toml` at 1.7 times the method's time.)
-            let lit = parts.len() == 1
-                && parts[0] == Fragment::whole()
+            // A point that sees the whole light past the group's triangles (its query met
+            // no edge, or its fragments add up to the light up to their rounding) is
+            // proven to see it exactly where its own shaft holds none of the triangles
+            // (the test itself is the proof, whatever passes it).
+            let whole = parts.len() == 1 && parts[0] == Fragment::whole()
+                || parts.iter().map(Fragment::area).sum::<f64>() >= 1.0 - WHOLE_SLACK;
+            let lit = whole
                 && timed(&mut work.exact_times.shaft, || {
                     let light_box = q.light.bounding_box();
                     !triangles
@@ -332,6 +331,10 @@ fn timed<T>(into: &mut Duration, f: impl FnOnce() -> T) -> T {
     *into += start.elapsed();
     value
 }
+
+/// How much less than the whole light the visible fragments of a point may add up to for
+/// the point to be tested as seeing all of it: the rounding of a few fragments' vertices.
+const WHOLE_SLACK: f64 = 1e-9;
 
 /// How far, as a share of its distance to the light's centre, a point may lie off the plane
 /// of its group: the points a root search places on a plane (a floor) scatter by about
