@@ -291,6 +291,15 @@ mod exact {
         } else {
             ""
         };
+        floor_scene(&format!(
+            "{ball}[[meshes]]\nname = \"square\"\npolygons = [[[-0.3, 1.0, -0.4], \
+             [0.7, 1.0, -0.4], [0.7, 1.0, 0.6], [-0.3, 1.0, 0.6]]]\n"
+        ))
+    }
+
+    /// The floor `y = 0` and the square light of side 1 at height 2 above the origin, with
+    /// the scene text `occluders`.
+    fn floor_scene(occluders: &str) -> Scene {
         let text = format!(
             r#"
             [camera]
@@ -299,11 +308,7 @@ mod exact {
             formula = "y"
             bounds = [[-4.0, -0.5, -4.0], [4.0, 0.0, 4.0]]
             clip = true
-            {ball}
-            [[meshes]]
-            name = "square"
-            polygons = [[[-0.3, 1.0, -0.4], [0.7, 1.0, -0.4], [0.7, 1.0, 0.6], [-0.3, 1.0, 0.6]]]
-
+            {occluders}
             [[lights]]
             type = "area"
             center = [0.0, 2.0, 0.0]
@@ -411,28 +416,14 @@ mod exact {
         assert!(shaded_by_ball > 5, "{shaded_by_ball}");
     }
 
-    /// A wall `x = −2` under the light of [`scene`], and a square occluder parallel to the
+    /// A wall `x = −2` under the light of [`floor_scene`], and a square occluder parallel to the
     /// wall, `x = −1.2`, `y` in `[0.6, 1.4]`, `z` in `[−0.4, 0.6]`: the light is at right
     /// angles to the receiver.
     fn wall_scene() -> Scene {
-        let text = r#"
-            [camera]
-            [[surfaces]]
-            name = "floor"
-            formula = "y"
-            bounds = [[-4.0, -0.5, -4.0], [4.0, 0.0, 4.0]]
-            clip = true
-            [[meshes]]
-            name = "square"
-            polygons = [[[-1.2, 0.6, -0.4], [-1.2, 0.6, 0.6], [-1.2, 1.4, 0.6], [-1.2, 1.4, -0.4]]]
-
-            [[lights]]
-            type = "area"
-            center = [0.0, 2.0, 0.0]
-            size = 1.0
-            normal = "y"
-            "#;
-        Scene::from_toml(text, "wall.toml", None).unwrap()
+        floor_scene(
+            "[[meshes]]\nname = \"square\"\npolygons = [[[-1.2, 0.6, -0.4], [-1.2, 0.6, 0.6], \
+             [-1.2, 1.4, 0.6], [-1.2, 1.4, -0.4]]]\n",
+        )
     }
 
     /// The visible fraction of the light from the wall point `p` in closed form: the light
@@ -515,7 +506,7 @@ mod exact {
     }
 
     /// The box `[−0.3, 0.5] × [0.8, 1.2] × [−0.4, 0.4]` as a closed mesh, every face wound
-    /// counter-clockwise seen from outside, above the floor of [`scene`] under its light.
+    /// counter-clockwise seen from outside, above the floor of [`floor_scene`] under its light.
     fn box_scene() -> Scene {
         let (x0, x1, y0, y1, z0, z1) = (-0.3, 0.5, 0.8, 1.2, -0.4, 0.4);
         let faces = [
@@ -536,27 +527,10 @@ mod exact {
                 format!("[{}]", v.join(", "))
             })
             .collect();
-        let text = format!(
-            r#"
-            [camera]
-            [[surfaces]]
-            name = "floor"
-            formula = "y"
-            bounds = [[-4.0, -0.5, -4.0], [4.0, 0.0, 4.0]]
-            clip = true
-            [[meshes]]
-            name = "box"
-            polygons = [{}]
-
-            [[lights]]
-            type = "area"
-            center = [0.0, 2.0, 0.0]
-            size = 1.0
-            normal = "y"
-            "#,
+        floor_scene(&format!(
+            "[[meshes]]\nname = \"box\"\npolygons = [{}]\n",
             polygons.join(", ")
-        );
-        Scene::from_toml(&text, "box.toml", None).unwrap()
+        ))
     }
 
     /// The visible fraction of the light from `x` (below the box) in closed form: the box
