@@ -47,9 +47,9 @@ const FALLBACK_SAMPLES: u32 = 64;
 ///    centroid.
 ///
 /// The visible fraction is the visible fragments' area. Its bounds are proven where no
-/// triangle lies in the group's shaft, or where the point's query met no edge and its own
-/// shaft holds no triangle (the fragments are then halves of the parameter square, of
-/// exact areas, and every test is a proof); the areas of fragments cut by triangle edges are
+/// triangle lies in the group's shaft, or where the point's fragments add up to the whole
+/// light and its own shaft holds no triangle (the light is then taken whole, its pieces are
+/// halves of the parameter square, of exact areas, and every test is a proof); the areas of fragments cut by triangle edges are
 /// not proven, so such a point carries no certificate (`[0, 1]`).
 ///
 /// The paper gives no formula for the irradiance over the visible parts; the renderer
