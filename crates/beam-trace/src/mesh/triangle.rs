@@ -224,7 +224,7 @@ impl Triangle {
     }
 
     /// The beam of the segments from the points of `from` to those of `to`: origins
-    /// `from`, directions `to − from`, parameters `[0, 1]` ([`UNIT`]).
+    /// `from`, directions `to − from`, parameters `[0, 1]`.
     pub fn shaft_beam(from: &IBox, to: &IBox) -> Beam {
         Beam {
             origin: *from,

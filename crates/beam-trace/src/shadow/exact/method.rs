@@ -34,11 +34,12 @@ const FALLBACK_SAMPLES: u32 = 64;
 /// 2. **The BSP**, one per group of neighbouring queries ([`ShadowMethod::visibility_run`])
 ///    whose points lie on one plane (within `1e-6` of their distance to the light): the
 ///    plane parallel to the light, or the first point's tangent plane where the whole light
-///    is in front of it ([`group_plane`]). That plane is the receiver plane, the occluders
-///    are the group's triangles clipped to the region between it and the light's plane, and the tree's region is the box of the points
-///    (moved onto the plane). Its visible fragments are the parts of the light that no
-///    triangle hides, exact up to the rounding of the fragments' vertices. A point on a
-///    curved receiver is a group of its own.
+///    is in front of it (see `group_plane`). That plane is the receiver plane, the occluders
+///    are the group's triangles (less the faces of closed meshes turned away from the light)
+///    clipped to the region between it and the light's plane, and the tree's region is the
+///    box of the points (moved onto the plane). Its visible fragments are the parts of the
+///    light that no triangle hides, exact up to the rounding of the fragments' vertices. A
+///    point on a curved receiver is a group of its own.
 /// 3. **Implicit occluders**: one shadow beam over the whole light against the implicit
 ///    surfaces alone ([`Occluders::implicit_beam`]); where it is not rejected, each
 ///    visible fragment's beam (over its bounding rectangle) is rejected (visible), proven
