@@ -72,7 +72,7 @@ impl Reference {
                 cache: false,
             },
             Reference::Exact => ShadowSpec::Exact {
-                depth: beam_trace::shadow::exact::DEFAULT_DEPTH,
+                depth: ShadowSpec::DEFAULT_EXACT_DEPTH,
                 group: ShadowSpec::MAX_EXACT_GROUP,
             },
         }

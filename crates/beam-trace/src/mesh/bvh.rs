@@ -5,7 +5,8 @@ use glam::DVec3;
 use interval_core::Interval;
 use rustc_hash::FxHashMap;
 
-use super::triangle::{Crossing, Triangle, UNIT};
+use super::shaft::Shaft;
+use super::triangle::{Crossing, Triangle};
 use crate::ibox::{IBox, disjoint, hull};
 use crate::ray::{Beam, Ray};
 use crate::root::{Proof, RootResult};
@@ -226,16 +227,14 @@ impl Bvh {
     }
 
     /// The triangles (indices in the list the hierarchy was built from) that some segment
-    /// from a point of the box `from` to a point of the box `to` may meet
-    /// ([`Triangle::in_shaft`]), in leaf order. Subtrees whose box no such segment reaches
-    /// (the shadow beam's parameter range inside the box is empty) are not visited.
-    pub fn in_shaft(&self, from: &IBox, to: &IBox) -> Vec<u32> {
-        let (shaft, beam) = (hull(from, to), Triangle::shaft_beam(from, to));
+    /// of `shaft` may meet ([`Shaft::may_meet`]), in leaf order. Subtrees whose box no
+    /// segment reaches ([`Shaft::may_reach`]) are not visited.
+    pub fn in_shaft(&self, shaft: &Shaft) -> Vec<u32> {
         let mut out = Vec::new();
         self.visit_where(
-            |node| !disjoint(node, &shaft) && beam.t_range_within(node, UNIT).is_some(),
+            |node| shaft.may_reach(node),
             |k| {
-                if self.triangles[k].in_shaft(from, to) {
+                if shaft.may_meet(&self.triangles[k]) {
                     out.push(self.ids[k]);
                 }
                 false

@@ -21,6 +21,7 @@
 mod bvh;
 mod closed;
 mod obj;
+mod shaft;
 mod triangle;
 
 use glam::DVec3;
@@ -30,7 +31,16 @@ use crate::ibox::{IBox, disjoint, hull};
 pub use bvh::{Bvh, FirstCrossing};
 pub use closed::facing;
 pub use obj::read_obj;
+pub use shaft::Shaft;
 pub use triangle::{Crossing, Triangle};
+
+/// The box of the triangles' vertices (`None` for no triangle).
+pub fn bounds_of(triangles: &[Triangle]) -> Option<IBox> {
+    triangles
+        .iter()
+        .map(Triangle::bounds)
+        .reduce(|a, b| hull(&a, &b))
+}
 
 /// The triangles of several meshes in one hierarchy, each knowing the mesh it came from.
 #[derive(Clone, Debug)]
@@ -57,12 +67,7 @@ impl MeshIndex {
             all.extend_from_slice(m);
             owner.extend(std::iter::repeat_n(k as u32, m.len()));
             facings.extend(facing(m));
-            bounds.push(
-                m.iter()
-                    .map(Triangle::bounds)
-                    .reduce(|a, b| hull(&a, &b))
-                    .unwrap_or([interval_core::Interval::EMPTY; 3]),
-            );
+            bounds.push(bounds_of(m).unwrap_or([interval_core::Interval::EMPTY; 3]));
         }
         Self {
             normals: all.iter().map(Triangle::normal).collect(),
@@ -101,9 +106,7 @@ impl MeshIndex {
         let facing = self.facing[t];
         facing != 0
             && disjoint(&self.bounds[self.owner[t] as usize], light)
-            && corners
-                .iter()
-                .all(|&c| self.bvh.triangle(triangle).side(c) == Some(facing < 0))
+            && self.bvh.triangle(triangle).side_of_all(corners) == Some(facing < 0)
     }
 }
 

@@ -4,11 +4,8 @@
 use glam::DVec3;
 use interval_core::Interval;
 
-use crate::ibox::{IBox, disjoint, hull, ipoint};
+use crate::ibox::{IBox, disjoint, ipoint};
 use crate::ray::Beam;
-
-/// The parameters `[0, 1]` of a segment's points.
-pub const UNIT: Interval<f64> = Interval::new_unchecked(0.0, 1.0);
 
 /// A triangle of a mesh, by its three vertices (in world coordinates).
 #[derive(Copy, Clone, Debug, PartialEq)]
@@ -104,14 +101,15 @@ impl Triangle {
         cross(&sub(&ivec(self.v[1]), &v0), &sub(&ivec(self.v[2]), &v0))
     }
 
-    /// The side of the triangle's plane that `p` lies on, proven: `Some(true)` where
-    /// `(p − v0) · ((v1 − v0) × (v2 − v0)) > 0` (in front of the winding's normal),
-    /// `Some(false)` where it is negative, `None` where the enclosure holds zero.
-    pub fn side(&self, p: DVec3) -> Option<bool> {
-        sign(dot(
-            &sub(&ivec(p), &ivec(self.v[0])),
-            &self.interval_normal(),
-        ))
+    /// The side of the triangle's plane that all the `points` lie on, proven: `Some(true)`
+    /// where `(p − v0) · ((v1 − v0) × (v2 − v0)) > 0` for every point `p` (in front of the
+    /// winding's normal), `Some(false)` where it is negative for every one, `None`
+    /// otherwise (an enclosure holds zero, or the points lie on both sides).
+    pub fn side_of_all(&self, points: &[DVec3]) -> Option<bool> {
+        let (v0, n) = (ivec(self.v[0]), self.interval_normal());
+        let mut sides = points.iter().map(|&p| sign(dot(&sub(&ivec(p), &v0), &n)));
+        let first = sides.next()??;
+        sides.all(|s| s == Some(first)).then_some(first)
     }
 
     /// Six times the signed volume of the tetrahedron of `o` and the triangle,
@@ -209,27 +207,6 @@ impl Triangle {
         }
         let t = num.div(den);
         (!t.is_empty() && t.intersection(window) == t).then_some(t)
-    }
-
-    /// Whether some segment from a point of the box `from` to a point of the box `to` may
-    /// meet the triangle: its box meets the box of both, and the shadow beam from `from`
-    /// over `to` is not proven to miss it ([`Triangle::beam_misses`]). `false` is a proof.
-    pub fn in_shaft(&self, from: &IBox, to: &IBox) -> bool {
-        let bounds = self.bounds();
-        if disjoint(&bounds, &hull(from, to)) {
-            return false;
-        }
-        let beam = Self::shaft_beam(from, to);
-        beam.t_range_within(&bounds, UNIT).is_some() && !self.beam_misses(&beam)
-    }
-
-    /// The beam of the segments from the points of `from` to those of `to`: origins
-    /// `from`, directions `to − from`, parameters `[0, 1]`.
-    pub fn shaft_beam(from: &IBox, to: &IBox) -> Beam {
-        Beam {
-            origin: *from,
-            dir: std::array::from_fn(|k| to[k] - from[k]),
-        }
     }
 
     /// Whether no ray's line of `beam` meets the triangle, proven: two of the signed

@@ -2,7 +2,7 @@
 
 use super::material::Material;
 use crate::ibox::{IBox, hull};
-use crate::mesh::Triangle;
+use crate::mesh::{Triangle, bounds_of};
 
 /// A triangle mesh of the scene, its transform applied.
 #[derive(Clone, Debug, PartialEq)]
@@ -21,6 +21,6 @@ pub struct MeshSurface {
 pub(super) fn with_meshes(bounds: IBox, meshes: &[MeshSurface]) -> IBox {
     meshes
         .iter()
-        .flat_map(|m| &m.triangles)
-        .fold(bounds, |b, t| hull(&b, &t.bounds()))
+        .filter_map(|m| bounds_of(&m.triangles))
+        .fold(bounds, |b, m| hull(&b, &m))
 }

@@ -9,6 +9,7 @@ use super::hard::Visibility;
 use super::patch::Patch;
 use crate::beam::BoxClass;
 use crate::ibox::IBox;
+use crate::mesh::Triangle;
 use crate::root::RootCounters;
 
 /// The proven class of a point's view of a light.
@@ -168,8 +169,8 @@ pub trait Occluders {
 /// A triangle that may block a segment to a light ([`Occluders::triangles`]).
 #[derive(Copy, Clone, Debug, PartialEq)]
 pub struct ShaftTriangle {
-    /// Its vertices.
-    pub v: [DVec3; 3],
+    /// The triangle.
+    pub triangle: Triangle,
     /// Whether every segment to the light that it blocks is blocked by a triangle of the
     /// same mesh that is not redundant (a face of a closed mesh turned away from the whole
     /// light: [`crate::mesh::MeshIndex::turned_away`]). The visible fractions need no

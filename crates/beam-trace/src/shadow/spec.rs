@@ -142,9 +142,11 @@ impl ShadowSpec {
     pub const MAX_BUDGET: u32 = 1 << 20;
     /// Largest number of halvings of `exact:D`.
     pub const MAX_EXACT_DEPTH: u32 = 24;
+    /// Halvings of `exact` without a depth.
+    pub const DEFAULT_EXACT_DEPTH: u32 = 8;
     /// Largest group of `exact:D:G`, and its default: the runs of neighbouring queries
     /// that the renderer hands to a method together.
-    pub const MAX_EXACT_GROUP: u32 = crate::shadow::exact::DEFAULT_GROUP;
+    pub const MAX_EXACT_GROUP: u32 = 16;
     /// Segments of `certified:TOL`'s estimate without a count
     /// ([`ESTIMATE_SEGMENTS`](crate::shadow::certified::ESTIMATE_SEGMENTS)).
     pub const DEFAULT_SEGMENTS: u32 = crate::shadow::certified::ESTIMATE_SEGMENTS;
@@ -200,7 +202,7 @@ impl fmt::Display for ShadowSpec {
             ShadowSpec::Exact { depth, group } => {
                 if group != ShadowSpec::MAX_EXACT_GROUP {
                     write!(f, "exact:{depth}:{group}")
-                } else if depth != crate::shadow::exact::DEFAULT_DEPTH {
+                } else if depth != ShadowSpec::DEFAULT_EXACT_DEPTH {
                     write!(f, "exact:{depth}")
                 } else {
                     write!(f, "exact")
@@ -285,7 +287,7 @@ impl FromStr for ShadowSpec {
                 )?,
             }),
             ["exact"] => Ok(ShadowSpec::Exact {
-                depth: crate::shadow::exact::DEFAULT_DEPTH,
+                depth: ShadowSpec::DEFAULT_EXACT_DEPTH,
                 group: ShadowSpec::MAX_EXACT_GROUP,
             }),
             ["exact", d] => Ok(ShadowSpec::Exact {

@@ -37,9 +37,9 @@ use crate::stats::counters::GridCounters;
 use occluders::SceneOccluders;
 
 /// Soft-shadow queries per run handed to a method together
-/// ([`ShadowMethod::visibility_run`](crate::shadow::ShadowMethod::visibility_run)): a few
-/// rows of a tile's samples.
-const SHADOW_RUN: usize = 16;
+/// ([`ShadowMethod::visibility_run`](crate::shadow::ShadowMethod::visibility_run)): as many
+/// as the exact method's largest group.
+const SHADOW_RUN: usize = crate::shadow::ShadowSpec::MAX_EXACT_GROUP as usize;
 
 /// The CPU backend.
 #[derive(Copy, Clone, Debug, Default)]

@@ -8,6 +8,7 @@ use super::queries::{CpuQueries, Evals, with_mesh};
 use crate::aa::{facing, shadow_origins};
 use crate::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
 use crate::ibox::{IBox, ipoint};
+use crate::mesh::Shaft;
 use crate::ray::{Beam, Ray, point_box};
 use crate::root::{Proof, RootCounters, RootFinder, RootResult};
 use crate::sample::SHADOW_OFFSET;
@@ -108,10 +109,10 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         // the shaft).
         let light_box = light.bounding_box();
         m.bvh()
-            .in_shaft(from, &light_box)
+            .in_shaft(&Shaft::new(from, &light_box))
             .into_iter()
             .map(|i| ShaftTriangle {
-                v: m.bvh().triangle(i).v,
+                triangle: *m.bvh().triangle(i),
                 redundant: m.turned_away(i, &light_box, &corners),
             })
             .collect()

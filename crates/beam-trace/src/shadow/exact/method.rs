@@ -10,18 +10,11 @@ use super::fragment::{Affine, Fragment};
 use super::group::{ExactShadows, Plane};
 use crate::beam::BoxClass;
 use crate::ibox::{IBox, ival, point_box};
-use crate::mesh::Triangle;
+use crate::mesh::Shaft;
 use crate::shadow::hard::Visibility;
 use crate::shadow::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
+use crate::shadow::spec::ShadowSpec;
 use crate::shadow::stochastic::Stochastic;
-
-/// Halvings of a visible fragment against the implicit surfaces of `exact` without a
-/// depth.
-pub const DEFAULT_DEPTH: u32 = 8;
-
-/// Most queries sharing one BSP without a group size: the runs of neighbouring queries
-/// that the renderer hands to a method together.
-pub const DEFAULT_GROUP: u32 = 16;
 
 /// Shadow segments of the estimate where the BSP cannot be built for a point (a point in
 /// the light's own plane).
@@ -195,7 +188,7 @@ impl Exact {
         let polygons: Vec<Vec<DVec3>> = triangles
             .iter()
             .filter(|t| !t.redundant)
-            .map(|t| t.v.to_vec())
+            .map(|t| t.triangle.v.to_vec())
             .collect();
         work.shaft_triangles += polygons.len() as u64;
         let receiver = Plane {
@@ -231,10 +224,8 @@ impl Exact {
                 || parts.iter().map(Fragment::area).sum::<f64>() >= 1.0 - WHOLE_SLACK;
             let lit = whole
                 && timed(&mut work.exact_times.shaft, || {
-                    let light_box = q.light.bounding_box();
-                    !triangles
-                        .iter()
-                        .any(|t| Triangle { v: t.v }.in_shaft(&point_box(q.origin), &light_box))
+                    let own = Shaft::new(&point_box(q.origin), &q.light.bounding_box());
+                    !triangles.iter().any(|t| own.may_meet(&t.triangle))
                 });
             let answer = if lit {
                 self.finish(occluders, q, (vec![Fragment::whole()], true), work)
@@ -380,15 +371,12 @@ fn group_plane(queries: &[ShadowQuery]) -> (usize, DVec3) {
 }
 
 impl ShadowMethod for Exact {
-    /// `exact`, `exact:D`, `exact:D:G`: the spec's form, defaults left out.
     fn name(&self) -> String {
-        if self.group != DEFAULT_GROUP {
-            format!("exact:{}:{}", self.depth, self.group)
-        } else if self.depth != DEFAULT_DEPTH {
-            format!("exact:{}", self.depth)
-        } else {
-            "exact".into()
+        ShadowSpec::Exact {
+            depth: self.depth,
+            group: self.group,
         }
+        .to_string()
     }
 
     fn visibility(
@@ -397,10 +385,9 @@ impl ShadowMethod for Exact {
         q: &ShadowQuery,
         work: &mut ShadowWork,
     ) -> LightVisibility {
-        let mut out = Vec::with_capacity(1);
-        let (_, normal) = group_plane(std::slice::from_ref(q));
-        self.group(occluders, (std::slice::from_ref(q), normal), work, &mut out);
-        out.pop().expect("one answer per query")
+        self.visibility_run(occluders, std::slice::from_ref(q), work)
+            .pop()
+            .expect("one answer per query")
     }
 
     /// Groups of neighbouring queries on one plane share one BSP

@@ -37,7 +37,7 @@ mod orient;
 pub use super::exact_work::{BspWork, ExactTimes};
 pub use bsp::NODE_BYTES;
 pub use group::{ExactError, ExactShadows, Plane};
-pub use method::{DEFAULT_DEPTH, DEFAULT_GROUP, Exact};
+pub use method::Exact;
 
 #[cfg(test)]
 mod tests;
