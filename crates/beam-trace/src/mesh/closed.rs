@@ -29,10 +29,9 @@ fn root(parent: &mut [usize], mut i: usize) -> usize {
     i
 }
 
-/// Per triangle of `tris`: `1` where its winding's normal is proven to point out of the
-/// solid its closed component bounds, `-1` where it points in, `0` where its component is
-/// not closed or the sign of the component's volume is not proven.
-pub fn facing(tris: &[Triangle]) -> Vec<i8> {
+/// Per triangle of `tris`, the component it belongs to (numbered from 0 in the order of
+/// their first triangles) where that component is closed, `None` where it is not.
+pub(crate) fn closed_components(tris: &[Triangle]) -> Vec<Option<u32>> {
     let mut ids: HashMap<[u64; 3], u32> = HashMap::new();
     let mut vertex = |p: DVec3| {
         let n = ids.len() as u32;
@@ -63,21 +62,42 @@ pub fn facing(tris: &[Triangle]) -> Vec<i8> {
             }
         }
     }
-    // Per component: whether it is closed, and its volume about its first vertex.
-    let mut components: HashMap<usize, (bool, DVec3, Interval<f64>)> = HashMap::new();
-    for (t, tri) in tris.iter().enumerate() {
+    // Per component (by its root): its number, and whether it is closed.
+    let mut components: HashMap<usize, (u32, bool)> = HashMap::new();
+    for (t, open) in open.iter().enumerate() {
         let r = root(&mut parent, t);
-        let entry =
-            components
-                .entry(r)
-                .or_insert((true, tri.v[0], Interval::new_unchecked(0.0, 0.0)));
-        entry.0 &= !open[t];
-        entry.2 = entry.2.add(tri.signed_volume(entry.1));
+        let next = components.len() as u32;
+        components.entry(r).or_insert((next, true)).1 &= !open;
     }
     (0..tris.len())
         .map(|t| {
-            let (closed, _, volume) = components[&root(&mut parent, t)];
-            if !closed || volume.is_empty() {
+            let (id, closed) = components[&root(&mut parent, t)];
+            closed.then_some(id)
+        })
+        .collect()
+}
+
+/// Per triangle of `tris`: `1` where its winding's normal is proven to point out of the
+/// solid its closed component bounds, `-1` where it points in, `0` where its component is
+/// not closed or the sign of the component's volume is not proven.
+pub fn facing(tris: &[Triangle]) -> Vec<i8> {
+    let components = closed_components(tris);
+    // Per closed component: its volume about its first vertex.
+    let mut volumes: HashMap<u32, (DVec3, Interval<f64>)> = HashMap::new();
+    for (tri, c) in tris.iter().zip(&components) {
+        if let Some(c) = c {
+            let entry = volumes
+                .entry(*c)
+                .or_insert((tri.v[0], Interval::new_unchecked(0.0, 0.0)));
+            entry.1 = entry.1.add(tri.signed_volume(entry.0));
+        }
+    }
+    components
+        .iter()
+        .map(|c| {
+            let Some(c) = c else { return 0 };
+            let volume = volumes[c].1;
+            if volume.is_empty() {
                 0
             } else if volume.inf() > 0.0 {
                 1
@@ -97,45 +117,9 @@ mod tests {
 
     use super::facing;
     use crate::ibox::ival;
+    use crate::mesh::tests::lumpy_ball;
     use crate::mesh::{MeshIndex, Triangle};
     use crate::shadow::Patch;
-
-    /// A closed surface around the origin: a latitude-longitude grid with single poles,
-    /// each vertex at its own distance `r[i]` (so not convex), windings facing out.
-    fn lumpy_ball(r: &[f64], lat: usize, lon: usize) -> Vec<Triangle> {
-        let mut radius = r.iter().copied().cycle();
-        let north = DVec3::Y * radius.next().unwrap();
-        let south = -DVec3::Y * radius.next().unwrap();
-        let mut rings = Vec::new();
-        for i in 1..lat {
-            let theta = std::f64::consts::PI * i as f64 / lat as f64;
-            let ring: Vec<DVec3> = (0..lon)
-                .map(|j| {
-                    let phi = std::f64::consts::TAU * j as f64 / lon as f64;
-                    let d = DVec3::new(
-                        theta.sin() * phi.cos(),
-                        theta.cos(),
-                        theta.sin() * phi.sin(),
-                    );
-                    d * radius.next().unwrap()
-                })
-                .collect();
-            rings.push(ring);
-        }
-        let mut t = Vec::new();
-        for j in 0..lon {
-            let k = (j + 1) % lon;
-            t.push(Triangle::new(north, rings[0][k], rings[0][j]));
-            let last = &rings[lat - 2];
-            t.push(Triangle::new(south, last[j], last[k]));
-            for i in 0..lat - 2 {
-                let (a, b) = (&rings[i], &rings[i + 1]);
-                t.push(Triangle::new(a[j], a[k], b[k]));
-                t.push(Triangle::new(a[j], b[k], b[j]));
-            }
-        }
-        t
-    }
 
     #[test]
     fn closed_surfaces_face_out_and_open_ones_are_not_judged() {

@@ -20,6 +20,7 @@
 
 mod bvh;
 mod closed;
+mod inner;
 mod obj;
 mod shaft;
 mod triangle;
@@ -30,6 +31,7 @@ use crate::ibox::{IBox, disjoint, hull};
 
 pub use bvh::{Bvh, FirstCrossing};
 pub use closed::facing;
+pub use inner::{InnerSquare, inner_squares};
 pub use obj::read_obj;
 pub use shaft::Shaft;
 pub use triangle::{Crossing, Triangle};
@@ -54,7 +56,15 @@ pub struct MeshIndex {
     facing: Vec<i8>,
     /// Per mesh, the box of its vertices.
     bounds: Vec<IBox>,
+    /// The squares inside the meshes' closed components of [`MIN_INNER_FACES`] faces or
+    /// more ([`inner_squares`]).
+    inner: Vec<InnerSquare>,
 }
+
+/// The fewest faces of a closed component that the index looks for squares inside: a
+/// square closes an umbra in fewer cells than the faces it stands for only where they are
+/// many.
+pub const MIN_INNER_FACES: usize = 32;
 
 impl MeshIndex {
     /// The index of the meshes `meshes` (mesh `k` is the `k`-th slice).
@@ -63,7 +73,9 @@ impl MeshIndex {
         let mut owner = Vec::new();
         let mut facings = Vec::new();
         let mut bounds = Vec::new();
+        let mut inner = Vec::new();
         for (k, m) in meshes.into_iter().enumerate() {
+            inner.extend(inner_squares(m, MIN_INNER_FACES));
             all.extend_from_slice(m);
             owner.extend(std::iter::repeat_n(k as u32, m.len()));
             facings.extend(facing(m));
@@ -75,6 +87,7 @@ impl MeshIndex {
             owner,
             facing: facings,
             bounds,
+            inner,
         }
     }
 
@@ -91,6 +104,25 @@ impl MeshIndex {
     /// The unit geometric normal of triangle `triangle`.
     pub fn normal(&self, triangle: u32) -> DVec3 {
         self.normals[triangle as usize]
+    }
+
+    /// The squares inside closed meshes ([`InnerSquare`]) that some segment of `shaft` may
+    /// reach, from solids whose box is disjoint from the box `light` (so a segment from a
+    /// square to the light crosses a face of the square's mesh), on the axes along which
+    /// `toward` (about the direction of the light) has at least half of its largest
+    /// coordinate: squares seen edge-on from the light would only cut the trees.
+    pub fn inner_in(&self, shaft: &Shaft, light: &IBox, toward: DVec3) -> Vec<Vec<DVec3>> {
+        let reach = toward.abs();
+        let most = reach.max_element();
+        self.inner
+            .iter()
+            .filter(|sq| {
+                reach[sq.axis] >= 0.5 * most
+                    && disjoint(&sq.solid, light)
+                    && shaft.may_reach(&sq.bounds())
+            })
+            .map(|sq| sq.corners.to_vec())
+            .collect()
     }
 
     /// Whether triangle `triangle` is a face of a closed mesh turned away from a light
@@ -111,4 +143,4 @@ impl MeshIndex {
 }
 
 #[cfg(test)]
-mod tests;
+pub(crate) mod tests;

@@ -402,3 +402,40 @@ fn an_obj_cube_reads_as_twelve_triangles_and_bad_files_are_named() {
     assert!(read_obj(&bad).unwrap_err().contains("no triangle"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+/// A closed surface around the origin: a latitude-longitude grid with single poles,
+/// each vertex at its own distance `r[i]` (so not convex), windings facing out.
+pub(crate) fn lumpy_ball(r: &[f64], lat: usize, lon: usize) -> Vec<Triangle> {
+    let mut radius = r.iter().copied().cycle();
+    let north = DVec3::Y * radius.next().unwrap();
+    let south = -DVec3::Y * radius.next().unwrap();
+    let mut rings = Vec::new();
+    for i in 1..lat {
+        let theta = std::f64::consts::PI * i as f64 / lat as f64;
+        let ring: Vec<DVec3> = (0..lon)
+            .map(|j| {
+                let phi = std::f64::consts::TAU * j as f64 / lon as f64;
+                let d = DVec3::new(
+                    theta.sin() * phi.cos(),
+                    theta.cos(),
+                    theta.sin() * phi.sin(),
+                );
+                d * radius.next().unwrap()
+            })
+            .collect();
+        rings.push(ring);
+    }
+    let mut t = Vec::new();
+    for j in 0..lon {
+        let k = (j + 1) % lon;
+        t.push(Triangle::new(north, rings[0][k], rings[0][j]));
+        let last = &rings[lat - 2];
+        t.push(Triangle::new(south, last[j], last[k]));
+        for i in 0..lat - 2 {
+            let (a, b) = (&rings[i], &rings[i + 1]);
+            t.push(Triangle::new(a[j], a[k], b[k]));
+            t.push(Triangle::new(a[j], b[k], b[j]));
+        }
+    }
+    t
+}

@@ -151,6 +151,16 @@ pub trait Occluders {
         Vec::new()
     }
 
+    /// Convex polygons inside closed meshes that some segment from `from` to `light` may
+    /// reach, each blocking only segments that a triangle of [`Occluders::triangles`]
+    /// blocks as well ([`crate::mesh::MeshIndex::inner_in`]): occluders a method may put
+    /// first to close an umbra in fewer steps, never the grounds of a proof (none where the
+    /// scene has no closed meshes).
+    fn inner_occluders(&mut self, from: &IBox, light: &Patch) -> Vec<Vec<DVec3>> {
+        let _ = (from, light);
+        Vec::new()
+    }
+
     /// [`Occluders::beam`] against the implicit surfaces alone, for a method that treats
     /// the [`triangles`](Occluders::triangles) itself (the same as `beam` where the scene
     /// has no meshes).

@@ -118,6 +118,19 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
             .collect()
     }
 
+    fn inner_occluders(&mut self, from: &IBox, light: &Patch) -> Vec<Vec<DVec3>> {
+        let Some(m) = &self.queries.meshes else {
+            return Vec::new();
+        };
+        let light_box = light.bounding_box();
+        let middle = DVec3::from_array(std::array::from_fn(|k| from[k].mid()));
+        m.inner_in(
+            &Shaft::new(from, &light_box),
+            &light_box,
+            light.center() - middle,
+        )
+    }
+
     fn implicit_beam(
         &mut self,
         from: DVec3,

@@ -78,6 +78,8 @@ pub(super) struct Bsp {
     nodes: Vec<Node>,
     occluders: Vec<Occluder>,
     light: Patch,
+    /// How many of the occluders (the first ones) are chosen before the others, in order.
+    first: u32,
     /// The corners of a box holding every query point (empty: no box given). A line that
     /// matters to an insertion reaches a query point `x` through a point `q` of the
     /// occluder between the light and `x`; its side equals that of `q → x` times a positive
@@ -92,12 +94,14 @@ pub(super) struct Bsp {
 
 impl Bsp {
     /// The tree holding one undefined leaf with every occluder (a visible leaf when there is
-    /// none), its random choices seeded by `seed`.
-    pub fn new(light: Patch, occluders: Vec<Occluder>, seed: u64) -> Bsp {
+    /// none), its random choices seeded by `seed`. A leaf expands its list's first
+    /// `first` occluders in their order before it picks among the others.
+    pub fn new(light: Patch, occluders: Vec<Occluder>, first: usize, seed: u64) -> Bsp {
         let mut bsp = Bsp {
             nodes: Vec::new(),
             occluders,
             light,
+            first: first as u32,
             region: Vec::new(),
             rng: seed,
             pending: Vec::new(),
@@ -236,14 +240,20 @@ impl Bsp {
         self.pending = stack;
     }
 
-    /// Expands the undefined leaf `n`: a random occluder of its list becomes its chain, the
-    /// others are inserted into that chain.
+    /// Expands the undefined leaf `n`: the first of the occluders put first, or else a
+    /// random occluder of its list, becomes its chain; the others are inserted into that
+    /// chain. (A list holds its occluders in increasing order: the tree's root holds them
+    /// all in order, and an insertion appends to the lists below.)
     fn expand(&mut self, n: u32) {
         let Node::Leaf { occluders, .. } = &mut self.nodes[n as usize] else {
             unreachable!("only leaves are expanded");
         };
         let list = std::mem::take(occluders);
-        let pick = list[(self.next_random() % list.len() as u64) as usize];
+        let pick = if list[0] < self.first {
+            list[0]
+        } else {
+            list[(self.next_random() % list.len() as u64) as usize]
+        };
         let tree = self.occluder_tree(pick as usize);
         // The chain's root takes the leaf's place.
         let root = self.nodes[tree as usize].clone();

@@ -97,6 +97,24 @@ impl ExactShadows {
         occluders: &[Vec<DVec3>],
         seed: u64,
     ) -> Result<Self, ExactError> {
+        Self::with_first(light, receiver, &[], occluders, seed)
+    }
+
+    /// [`ExactShadows::new`] with occluders `first` that the tree sorts before the others,
+    /// in their order, wherever they reach: polygons that hide large parts of the light
+    /// and nothing that `occluders` do not hide (squares inside closed meshes,
+    /// [`crate::mesh::InnerSquare`]), so that the other occluders' edges cut only what
+    /// they leave. The fractions are the same in exact arithmetic; the trees smaller.
+    ///
+    /// # Errors
+    /// As [`ExactShadows::new`].
+    pub fn with_first(
+        light: Patch,
+        receiver: Plane,
+        first: &[Vec<DVec3>],
+        occluders: &[Vec<DVec3>],
+        seed: u64,
+    ) -> Result<Self, ExactError> {
         let ln = light.edge_u.cross(light.edge_v);
         if ln == DVec3::ZERO {
             return Err(ExactError::DegenerateLight);
@@ -124,7 +142,8 @@ impl ExactShadows {
         };
         let mut kept = Vec::new();
         let mut dropped = 0;
-        for poly in occluders {
+        let mut kept_first = 0;
+        for (k, poly) in first.iter().chain(occluders).enumerate() {
             let clipped = clip(&clip(poly, &light_plane), &receiver_side);
             let scale = poly
                 .iter()
@@ -135,6 +154,7 @@ impl ExactShadows {
                 continue;
             }
             let stab = stab_sign(&light, &clipped);
+            kept_first += usize::from(k < first.len());
             kept.push(Occluder {
                 verts: clipped,
                 original: poly.clone(),
@@ -144,9 +164,9 @@ impl ExactShadows {
         Ok(ExactShadows {
             light,
             receiver,
-            bsp: Bsp::new(light, kept, seed),
+            bsp: Bsp::new(light, kept, kept_first, seed),
             region: None,
-            given: occluders.len(),
+            given: first.len() + occluders.len(),
             dropped,
         })
     }

@@ -332,3 +332,45 @@ fn a_region_changes_the_cost_not_the_answer() {
     let nan = DVec3::new(f64::NAN, 0.0, 0.0);
     assert!(ex.set_region(nan, DVec3::ONE).is_err());
 }
+
+/// Squares inside a closed mesh, put first, change the size of the trees, not the
+/// fractions: on a lumpy ball of 200 faces above the floor, the same fractions to 1e-9 at
+/// the floor points under it, with a fraction of the nodes.
+#[test]
+fn squares_inside_a_closed_mesh_change_the_cost_not_the_answer() {
+    let (light, floor) = setup();
+    let radii: Vec<f64> = (0..97)
+        .map(|i| 0.65 + 0.05 * (f64::from(i) * 1.7).sin())
+        .collect();
+    let ball: Vec<crate::mesh::Triangle> = crate::mesh::tests::lumpy_ball(&radii, 10, 11)
+        .into_iter()
+        .map(|t| {
+            let [a, b, c] = t.v.map(|p| p + DVec3::new(0.1, 1.1, -0.05));
+            crate::mesh::Triangle::new(a, b, c)
+        })
+        .collect();
+    let faces: Vec<Vec<DVec3>> = ball.iter().map(|t| t.v.to_vec()).collect();
+    let squares: Vec<Vec<DVec3>> = crate::mesh::inner_squares(&ball, 1)
+        .into_iter()
+        .filter(|s| s.axis == 1)
+        .map(|s| s.corners.to_vec())
+        .collect();
+    assert_eq!(squares.len(), 1);
+    let mut plain = ExactShadows::new(light, floor, &faces, 3).unwrap();
+    let mut fused = ExactShadows::with_first(light, floor, &squares, &faces, 3).unwrap();
+    let mut umbra = 0;
+    for x in floor_points()
+        .into_iter()
+        .filter(|x| x.x.abs().max(x.z.abs()) < 1.0)
+    {
+        let (a, b) = (
+            plain.visible_fraction(x, Some(DVec3::Y)).unwrap(),
+            fused.visible_fraction(x, Some(DVec3::Y)).unwrap(),
+        );
+        assert!((a - b).abs() < 1e-9, "at {x}: {a} against {b}");
+        umbra += usize::from(a < 1e-9);
+    }
+    assert!(umbra > 10, "{umbra} points in umbra");
+    let (p, f) = (plain.work().inner_nodes, fused.work().inner_nodes);
+    assert!(2 * f < p, "{f} nodes with the square against {p}");
+}
