@@ -180,13 +180,18 @@ fn inside_stretches(
     }
     crossings.sort_by(|a, b| a[0].total_cmp(&b[0]));
     let n = crossings.len();
-    let mut stretches: Vec<[f64; 2]> = (0..n.saturating_sub(1))
-        .filter(|&i| (n - i - 1) % 2 == 1)
-        .map(|i| [crossings[i][1], crossings[i + 1][0]])
-        // A gap only where the enclosures are apart, and no later crossing reaches back
-        // into it (sorted by their lower ends, so only the next could).
-        .filter(|[a, b]| a < b)
-        .collect();
+    // After the `i`-th crossing (by lower ends), the gap from the highest upper end of the
+    // crossings so far to the next lower end: every crossing lies wholly on one side of it,
+    // the `n − i − 1` later ones above.
+    let mut reach = f64::NEG_INFINITY;
+    let mut stretches = Vec::new();
+    for i in 0..n.saturating_sub(1) {
+        reach = reach.max(crossings[i][1]);
+        let next = crossings[i + 1][0];
+        if (n - i - 1) % 2 == 1 && reach < next {
+            stretches.push([reach, next]);
+        }
+    }
     stretches.sort_by(|a, b| (b[1] - b[0]).total_cmp(&(a[1] - a[0])));
     Some(stretches)
 }

@@ -68,6 +68,7 @@ pub(super) fn soft_shadows(
         let mut c = SoftShadowCounters::default();
         // The queries of the samples facing the light, and where their answers go.
         let mut slots = Vec::new();
+        let mut pixel_of = Vec::new();
         let mut queries = Vec::new();
         for p in 0..npix {
             for (si, s) in pixels.pixel(p).iter().enumerate() {
@@ -76,6 +77,7 @@ pub(super) fn soft_shadows(
                     continue;
                 }
                 slots.push(pixels.range(p).start + si);
+                pixel_of.push(p);
                 queries.push(ShadowQuery {
                     origin: hit.shadow_origin(offset),
                     normal: hit.facing_normal(),
@@ -85,6 +87,9 @@ pub(super) fn soft_shadows(
             }
         }
         progress.begin(&format!("soft-shadows light {li}"), queries.len() as u64);
+        // Asked tile by tile, answered in the samples' order.
+        let order = tile_order(&pixel_of, window);
+        let queries: Vec<ShadowQuery> = order.iter().map(|&k| queries[k]).collect();
         let mut answers: Vec<LightVisibility> = Vec::with_capacity(queries.len());
         let mut exact_times = ExactTimes::default();
         for chunk in queries.chunks(BATCH) {
@@ -106,6 +111,7 @@ pub(super) fn soft_shadows(
             progress.advance(chunk.len() as u64);
         }
         progress.end();
+        let answers = in_sample_order(&order, answers);
         // Per pixel: the fraction and its bounds averaged over its shaded samples, and
         // its class.
         let mut answer = slots.iter().zip(&answers).peekable();
@@ -259,3 +265,73 @@ impl PixelMean {
 
 /// Queries per batch.
 const BATCH: usize = 1 << 14;
+
+/// The side, in pixels, of the square tiles of the image whose samples' queries go to the
+/// backend one tile after another: a run of neighbouring queries, which a method may answer
+/// together (the exact method's groups share one tree), then holds points close on the
+/// screen both ways, not a strip of one row. A tile's pixels are
+/// [`ShadowSpec::MAX_EXACT_GROUP`](crate::shadow::ShadowSpec::MAX_EXACT_GROUP).
+const QUERY_TILE: u32 = 8;
+
+/// The order in which to ask the queries of samples of the window's pixels `pixel_of`
+/// (ascending): by the image's tiles of [`QUERY_TILE`] pixels, row by row, and in
+/// the samples' order inside a tile (the tiles are the whole image's).
+fn tile_order(pixel_of: &[usize], window: &Window) -> Vec<usize> {
+    let mut order: Vec<usize> = (0..pixel_of.len()).collect();
+    order.sort_by_key(|&k| {
+        let (x, y) = window.pixel(pixel_of[k]);
+        (y / QUERY_TILE, x / QUERY_TILE)
+    });
+    order
+}
+
+/// The answers `answers` to the queries asked in the order `order` ([`tile_order`]), put
+/// back in the samples' order.
+fn in_sample_order(order: &[usize], answers: Vec<LightVisibility>) -> Vec<LightVisibility> {
+    let mut out = vec![LightVisibility::LIT; answers.len()];
+    for (&k, a) in order.iter().zip(answers) {
+        out[k] = a;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::{QUERY_TILE, in_sample_order, tile_order};
+    use crate::shadow::LightVisibility;
+    use crate::window::Window;
+
+    /// Every query is asked once, tile after tile of the image, and every answer goes back
+    /// to its query.
+    #[test]
+    fn queries_go_tile_by_tile_and_answers_come_back_in_order() {
+        let window = Window::full(20, 11);
+        // Pixel 3 has no query, pixel 4 two (two samples).
+        let mut pixel_of: Vec<usize> = (0..220).filter(|&p| p != 3).collect();
+        pixel_of.insert(3, 4);
+        let order = tile_order(&pixel_of, &window);
+        let mut seen = order.clone();
+        seen.sort_unstable();
+        assert_eq!(seen, (0..pixel_of.len()).collect::<Vec<_>>());
+        let tile = |k: usize| {
+            let (x, y) = window.pixel(pixel_of[k]);
+            (y / QUERY_TILE, x / QUERY_TILE)
+        };
+        assert!(order.windows(2).all(|w| tile(w[0]) <= tile(w[1])));
+        // The first tile holds the 8 × 8 pixels at the image's corner, 64 queries less the
+        // pixel without one plus the second sample: its first row then the next.
+        assert_eq!(order.iter().take_while(|&&k| tile(k) == (0, 0)).count(), 64);
+        assert_eq!(pixel_of[order[7]], 7);
+        assert_eq!(pixel_of[order[8]], 20);
+        let answers: Vec<LightVisibility> = order
+            .iter()
+            .map(|&k| LightVisibility {
+                fraction: k as f32,
+                lower: 0.0,
+                upper: 1.0,
+            })
+            .collect();
+        let back = in_sample_order(&order, answers);
+        assert!(back.iter().enumerate().all(|(k, a)| a.fraction == k as f32));
+    }
+}

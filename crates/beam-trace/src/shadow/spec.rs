@@ -145,8 +145,9 @@ impl ShadowSpec {
     /// Halvings of `exact` without a depth.
     pub const DEFAULT_EXACT_DEPTH: u32 = 8;
     /// Largest group of `exact:D:G`, and its default: the runs of neighbouring queries
-    /// that the renderer hands to a method together.
-    pub const MAX_EXACT_GROUP: u32 = 16;
+    /// that the renderer hands to a method together (the samples of an 8 × 8 tile of
+    /// pixels, one sample each).
+    pub const MAX_EXACT_GROUP: u32 = 64;
     /// Segments of `certified:TOL`'s estimate without a count
     /// ([`ESTIMATE_SEGMENTS`](crate::shadow::certified::ESTIMATE_SEGMENTS)).
     pub const DEFAULT_SEGMENTS: u32 = crate::shadow::certified::ESTIMATE_SEGMENTS;
@@ -338,9 +339,9 @@ mod tests {
         assert!(e.contains("sub-beams per side"), "{e}");
         let e = "stochastic:0".parse::<ShadowSpec>().unwrap_err();
         assert!(e.contains("number of samples"), "{e}");
-        let e = "exact:8:17".parse::<ShadowSpec>().unwrap_err();
+        let e = "exact:8:65".parse::<ShadowSpec>().unwrap_err();
         assert!(
-            e.contains("largest group must be an integer from 1 to 16"),
+            e.contains("largest group must be an integer from 1 to 64"),
             "{e}"
         );
         assert!("exact:8:0".parse::<ShadowSpec>().is_err());

@@ -5,6 +5,7 @@ use glam::DVec3;
 
 use super::bsp::{Bsp, Occluder};
 use super::fragment::{Affine, Fragment};
+use super::irradiance::form_factor;
 use super::orient::side_sign;
 use crate::shadow::Patch;
 use crate::shadow::exact_work::BspWork;
@@ -42,6 +43,16 @@ pub enum ExactError {
     /// The receivers' region is not a box (`lo ≤ hi`, finite).
     #[error("the receivers' region [{0:?}, {1:?}] is not a box with finite corners")]
     BadRegion(DVec3, DVec3),
+}
+
+/// The irradiance at a point from an area light, as form factors (`E / (π L)` for a
+/// Lambertian light of radiance `L`): [`ExactShadows::visible_irradiance`].
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct Irradiance {
+    /// From the light's parts visible past the occluders.
+    pub visible: f64,
+    /// From all of the light above the point's horizon.
+    pub unoccluded: f64,
 }
 
 /// The exact visibility of one area light from the points of one planar receiver, through
@@ -197,6 +208,35 @@ impl ExactShadows {
             self.bsp.query_parts(x, f, Some(&mut parts));
         }
         Ok(parts)
+    }
+
+    /// The irradiance at `x` (a point of the receiver's plane, with the normal `normal`:
+    /// any length) from the light's parts above its horizon, as form factors by Lambert's
+    /// formula ([`form_factor`]): from the visible parts, and from all of them as if no
+    /// occluder stood in the way. Times `π L`, for a Lambertian light of radiance `L`, they
+    /// are irradiances; their quotient is the share of the light's irradiance that reaches
+    /// `x`, where [`ExactShadows::visible_fraction`] weighs every part of the light alike.
+    /// A zero normal gives zeros.
+    ///
+    /// # Errors
+    /// As [`ExactShadows::visible_fraction`].
+    pub fn visible_irradiance(
+        &mut self,
+        x: DVec3,
+        normal: DVec3,
+    ) -> Result<Irradiance, ExactError> {
+        let n = normal.normalize_or_zero();
+        let whole = self.above_horizon(x, Some(n))?;
+        let parts = self.visible_parts(x, Some(n))?;
+        let light = self.light;
+        let factor = |f: &Fragment| {
+            let poly: Vec<DVec3> = f.verts.iter().map(|&[u, v]| light.point(u, v)).collect();
+            form_factor(x, n, &poly)
+        };
+        Ok(Irradiance {
+            visible: parts.iter().map(factor).sum(),
+            unoccluded: whole.as_ref().map_or(0.0, factor),
+        })
     }
 
     /// The part of the light above `x`'s horizon (`None`: nothing), once `x` is checked.

@@ -46,9 +46,11 @@ const FALLBACK_SAMPLES: u32 = 64;
 /// halves of the parameter square, of exact areas, and every test is a proof); the areas of fragments cut by triangle edges are
 /// not proven, so such a point carries no certificate (`[0, 1]`).
 ///
-/// The paper gives no formula for the irradiance over the visible parts; the renderer
-/// shades a point with the light's colour times the visible fraction at the light's centre
-/// direction (the same Phong model as every other method).
+/// The paper gives no formula for the irradiance over the visible parts. The library's is
+/// Lambert's ([`super::form_factor`], [`super::ExactShadows::visible_irradiance`]); the
+/// renderer shades a point with the light's colour times the visible fraction at the
+/// light's centre direction, the same Phong model as every other method, so that the
+/// methods' images and fractions compare.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub struct Exact {
     /// Halvings of a visible fragment against the implicit surfaces.

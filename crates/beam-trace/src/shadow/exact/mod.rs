@@ -8,7 +8,9 @@
 //! sorted), answers a query by pushing the light, as convex fragments of its parameter
 //! square, down the tree: at each node the plane through `x` and the node's edge splits a
 //! fragment, and the fragments that reach visible leaves are the visible part of the light.
-//! Their area is the visible fraction, exact up to the rounding of the fragments' vertices.
+//! Their area is the visible fraction, exact up to the rounding of the fragments' vertices,
+//! and Lambert's formula over them the irradiance ([`form_factor`],
+//! [`ExactShadows::visible_irradiance`]).
 //!
 //! What makes it correct here, beyond the paper:
 //!
@@ -31,12 +33,14 @@
 mod bsp;
 mod fragment;
 mod group;
+mod irradiance;
 mod method;
 mod orient;
 
 pub use super::exact_work::{BspWork, ExactTimes};
 pub use bsp::NODE_BYTES;
-pub use group::{ExactError, ExactShadows, Plane};
+pub use group::{ExactError, ExactShadows, Irradiance, Plane};
+pub use irradiance::form_factor;
 pub use method::Exact;
 
 #[cfg(test)]

@@ -86,6 +86,43 @@ fn a_square_parallel_to_the_light_matches_the_closed_form() {
     );
 }
 
+/// Lambert's formula over the visible fragments: the light's form factor less that of the
+/// hidden rectangle (the occluder's projection clipped by the light), each a rectangle
+/// parallel to the floor whose form factor the formula's own tests check against the
+/// closed form.
+#[test]
+fn the_irradiance_of_the_visible_parts_is_the_light_less_the_hidden_rectangle() {
+    let (light, floor) = setup();
+    let r: Rect = [(-0.3, 0.4), (-0.2, 0.25)];
+    let h = 1.0;
+    let occ = [rect(r[0].0, r[0].1, r[1].0, r[1].1, h)];
+    let mut ex = ExactShadows::new(light, floor, &occ, 7).unwrap();
+    let factor = |x: DVec3, q: Rect| {
+        if area(q) == 0.0 {
+            return 0.0;
+        }
+        form_factor(x, DVec3::Y, &rect(q[0].0, q[0].1, q[1].0, q[1].1, 2.0))
+    };
+    let mut shaded = 0;
+    for x in floor_points() {
+        let got = ex.visible_irradiance(x, DVec3::Y * 3.0).unwrap();
+        let whole = factor(x, LIGHT);
+        let hidden = factor(x, overlap(LIGHT, projected(x, r, h)));
+        assert!((got.unoccluded - whole).abs() < 1e-12, "at {x}");
+        assert!(
+            (got.visible - (whole - hidden)).abs() < 1e-9,
+            "at {x}: {} against {}",
+            got.visible,
+            whole - hidden
+        );
+        shaded += usize::from(hidden > 0.0);
+    }
+    assert!(shaded > 50, "{shaded}");
+    // Nothing above a receiver facing away.
+    let none = ex.visible_irradiance(DVec3::ZERO, -DVec3::Y).unwrap();
+    assert_eq!((none.visible, none.unoccluded), (0.0, 0.0));
+}
+
 #[test]
 fn two_overlapping_squares_match_the_closed_form() {
     let (light, floor) = setup();
