@@ -12,16 +12,22 @@
 //! number of times when both have the same parity, odd otherwise):
 //!
 //! * the square's centre `m` has odd parity: the segment from `m` along the square's axis
-//!   to past the component's box crosses an odd number of its faces, every crossing and
+//!   to the end of the cast segment crosses an odd number of its faces, every crossing and
 //!   every miss of every face proven in interval arithmetic ([`Triangle::crossing`]);
-//!   where one is not, the centre is not used;
+//!   where one is not, the centre is not used. (The cast segment's end is meant to lie past
+//!   the component's box; where the rounding of its direction stops it short, a face
+//!   crossed beyond the end has a parameter enclosure that reaches past 1, which is not a
+//!   proven crossing inside the window, so the centre is refused: a proven answer means no
+//!   face lies across the line beyond the end.)
 //! * the square meets no face: each face lies proven on one side of the square's plane, or
 //!   its section by the plane (a segment, or the face itself in the plane) is proven apart
 //!   from the square, along one of the square's axes or across the segment.
 //!
 //! So the square (connected, off the faces) lies where `m` does: inside. A point of a light
 //! outside the component's box has even parity, and every segment from the square to it
-//! crosses a face.
+//! crosses a face. (Where the mesh intersects itself, that face may be one the exact
+//! method leaves out as turned away from the light; its removal of such faces assumes an
+//! embedded surface already.)
 
 use glam::{DVec2, DVec3};
 use interval_core::Interval;
@@ -131,6 +137,10 @@ fn clearance(points: &[[Interval<f64>; 2]], m: DVec2) -> f64 {
 /// Whether the rectangle `[lo, hi]` (plane coordinates, its corners exact) is proven apart
 /// from the section `points`: along an axis, or across the section's line.
 fn apart(points: &[[Interval<f64>; 2]], lo: DVec2, hi: DVec2) -> bool {
+    // An empty enclosure (a NaN coordinate) proves nothing.
+    if points.is_empty() || points.iter().flatten().any(|c| c.is_empty()) {
+        return false;
+    }
     let beyond = |k: usize| {
         points.iter().all(|p| p[k].inf() > hi[k]) || points.iter().all(|p| p[k].sup() < lo[k])
     };

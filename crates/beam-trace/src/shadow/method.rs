@@ -153,7 +153,8 @@ pub trait Occluders {
 
     /// Convex polygons inside closed meshes that some segment from `from` to `light` may
     /// reach, each blocking only segments that a triangle of [`Occluders::triangles`]
-    /// blocks as well ([`crate::mesh::MeshIndex::inner_in`]): occluders a method may put
+    /// blocks as well where the mesh does not intersect itself
+    /// ([`crate::mesh::MeshIndex::inner_in`]): occluders a method may put
     /// first to close an umbra in fewer steps, never the grounds of a proof (none where the
     /// scene has no closed meshes).
     fn inner_occluders(&mut self, from: &IBox, light: &Patch) -> Vec<Vec<DVec3>> {

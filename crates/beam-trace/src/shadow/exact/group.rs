@@ -115,7 +115,9 @@ impl ExactShadows {
     /// in their order, wherever they reach: polygons that hide large parts of the light
     /// and nothing that `occluders` do not hide (squares inside closed meshes,
     /// [`crate::mesh::InnerSquare`]), so that the other occluders' edges cut only what
-    /// they leave. The fractions are the same in exact arithmetic; the trees smaller.
+    /// they leave. The fractions are the same in exact arithmetic where every line that
+    /// `first` blocks, `occluders` block (squares inside an embedded closed mesh none of
+    /// whose faces were left out); the trees smaller.
     ///
     /// # Errors
     /// As [`ExactShadows::new`].
