@@ -81,10 +81,15 @@ pub(crate) fn closed_components(tris: &[Triangle]) -> Vec<Option<u32>> {
 /// solid its closed component bounds, `-1` where it points in, `0` where its component is
 /// not closed or the sign of the component's volume is not proven.
 pub fn facing(tris: &[Triangle]) -> Vec<i8> {
-    let components = closed_components(tris);
+    facing_of(tris, &closed_components(tris))
+}
+
+/// [`facing`] of `tris` whose closed components are `components`
+/// ([`closed_components`]).
+pub(crate) fn facing_of(tris: &[Triangle], components: &[Option<u32>]) -> Vec<i8> {
     // Per closed component: its volume about its first vertex.
     let mut volumes: HashMap<u32, (DVec3, Interval<f64>)> = HashMap::new();
-    for (tri, c) in tris.iter().zip(&components) {
+    for (tri, c) in tris.iter().zip(components) {
         if let Some(c) = c {
             let entry = volumes
                 .entry(*c)

@@ -33,8 +33,8 @@ use glam::{DVec2, DVec3};
 use interval_core::Interval;
 
 use super::closed::closed_components;
-use super::triangle::Triangle;
-use crate::ibox::{IBox, hull, ipoint, ival};
+use super::triangle::{Triangle, bounds_of};
+use crate::ibox::{IBox, ipoint, ival};
 
 /// A square inside a closed component of a mesh: its centre has odd crossing parity with
 /// the component's faces (every crossing and miss of a segment from it to past the
@@ -62,6 +62,17 @@ impl InnerSquare {
 /// The two axes of the plane perpendicular to `axis`.
 fn plane_axes(axis: usize) -> (usize, usize) {
     ((axis + 1) % 3, (axis + 2) % 3)
+}
+
+/// The point with coordinate `along` on `axis` and `across` on the plane's axes
+/// ([`plane_axes`]).
+fn point(axis: usize, along: f64, across: DVec2) -> DVec3 {
+    let (u, v) = plane_axes(axis);
+    let mut p = DVec3::ZERO;
+    p[axis] = along;
+    p[u] = across.x;
+    p[v] = across.y;
+    p
 }
 
 /// Where a face meets the plane `x[axis] = c`, in the plane's coordinates: a box of each
@@ -168,14 +179,8 @@ fn inside_stretches(
     m: DVec2,
     solid: &IBox,
 ) -> Option<Vec<[f64; 2]>> {
-    let (u, v) = plane_axes(axis);
-    let mut origin = DVec3::ZERO;
-    origin[u] = m.x;
-    origin[v] = m.y;
-    origin[axis] = solid[axis].inf() - 1.0;
-    let top = solid[axis].sup() + 1.0;
-    let mut dir = DVec3::ZERO;
-    dir[axis] = top - origin[axis];
+    let origin = point(axis, solid[axis].inf() - 1.0, m);
+    let dir = point(axis, solid[axis].sup() + 1.0 - origin[axis], DVec2::ZERO);
     let window = ival(0.0, 1.0);
     let mut crossings = Vec::new();
     for t in faces {
@@ -247,19 +252,8 @@ fn square(faces: &[Triangle], solid: &IBox, axis: usize) -> Option<InnerSquare> 
         if !sections.iter().all(|p| apart(p, lo, hi)) {
             continue;
         }
-        let corner = |x: f64, y: f64| {
-            let mut p = DVec3::ZERO;
-            p[axis] = c;
-            p[u] = x;
-            p[v] = y;
-            p
-        };
-        let corners = [
-            corner(lo.x, lo.y),
-            corner(hi.x, lo.y),
-            corner(hi.x, hi.y),
-            corner(lo.x, hi.y),
-        ];
+        let corners = [(lo.x, lo.y), (hi.x, lo.y), (hi.x, hi.y), (lo.x, hi.y)]
+            .map(|(x, y)| point(axis, c, DVec2::new(x, y)));
         best = Some((
             s,
             InnerSquare {
@@ -276,7 +270,16 @@ fn square(faces: &[Triangle], solid: &IBox, axis: usize) -> Option<InnerSquare> 
 /// (what each proves: [`InnerSquare`]): per component and axis the largest found, where
 /// it is at least a twentieth of the component's width across the axis.
 pub fn inner_squares(tris: &[Triangle], min_faces: usize) -> Vec<InnerSquare> {
-    let components = closed_components(tris);
+    inner_squares_of(tris, &closed_components(tris), min_faces)
+}
+
+/// [`inner_squares`] of `tris` whose closed components are `components`
+/// ([`closed_components`]).
+pub(crate) fn inner_squares_of(
+    tris: &[Triangle],
+    components: &[Option<u32>],
+    min_faces: usize,
+) -> Vec<InnerSquare> {
     let count = components
         .iter()
         .flatten()
@@ -284,18 +287,14 @@ pub fn inner_squares(tris: &[Triangle], min_faces: usize) -> Vec<InnerSquare> {
         .max()
         .unwrap_or(0);
     let mut faces: Vec<Vec<Triangle>> = vec![Vec::new(); count];
-    for (t, c) in tris.iter().zip(&components) {
+    for (t, c) in tris.iter().zip(components) {
         if let Some(c) = c {
             faces[*c as usize].push(*t);
         }
     }
     let mut out = Vec::new();
     for faces in faces.iter().filter(|f| f.len() >= min_faces.max(1)) {
-        let Some(solid) = faces
-            .iter()
-            .map(Triangle::bounds)
-            .reduce(|a, b| hull(&a, &b))
-        else {
+        let Some(solid) = bounds_of(faces) else {
             continue;
         };
         for axis in 0..3 {

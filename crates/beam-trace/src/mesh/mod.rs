@@ -27,22 +27,17 @@ mod triangle;
 
 use glam::DVec3;
 
-use crate::ibox::{IBox, disjoint, hull};
+use crate::ibox::{IBox, disjoint};
 
 pub use bvh::{Bvh, FirstCrossing};
+use closed::{closed_components, facing_of};
+use inner::inner_squares_of;
+
 pub use closed::facing;
 pub use inner::{InnerSquare, inner_squares};
 pub use obj::read_obj;
 pub use shaft::Shaft;
-pub use triangle::{Crossing, Triangle};
-
-/// The box of the triangles' vertices (`None` for no triangle).
-pub fn bounds_of(triangles: &[Triangle]) -> Option<IBox> {
-    triangles
-        .iter()
-        .map(Triangle::bounds)
-        .reduce(|a, b| hull(&a, &b))
-}
+pub use triangle::{Crossing, Triangle, bounds_of};
 
 /// The triangles of several meshes in one hierarchy, each knowing the mesh it came from.
 #[derive(Clone, Debug)]
@@ -75,10 +70,11 @@ impl MeshIndex {
         let mut bounds = Vec::new();
         let mut inner = Vec::new();
         for (k, m) in meshes.into_iter().enumerate() {
-            inner.extend(inner_squares(m, MIN_INNER_FACES));
+            let components = closed_components(m);
+            inner.extend(inner_squares_of(m, &components, MIN_INNER_FACES));
             all.extend_from_slice(m);
             owner.extend(std::iter::repeat_n(k as u32, m.len()));
-            facings.extend(facing(m));
+            facings.extend(facing_of(m, &components));
             bounds.push(bounds_of(m).unwrap_or([interval_core::Interval::EMPTY; 3]));
         }
         Self {

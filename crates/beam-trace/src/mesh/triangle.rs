@@ -4,7 +4,7 @@
 use glam::DVec3;
 use interval_core::Interval;
 
-use crate::ibox::{IBox, disjoint, ipoint};
+use crate::ibox::{IBox, disjoint, hull, ipoint};
 use crate::ray::Beam;
 
 /// A triangle of a mesh, by its three vertices (in world coordinates).
@@ -68,6 +68,14 @@ fn sign(x: Interval<f64>) -> Option<bool> {
     } else {
         None
     }
+}
+
+/// The box of the triangles' vertices (`None` for no triangle).
+pub fn bounds_of(triangles: &[Triangle]) -> Option<IBox> {
+    triangles
+        .iter()
+        .map(Triangle::bounds)
+        .reduce(|a, b| hull(&a, &b))
 }
 
 impl Triangle {

@@ -228,8 +228,14 @@ impl ExactShadows {
         normal: DVec3,
     ) -> Result<Irradiance, ExactError> {
         let n = normal.normalize_or_zero();
-        let whole = self.above_horizon(x, Some(n))?;
-        let parts = self.visible_parts(x, Some(n))?;
+        let Some(whole) = self.above_horizon(x, Some(n))? else {
+            return Ok(Irradiance {
+                visible: 0.0,
+                unoccluded: 0.0,
+            });
+        };
+        let mut parts = Vec::new();
+        self.bsp.query_parts(x, whole.clone(), Some(&mut parts));
         let light = self.light;
         let factor = |f: &Fragment| {
             let poly: Vec<DVec3> = f.verts.iter().map(|&[u, v]| light.point(u, v)).collect();
@@ -237,7 +243,7 @@ impl ExactShadows {
         };
         Ok(Irradiance {
             visible: parts.iter().map(factor).sum(),
-            unoccluded: whole.as_ref().map_or(0.0, factor),
+            unoccluded: factor(&whole),
         })
     }
 

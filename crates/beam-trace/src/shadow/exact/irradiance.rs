@@ -46,6 +46,7 @@ mod tests {
     use glam::DVec3;
 
     use super::form_factor;
+    use crate::shadow::exact::tests::rect;
 
     /// The form factor from a point to a rectangle `a × b` in a parallel plane at height
     /// `h`, one corner straight above the point (the closed form of the heat-transfer
@@ -56,15 +57,6 @@ mod tests {
         (x / sx * (y / sx).atan() + y / sy * (x / sy).atan()) / (2.0 * std::f64::consts::PI)
     }
 
-    fn rectangle(x0: f64, x1: f64, z0: f64, z1: f64, h: f64) -> Vec<DVec3> {
-        vec![
-            DVec3::new(x0, h, z0),
-            DVec3::new(x1, h, z0),
-            DVec3::new(x1, h, z1),
-            DVec3::new(x0, h, z1),
-        ]
-    }
-
     #[test]
     fn a_rectangle_above_a_corner_matches_the_closed_form_either_winding() {
         for (a, b, h) in [
@@ -73,7 +65,7 @@ mod tests {
             (5.0, 0.1, 2.0),
             (1e3, 1e3, 1.0),
         ] {
-            let mut poly = rectangle(0.0, a, 0.0, b, h);
+            let mut poly = rect(0.0, a, 0.0, b, h);
             let want = corner_rectangle(a, b, h);
             let got = form_factor(DVec3::ZERO, DVec3::Y, &poly);
             assert!(
@@ -96,7 +88,7 @@ mod tests {
         let f = |x: f64, z: f64| corner_rectangle(x.abs(), z.abs(), h);
         // x0 > 0 while z0 < 0 < z1: [x0, x1] × [z0, z1] is the difference of the strips.
         let want = f(x1, z1) + f(x1, z0) - f(x0, z1) - f(x0, z0);
-        let got = form_factor(DVec3::ZERO, DVec3::Y, &rectangle(x0, x1, z0, z1, h));
+        let got = form_factor(DVec3::ZERO, DVec3::Y, &rect(x0, x1, z0, z1, h));
         assert!((got - want).abs() < 1e-12, "{got} against {want}");
         // A tilted normal and a triangle split into two.
         let n = DVec3::new(0.3, 1.0, -0.2).normalize();

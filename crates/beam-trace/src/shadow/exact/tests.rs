@@ -19,7 +19,7 @@ fn setup() -> (Patch, Plane) {
 }
 
 /// An axis-aligned horizontal rectangle `[x0, x1] × [z0, z1]` at height `h`.
-fn rect(x0: f64, x1: f64, z0: f64, z1: f64, h: f64) -> Vec<DVec3> {
+pub(super) fn rect(x0: f64, x1: f64, z0: f64, z1: f64, h: f64) -> Vec<DVec3> {
     vec![
         DVec3::new(x0, h, z0),
         DVec3::new(x1, h, z0),
