@@ -14,8 +14,8 @@
 
 use glam::DVec3;
 
-use super::fragment::{Affine, Fragment, Side};
-use super::orient::{side, side_sign};
+use super::fragment::{Fragment, Side};
+use super::orient::{query_plane, side_sign};
 use crate::shadow::Patch;
 use crate::shadow::exact_work::BspWork;
 
@@ -268,23 +268,20 @@ impl Bsp {
     /// `fragment` (the light above `x`'s horizon), expanding the tree where the query
     /// reaches undefined leaves.
     pub fn query(&mut self, x: DVec3, fragment: Fragment) -> f64 {
-        self.query_parts(x, fragment, None)
+        self.query_parts(x, fragment, None).area
     }
 
-    /// [`Bsp::query`], also handing each visible fragment to `parts` where given.
+    /// [`Bsp::query`] with the bound on its rounding ([`Visible::slack`]), also handing
+    /// each visible fragment to `parts` where given.
     pub fn query_parts(
         &mut self,
         x: DVec3,
         fragment: Fragment,
         mut parts: Option<&mut Vec<Fragment>>,
-    ) -> f64 {
+    ) -> Visible {
         self.work.queries += 1;
-        let Patch {
-            corner: c,
-            edge_u: eu,
-            edge_v: ev,
-        } = self.light;
-        let mut visible = 0.0;
+        let mut visible = Visible::default();
+        let mut count = 0u32;
         let mut stack = vec![(0u32, fragment)];
         while let Some((n, f)) = stack.pop() {
             match &self.nodes[n as usize] {
@@ -294,7 +291,9 @@ impl Bsp {
                     occluders,
                 } if occluders.is_empty() => {
                     self.work.fragments += 1;
-                    visible += f.area();
+                    count += 1;
+                    visible.area += f.area();
+                    visible.slack += f.area_error();
                     if let Some(p) = parts.as_deref_mut() {
                         p.push(f);
                     }
@@ -306,11 +305,8 @@ impl Bsp {
                 &Node::Inner { a, b, pos, neg } => {
                     // The query plane through `x` and the edge, in the light's parameters:
                     // side(a → b, l(u, v) → x), affine in (u, v).
-                    let s = Affine {
-                        c0: side(a, b, c, x),
-                        cu: side(a, b, a + eu, x),
-                        cv: side(a, b, a + ev, x),
-                    };
+                    let (s, error) = query_plane(a, b, &self.light, x);
+                    visible.slack += f.misplaced(&s, error);
                     match f.side(&s) {
                         Side::Pos => stack.push((pos, f)),
                         Side::Neg => stack.push((neg, f)),
@@ -332,6 +328,26 @@ impl Bsp {
                 }
             }
         }
+        // The sum's own rounding, with a margin.
+        visible.slack += 2.0 * f64::from(count + 1) * f64::EPSILON * visible.area;
         visible
     }
+}
+
+/// What a query finds: the visible fragments' area, and a bound on how far it may lie from
+/// the exact visible share of the light for the same tree and point.
+///
+/// The tree's leaves are exact (every sign that builds it is), so only the query's
+/// arithmetic errs: each node a fragment reaches cuts it by a plane computed in floating
+/// point ([`query_plane`], with its error bound), and the cut's vertices are rounded. A
+/// point of the light ends in another leaf than its exact one only by lying, at some node
+/// on its way, inside the fragment there and inside that node's band of uncertain sign;
+/// `slack` sums a bound on that area over every fragment and node the query visits
+/// ([`Fragment::misplaced`]), and the rounding of the areas and their sum.
+#[derive(Copy, Clone, Debug, Default, PartialEq)]
+pub(super) struct Visible {
+    /// The visible fragments' area.
+    pub area: f64,
+    /// The bound on `|area − exact area|`.
+    pub slack: f64,
 }

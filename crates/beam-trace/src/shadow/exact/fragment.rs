@@ -2,6 +2,21 @@
 //! by the affine functions `s(u, v) = c0 + cu·u + cv·v` that the query plane through the
 //! shaded point and an occluder edge defines (zero on that plane). The map from `(u, v)` to
 //! the light is affine, so a fragment's area in the square is its share of the light.
+//!
+//! The functions are computed in floating point, and so are the vertices where a fragment
+//! is cut; [`Fragment::misplaced`] bounds the area that this may put on the wrong side of a
+//! cut, so that the sum of the visible fragments' areas comes with a proven error bound.
+
+/// The unit roundoff of `f64`.
+const UNIT: f64 = f64::EPSILON / 2.0;
+
+/// How far rounding may move the computed value of an affine function `s` at a vertex of a
+/// fragment, as a multiple of `UNIT · (|c0| + |cu| + |cv|)`: the evaluation at a vertex
+/// (three roundings of terms at most that large, the vertices lying in the square up to
+/// rounding) and the vertices [`Fragment::clip`] computes on `s = 0` (an error of about
+/// `12 UNIT` of that magnitude: the two evaluations, the quotient and the coordinates'
+/// rounding). The margin over those counts is deliberate.
+const SLOP: f64 = 64.0;
 
 /// `s(u, v) = c0 + cu·u + cv·v`.
 #[derive(Copy, Clone, Debug)]
@@ -14,6 +29,11 @@ pub(super) struct Affine {
 impl Affine {
     fn at(&self, p: [f64; 2]) -> f64 {
         self.c0 + self.cu * p[0] + self.cv * p[1]
+    }
+
+    /// `|c0| + |cu| + |cv|`: the largest `|s|` on the square.
+    fn magnitude(&self) -> f64 {
+        self.c0.abs() + self.cu.abs() + self.cv.abs()
     }
 }
 
@@ -99,9 +119,69 @@ impl Fragment {
         Fragment { verts: out }
     }
 
+    /// The smallest rectangle of parameters holding the fragment: its lower and upper
+    /// corners.
+    pub fn bounds(&self) -> ([f64; 2], [f64; 2]) {
+        self.verts.iter().fold(
+            ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
+            |(lo, hi), p| {
+                (
+                    [lo[0].min(p[0]), lo[1].min(p[1])],
+                    [hi[0].max(p[0]), hi[1].max(p[1])],
+                )
+            },
+        )
+    }
+
     /// Whether nothing is left.
     pub fn is_empty(&self) -> bool {
         self.verts.len() < 3
+    }
+
+    /// A bound on the rounding error of [`Fragment::area`]: the shoelace sum's `n + 2`
+    /// roundings of terms no larger than their absolute sum, with a margin.
+    pub fn area_error(&self) -> f64 {
+        let n = self.verts.len();
+        let terms: f64 = (0..n)
+            .map(|i| {
+                let (p, q) = (self.verts[i], self.verts[(i + 1) % n]);
+                (p[0] * q[1]).abs() + (q[0] * p[1]).abs()
+            })
+            .sum();
+        2.0 * (n as f64 + 3.0) * UNIT * terms
+    }
+
+    /// A bound on the area of this fragment whose side of the cut `s` a computed split may
+    /// get wrong, where the true function differs from `s` by at most `error` on the
+    /// square: the part of the fragment where `|s| ≤ error` plus the rounding of the
+    /// computed values ([`SLOP`]). Zero where every vertex lies beyond that band on one
+    /// side (the fragment is convex and `s` affine, so all of it does); otherwise the
+    /// smaller of the fragment's area and the band's (its width `2 e / |∇s|` times the
+    /// fragment's diameter), with margins for their own rounding.
+    ///
+    /// A point of the light that a query puts in the wrong leaf is put on the wrong side
+    /// of some cut it meets on its way, inside the fragment it lies in there and inside
+    /// that cut's band: the sum of this bound over every fragment and every node a query
+    /// visits bounds the area it misplaces.
+    pub fn misplaced(&self, s: &Affine, error: f64) -> f64 {
+        let e = error + SLOP * UNIT * s.magnitude();
+        let (mut above, mut below) = (true, true);
+        for &p in &self.verts {
+            let v = s.at(p);
+            above &= v > e;
+            below &= v < -e;
+        }
+        if above || below {
+            return 0.0;
+        }
+        let area = (self.area() + self.area_error()) * (1.0 + 1e-12);
+        let gradient = s.cu.hypot(s.cv) * (1.0 - 1e-12);
+        if gradient <= 0.0 {
+            return area;
+        }
+        let (lo, hi) = self.bounds();
+        let diameter = (hi[0] - lo[0]).hypot(hi[1] - lo[1]) * (1.0 + 1e-12);
+        area.min(2.0 * e / gradient * diameter * (1.0 + 1e-12))
     }
 }
 

@@ -23,6 +23,64 @@ impl Plane {
     fn height(&self, p: DVec3) -> f64 {
         (p - self.point).dot(self.normal)
     }
+
+    /// [`Plane::height`] and a bound on its rounding (a rounded difference, three products
+    /// and two sums: below `5 UNIT` of the terms' magnitudes; `8` with a margin).
+    fn height_with_error(&self, p: DVec3) -> (f64, f64) {
+        let d = p - self.point;
+        (
+            d.dot(self.normal),
+            8.0 * UNIT * d.abs().dot(self.normal.abs()),
+        )
+    }
+
+    /// Whether every vertex of `poly` lies proven above the plane (`Some(true)`, with the
+    /// lowest height's lower bound), proven below (`Some(false)`, with the highest height's
+    /// upper bound), or neither (`None`).
+    fn proven_side(&self, poly: &[DVec3]) -> Option<(bool, f64)> {
+        let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
+        let (mut above, mut below) = (true, true);
+        for &p in poly {
+            let (h, e) = self.height_with_error(p);
+            above &= h > e;
+            below &= h < -e;
+            low = low.min(h - e);
+            high = high.max(h + e);
+        }
+        if above {
+            Some((true, low))
+        } else if below {
+            Some((false, high))
+        } else {
+            None
+        }
+    }
+}
+
+/// The unit roundoff of `f64`.
+const UNIT: f64 = f64::EPSILON / 2.0;
+
+/// What the slab between the receiver's plane and the light holds, as far as proofs need:
+/// whether every occluder lies proven on one side of each of the two planes (none was cut
+/// by them, whose cut vertices would be rounded, and none dropped as degenerate inside the
+/// slab), and how close to the receiver's plane they come from either side.
+#[derive(Copy, Clone, Debug)]
+struct Slab {
+    /// Every occluder lies proven on one side of each plane, none degenerate between them.
+    exact: bool,
+    /// A lower bound on the heights (toward the light) of the occluders kept.
+    front: f64,
+    /// An upper bound on the heights of the occluders behind the receiver's plane.
+    behind: f64,
+}
+
+impl Slab {
+    /// Whether a point at height `h` (rounding error up to `e`) sees every kept occluder in
+    /// front of it and every dropped one behind it: then the lines from the light through
+    /// the kept occluders to it are its segments, and the tree's answer is its own.
+    fn holds_at(&self, (h, e): (f64, f64)) -> bool {
+        self.exact && h + e < self.front && h - e > self.behind
+    }
 }
 
 /// Why an exact-shadow group cannot be built or queried.
@@ -55,6 +113,45 @@ pub struct Irradiance {
     pub unoccluded: f64,
 }
 
+/// A visible fraction and proven bounds on it ([`ExactShadows::visible_bounds`]).
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub struct FractionBounds {
+    /// The computed fraction (the visible fragments' area).
+    pub fraction: f64,
+    /// A proven lower bound of the exact fraction.
+    pub lower: f64,
+    /// A proven upper bound of the exact fraction.
+    pub upper: f64,
+}
+
+impl FractionBounds {
+    fn exactly(fraction: f64) -> Self {
+        FractionBounds {
+            fraction,
+            lower: fraction,
+            upper: fraction,
+        }
+    }
+
+    /// `fraction ± slack` (rounded outward), within `[0, 1]`.
+    fn around(fraction: f64, slack: f64) -> Self {
+        let (lower, upper) = (fraction - slack, fraction + slack);
+        FractionBounds {
+            fraction,
+            lower: (lower - lower.abs() * f64::EPSILON).max(0.0),
+            upper: (upper + upper.abs() * f64::EPSILON).min(1.0),
+        }
+    }
+
+    fn estimate(fraction: f64) -> Self {
+        FractionBounds {
+            fraction,
+            lower: 0.0,
+            upper: 1.0,
+        }
+    }
+}
+
 /// The exact visibility of one area light from the points of one planar receiver, through
 /// convex polygonal occluders (see the [module documentation](super)).
 #[derive(Clone, Debug)]
@@ -67,6 +164,9 @@ pub struct ExactShadows {
     /// Occluders given, and those clipped away or dropped as degenerate.
     given: usize,
     dropped: usize,
+    /// The receiver's plane with its normal toward the light.
+    toward_light: Plane,
+    slab: Slab,
 }
 
 /// Sutherland–Hodgman: the part of the convex polygon where `plane`'s height is `≥ 0`.
@@ -156,13 +256,31 @@ impl ExactShadows {
         let mut kept = Vec::new();
         let mut dropped = 0;
         let mut kept_first = 0;
+        let mut slab = Slab {
+            exact: true,
+            front: f64::INFINITY,
+            behind: f64::NEG_INFINITY,
+        };
         for (k, poly) in first.iter().chain(occluders).enumerate() {
             let clipped = clip(&clip(poly, &light_plane), &receiver_side);
             let scale = poly
                 .iter()
                 .map(|p| (*p - poly[0]).length_squared())
                 .fold(0.0, f64::max);
-            if clipped.len() < 3 || twice_area(&clipped) <= 1e-12 * scale {
+            let degenerate = clipped.len() >= 3 && twice_area(&clipped) <= 1e-12 * scale;
+            match (
+                light_plane.proven_side(poly),
+                receiver_side.proven_side(poly),
+            ) {
+                // Behind the light: it blocks nothing.
+                (Some((false, _)), _) => {}
+                (Some((true, _)), Some((true, low))) if !degenerate => {
+                    slab.front = slab.front.min(low);
+                }
+                (Some((true, _)), Some((false, high))) => slab.behind = slab.behind.max(high),
+                _ => slab.exact = false,
+            }
+            if clipped.len() < 3 || degenerate {
                 dropped += 1;
                 continue;
             }
@@ -181,6 +299,8 @@ impl ExactShadows {
             region: None,
             given: first.len() + occluders.len(),
             dropped,
+            toward_light: receiver_side,
+            slab,
         })
     }
 
@@ -193,23 +313,60 @@ impl ExactShadows {
     /// of its size).
     pub fn visible_fraction(&mut self, x: DVec3, normal: Option<DVec3>) -> Result<f64, ExactError> {
         Ok(match self.above_horizon(x, normal)? {
-            Some(f) => self.bsp.query(x, f),
+            Some((f, _)) => self.bsp.query(x, f),
             None => 0.0,
         })
     }
 
-    /// The visible parts of the light from `x` ([`ExactShadows::visible_fraction`]), as
-    /// convex fragments of its parameter square.
-    pub(super) fn visible_parts(
+    /// [`ExactShadows::visible_fraction`] with proven bounds: the exact visible fraction
+    /// lies in `[lower, upper]`, which is the computed fraction widened by a bound on the
+    /// rounding of the fragments ([`FractionBounds`]) where the occluders allow a proof,
+    /// and `[0, 1]` where they do not: an occluder cut by the light's plane or the
+    /// receiver's (its cut vertices are rounded), or closer to the receiver's plane than
+    /// `x` is, or degenerate between the planes.
+    ///
+    /// # Errors
+    /// As [`ExactShadows::visible_fraction`].
+    pub fn visible_bounds(
         &mut self,
         x: DVec3,
         normal: Option<DVec3>,
-    ) -> Result<Vec<Fragment>, ExactError> {
+    ) -> Result<FractionBounds, ExactError> {
+        let Some((f, horizon)) = self.above_horizon(x, normal)? else {
+            return Ok(FractionBounds::exactly(0.0));
+        };
+        let visible = self.bsp.query_parts(x, f, None);
+        Ok(if self.proven_at(x) {
+            FractionBounds::around(visible.area, visible.slack + horizon)
+        } else {
+            FractionBounds::estimate(visible.area)
+        })
+    }
+
+    /// The visible parts of the light from `x` (as [`ExactShadows::visible_fraction`] with
+    /// no horizon), as convex fragments of its parameter square, and the bound on their
+    /// area's error where the occluders allow a proof ([`ExactShadows::visible_bounds`]).
+    /// `x` must lie in the region ([`ExactShadows::set_region`]) but may lie off the
+    /// receiver's plane: the answer is `x`'s own where the proof holds, and otherwise that
+    /// of occluders clipped to the plane.
+    ///
+    /// # Errors
+    /// [`ExactError::OutsideRegion`].
+    pub(super) fn visible_parts_near(
+        &mut self,
+        x: DVec3,
+    ) -> Result<(Vec<Fragment>, Option<f64>), ExactError> {
+        self.check_region(x)?;
         let mut parts = Vec::new();
-        if let Some(f) = self.above_horizon(x, normal)? {
-            self.bsp.query_parts(x, f, Some(&mut parts));
-        }
-        Ok(parts)
+        let visible = self.bsp.query_parts(x, Fragment::whole(), Some(&mut parts));
+        Ok((parts, self.proven_at(x).then_some(visible.slack)))
+    }
+
+    /// Whether the tree's answer at `x` is `x`'s exact one up to the query's rounding: no
+    /// occluder was cut or dropped as degenerate, and `x` lies between those behind the
+    /// receiver's plane and those in front of it ([`Slab`]).
+    fn proven_at(&self, x: DVec3) -> bool {
+        self.slab.holds_at(self.toward_light.height_with_error(x))
     }
 
     /// The irradiance at `x` (a point of the receiver's plane, with the normal `normal`:
@@ -228,7 +385,7 @@ impl ExactShadows {
         normal: DVec3,
     ) -> Result<Irradiance, ExactError> {
         let n = normal.normalize_or_zero();
-        let Some(whole) = self.above_horizon(x, Some(n))? else {
+        let Some((whole, _)) = self.above_horizon(x, Some(n))? else {
             return Ok(Irradiance {
                 visible: 0.0,
                 unoccluded: 0.0,
@@ -247,36 +404,46 @@ impl ExactShadows {
         })
     }
 
-    /// The part of the light above `x`'s horizon (`None`: nothing), once `x` is checked.
+    /// The part of the light above `x`'s horizon (`None`: nothing), once `x` is checked,
+    /// and a bound on the area the horizon's rounding may misplace.
     fn above_horizon(
         &mut self,
         x: DVec3,
         normal: Option<DVec3>,
-    ) -> Result<Option<Fragment>, ExactError> {
+    ) -> Result<Option<(Fragment, f64)>, ExactError> {
         let tolerance =
             1e-9 * (x - self.receiver.point).length().max(1.0) * self.receiver.normal.length();
         if self.receiver.height(x).abs() > tolerance {
             return Err(ExactError::OffReceiver(x));
         }
-        if let Some((lo, hi)) = self.region
-            && !(lo.cmple(x).all() && x.cmple(hi).all())
-        {
-            return Err(ExactError::OutsideRegion(x));
-        }
-        let mut f = Fragment::whole();
-        if let Some(n) = normal {
-            // Above the horizon: (l(u, v) − x) · n ≥ 0.
-            let s = Affine {
-                c0: (self.light.corner - x).dot(n),
-                cu: self.light.edge_u.dot(n),
-                cv: self.light.edge_v.dot(n),
-            };
-            f = f.clip(&s, 1.0);
-            if f.is_empty() {
-                return Ok(None);
+        self.check_region(x)?;
+        let whole = Fragment::whole();
+        let Some(n) = normal else {
+            return Ok(Some((whole, 0.0)));
+        };
+        // Above the horizon: (l(u, v) − x) · n ≥ 0.
+        let to_corner = self.light.corner - x;
+        let s = Affine {
+            c0: to_corner.dot(n),
+            cu: self.light.edge_u.dot(n),
+            cv: self.light.edge_v.dot(n),
+        };
+        let error = 8.0
+            * UNIT
+            * (to_corner.abs() + self.light.edge_u.abs() + self.light.edge_v.abs()).dot(n.abs());
+        let misplaced = whole.misplaced(&s, error);
+        let f = whole.clip(&s, 1.0);
+        Ok((!f.is_empty()).then_some((f, misplaced)))
+    }
+
+    /// [`ExactError::OutsideRegion`] where `x` lies outside the region.
+    fn check_region(&self, x: DVec3) -> Result<(), ExactError> {
+        match self.region {
+            Some((lo, hi)) if !(lo.cmple(x).all() && x.cmple(hi).all()) => {
+                Err(ExactError::OutsideRegion(x))
             }
+            _ => Ok(()),
         }
-        Ok(Some(f))
     }
 
     /// Tells the tree that every later query point lies in the box `[lo, hi]` (a group's

@@ -8,6 +8,8 @@ use glam::DVec3;
 
 use super::fragment::{Affine, Fragment};
 use super::group::{ExactShadows, Plane};
+use interval_core::{Float, Interval};
+
 use crate::beam::BoxClass;
 use crate::ibox::{IBox, ival, point_box};
 use crate::mesh::Shaft;
@@ -40,11 +42,25 @@ const FALLBACK_SAMPLES: u32 = 64;
 ///    counts between 0 and its area, and its estimate is one shadow segment to its
 ///    centroid.
 ///
-/// The visible fraction is the visible fragments' area. Its bounds are proven where no
-/// triangle lies in the group's shaft, or where the point's fragments add up to the whole
-/// light and its own shaft holds no triangle (the light is then taken whole, its pieces are
-/// halves of the parameter square, of exact areas, and every test is a proof); the areas of fragments cut by triangle edges are
-/// not proven, so such a point carries no certificate (`[0, 1]`).
+/// The visible fraction is the visible fragments' area, and its bounds are proven:
+///
+/// * where no triangle lies in the group's shaft, or where the point's fragments add up to
+///   the whole light and its own shaft holds no triangle: the light is then taken whole,
+///   its pieces are halves of the parameter square, of exact areas, and every test is a
+///   proof;
+/// * elsewhere, the fragments' area widened by the bound on their rounding that the query
+///   sums ([`ExactShadows::visible_bounds`]: the band of uncertain sign around each cut,
+///   inside the fragment it cuts), where the tree's answer is the point's own: every
+///   occluder lies proven on one side of the light's plane and of the receiver's (none is
+///   cut there), none is degenerate between them, and the point lies between those in front
+///   of the receiver's plane and those behind it. The faces of closed meshes turned away
+///   from the light and the squares inside them change no fraction where each closed mesh
+///   bounds a solid ([`crate::mesh::MeshIndex::turned_away`]);
+/// * elsewhere (a wall reaching through the receiver's plane, a point on a ball whose
+///   tangent plane the light straddles), not at all: `[0, 1]`.
+///
+/// A point counts as certified ([`ShadowMethod::tolerance`]) where its bound is at most
+/// `1e-6` wide.
 ///
 /// The paper gives no formula for the irradiance over the visible parts. The library's is
 /// Lambert's ([`super::form_factor`], [`super::ExactShadows::visible_irradiance`]); the
@@ -69,6 +85,8 @@ struct Sums {
     upper: f64,
     /// The estimate.
     estimate: f64,
+    /// A bound on the rounding of the pieces' areas and of their sums.
+    rounding: f64,
 }
 
 impl Exact {
@@ -82,7 +100,8 @@ impl Exact {
         work: &mut ShadowWork,
     ) {
         let area = f.area();
-        let (lo, hi) = bounding_rect(&f);
+        sums.rounding += f.area_error() + 2.0 * f64::EPSILON * area;
+        let (lo, hi) = f.bounds();
         let part = q.light.part(lo[0], hi[0], lo[1], hi[1]);
         work.sub_beams += 1;
         match occluders.implicit_beam(q.origin, &part, 0.0, true, &mut work.root) {
@@ -129,19 +148,6 @@ impl Exact {
     }
 }
 
-/// The smallest rectangle of parameters holding the fragment.
-fn bounding_rect(f: &Fragment) -> ([f64; 2], [f64; 2]) {
-    f.verts.iter().fold(
-        ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]),
-        |(lo, hi), p| {
-            (
-                [lo[0].min(p[0]), lo[1].min(p[1])],
-                [hi[0].max(p[0]), hi[1].max(p[1])],
-            )
-        },
-    )
-}
-
 impl Exact {
     /// The answers of a group of queries of one light whose points share the plane
     /// through the first one with normal `n` ([`group_plane`]): one BSP grown by all of
@@ -154,27 +160,14 @@ impl Exact {
         out: &mut Vec<LightVisibility>,
     ) {
         let first = &queries[0];
-        // The points moved onto the first one's plane (by at most `GROUP_TOLERANCE` of
-        // their distance to the light, see `group_plane`).
-        let on_plane: Vec<DVec3> = queries
+        // The box of the points: the tree's region, and the shaft's (every point's own
+        // shaft lies in it, so its triangles are among the group's).
+        let (lo, hi) = queries
             .iter()
-            .map(|q| q.origin - n * ((q.origin - first.origin).dot(n) / n.length_squared()))
-            .collect();
-        let bounds = |points: &mut dyn Iterator<Item = DVec3>| {
-            points.fold((first.origin, first.origin), |(lo, hi), x| {
-                (lo.min(x), hi.max(x))
-            })
-        };
-        let (lo, hi) = bounds(&mut on_plane.iter().copied());
-        // The shaft of the points as they are and as moved: every point's own shaft lies
-        // in it, so its triangles are among the group's.
-        let (all_lo, all_hi) = bounds(
-            &mut on_plane
-                .iter()
-                .copied()
-                .chain(queries.iter().map(|q| q.origin)),
-        );
-        let region: IBox = std::array::from_fn(|k| ival(all_lo[k], all_hi[k]));
+            .fold((first.origin, first.origin), |(lo, hi), q| {
+                (lo.min(q.origin), hi.max(q.origin))
+            });
+        let region: IBox = std::array::from_fn(|k| ival(lo[k], hi[k]));
         let times = &mut work.exact_times;
         let (triangles, inner) = timed(&mut times.shaft, || {
             (
@@ -184,7 +177,7 @@ impl Exact {
         });
         if triangles.is_empty() {
             for q in queries {
-                out.push(self.finish(occluders, q, (vec![Fragment::whole()], true), work));
+                out.push(self.finish(occluders, q, (vec![Fragment::whole()], Some(0.0)), work));
             }
             return;
         }
@@ -217,11 +210,13 @@ impl Exact {
             }
             return;
         };
-        for (q, &x) in queries.iter().zip(&on_plane) {
+        for q in queries {
+            // The point itself, off the plane by up to `GROUP_TOLERANCE`: its answer is its
+            // own wherever the tree proves it (`ExactShadows::visible_parts_near`).
             let parts = timed(&mut work.exact_times.queries, || {
-                tree.visible_parts(x, None)
+                tree.visible_parts_near(q.origin)
             });
-            let Ok(parts) = parts else {
+            let Ok((parts, slack)) = parts else {
                 out.push(fallback(occluders, q, work));
                 continue;
             };
@@ -237,27 +232,27 @@ impl Exact {
                     !triangles.iter().any(|t| own.may_meet(&t.triangle))
                 });
             let answer = if lit {
-                self.finish(occluders, q, (vec![Fragment::whole()], true), work)
+                self.finish(occluders, q, (vec![Fragment::whole()], Some(0.0)), work)
             } else {
-                self.finish(occluders, q, (parts, false), work)
+                self.finish(occluders, q, (parts, slack), work)
             };
             out.push(answer);
         }
         work.bsp.add(&tree.work());
     }
 
-    /// The answer of one query from the visible parts of its light past the triangles,
-    /// `proven` where they are exact (no triangle in the point's shaft): the implicit
-    /// surfaces tested over them.
+    /// The answer of one query from the visible parts of its light past the triangles and
+    /// the proven bound on their area's error (`None`: no proof): the implicit surfaces
+    /// tested over them.
     fn finish(
         &self,
         occluders: &mut dyn Occluders,
         q: &ShadowQuery,
-        (parts, proven): (Vec<Fragment>, bool),
+        (parts, slack): (Vec<Fragment>, Option<f64>),
         work: &mut ShadowWork,
     ) -> LightVisibility {
         let start = Instant::now();
-        let answer = self.against_implicit(occluders, q, (parts, proven), work);
+        let answer = self.against_implicit(occluders, q, (parts, slack), work);
         work.exact_times.implicit += start.elapsed();
         answer
     }
@@ -267,7 +262,7 @@ impl Exact {
         &self,
         occluders: &mut dyn Occluders,
         q: &ShadowQuery,
-        (parts, proven): (Vec<Fragment>, bool),
+        (parts, slack): (Vec<Fragment>, Option<f64>),
         work: &mut ShadowWork,
     ) -> LightVisibility {
         work.queries += 1;
@@ -280,6 +275,7 @@ impl Exact {
                 lower: visible,
                 upper: visible,
                 estimate: visible,
+                rounding: 0.0,
             },
             // Every ray to the light is blocked, whatever the triangles do.
             BoxClass::Hit { .. } => {
@@ -295,15 +291,29 @@ impl Exact {
                 sums
             }
         };
-        let clamp = |v: f64| v.clamp(0.0, 1.0) as f32;
-        if proven {
-            LightVisibility {
-                fraction: clamp(sums.estimate),
-                lower: clamp(sums.lower),
-                upper: clamp(sums.upper),
-            }
+        let clamp = |v: f64| v.clamp(0.0, 1.0);
+        let fraction = clamp(sums.estimate) as f32;
+        let Some(slack) = slack else {
+            return LightVisibility::estimate(fraction);
+        };
+        // The fragments' areas are off by `slack` at most (the parts they misplace are
+        // counted in either sum or in neither), and the pieces' by their rounding; a point
+        // proven without the tree (`slack` zero) has the whole light and its halves, whose
+        // areas are exact.
+        let slack = if slack > 0.0 {
+            slack.add_up(sums.rounding)
         } else {
-            LightVisibility::estimate(clamp(sums.estimate))
+            0.0
+        };
+        let bound = Interval::new_unchecked(
+            clamp(sums.lower.sub_down(slack)),
+            clamp(sums.upper.add_up(slack)),
+        )
+        .cast::<f32>();
+        LightVisibility {
+            fraction: fraction.clamp(bound.inf(), bound.sup()),
+            lower: bound.inf(),
+            upper: bound.sup(),
         }
     }
 }
@@ -333,6 +343,10 @@ fn timed<T>(into: &mut Duration, f: impl FnOnce() -> T) -> T {
     value
 }
 
+/// The bound width up to which a point counts as certified (the per-light table's
+/// `certified_pixels`): a few `f32` ulps and the fragments' slack.
+const CERTIFIED_WIDTH: f32 = 1e-6;
+
 /// How much less than the whole light the visible fragments of a point may add up to for
 /// the point to be tested as seeing all of it: the rounding of a few fragments' vertices.
 const WHOLE_SLACK: f64 = 1e-9;
@@ -360,7 +374,9 @@ const GROUP_EXTENT: f64 = 0.05;
 /// planes are tried: the one parallel to the light (a floor under a ceiling light, points
 /// of any surface that happen to share it), and the first point's tangent plane where the
 /// whole light lies in front of it (a wall, a tilted face of a mesh); the one holding the
-/// longer run is the group's, the light's on a tie.
+/// longer run is the group's, the tangent plane on a tie: it leaves the receiver's own
+/// faces behind it, which then neither grow the tree nor stand in the way of a proof (a
+/// plane parallel to the light through a point of a ball cuts the ball's faces).
 fn group_plane(queries: &[ShadowQuery]) -> (usize, DVec3) {
     let first = &queries[0];
     let light = &first.light;
@@ -392,7 +408,7 @@ fn group_plane(queries: &[ShadowQuery]) -> (usize, DVec3) {
         return by_light;
     }
     let by_tangent = (run(tangent), tangent);
-    if by_tangent.0 > by_light.0 {
+    if by_tangent.0 >= by_light.0 {
         by_tangent
     } else {
         by_light
@@ -406,6 +422,12 @@ impl ShadowMethod for Exact {
             group: self.group,
         }
         .to_string()
+    }
+
+    /// Its bounds are exact up to rounding: the fragments' slack and the bounds' rounding
+    /// to `f32`, far below this.
+    fn tolerance(&self) -> f32 {
+        CERTIFIED_WIDTH
     }
 
     fn visibility(

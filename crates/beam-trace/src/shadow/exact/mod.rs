@@ -26,9 +26,15 @@
 //! * **Determinism.** The random choices are seeded per group, so results and counters do not
 //!   depend on the thread count.
 //!
-//! The fragments are split in floating point: their areas are exact up to slivers of the
-//! order of rounding (not proven bounds). The receivers are planar groups (a mesh triangle,
-//! a floor); points off the receiver plane are refused.
+//! * **Proven areas.** The fragments are split in floating point. Each cut's plane comes
+//!   with a bound on its error, and the query sums, over the fragments and nodes it
+//!   visits, the area inside each cut's band of uncertain sign: the visible fraction lies
+//!   within that sum of the fragments' area ([`ExactShadows::visible_bounds`]), wherever
+//!   no occluder is cut by the slab's planes and the point lies between the occluders in
+//!   front of its receiver plane and those behind it.
+//!
+//! The receivers are planar groups (a mesh triangle, a floor); the public queries refuse
+//! points off the receiver plane.
 
 mod bsp;
 mod fragment;
@@ -39,7 +45,7 @@ mod orient;
 
 pub use super::exact_work::{BspWork, ExactTimes};
 pub use bsp::NODE_BYTES;
-pub use group::{ExactError, ExactShadows, Irradiance, Plane};
+pub use group::{ExactError, ExactShadows, FractionBounds, Irradiance, Plane};
 pub use irradiance::form_factor;
 pub use method::Exact;
 

@@ -9,6 +9,9 @@
 
 use glam::DVec3;
 
+use super::fragment::Affine;
+use crate::shadow::Patch;
+
 /// Half an ulp of 1 (the unit roundoff of `f64`).
 const UNIT: f64 = f64::EPSILON / 2.0;
 
@@ -65,9 +68,37 @@ pub(super) fn side_sign(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
     }
 }
 
-/// `side(a → b, c → d)` in floating point (for the affine functions of the queries).
-pub(super) fn side(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
-    (b - a).dot((c - a).cross(d - a))
+/// `(|u_y v_z| + |u_z v_y|, …)`: the cross product's terms in absolute value.
+fn cross_terms(u: DVec3, v: DVec3) -> DVec3 {
+    let (u, v) = (u.abs(), v.abs());
+    DVec3::new(
+        u.y * v.z + u.z * v.y,
+        u.z * v.x + u.x * v.z,
+        u.x * v.y + u.y * v.x,
+    )
+}
+
+/// The query plane through `x` and the edge `a → b`, in the light's parameters: `s(u, v) =
+/// side(a → b, l(u, v) → x)` with `l(u, v) = c + u·e_u + v·e_v` (`light`), affine in `(u,
+/// v)`: `c0 = (c − a) · m`, `cu = e_u · m`, `cv = e_v · m` for `m = (x − a) × (b − a)`,
+/// computed in floating point. Also returns a bound on `|s − ŝ|` over the square between
+/// the exact function and the computed one: each coefficient is a triple product of
+/// rounded differences (at most four roundings on the way to each of its six terms, three
+/// in the sum), so its error is below `8 UNIT` times the sum of its terms' magnitudes; the
+/// bound takes `10 UNIT` for the roundings of that sum itself.
+pub(super) fn query_plane(a: DVec3, b: DVec3, light: &Patch, x: DVec3) -> (Affine, f64) {
+    let (d, w) = (b - a, x - a);
+    let m = w.cross(d);
+    let terms = cross_terms(w, d);
+    let ca = light.corner - a;
+    let s = Affine {
+        c0: ca.dot(m),
+        cu: light.edge_u.dot(m),
+        cv: light.edge_v.dot(m),
+    };
+    let permanent = |e: DVec3| e.abs().dot(terms);
+    let error = 10.0 * UNIT * (permanent(ca) + permanent(light.edge_u) + permanent(light.edge_v));
+    (s, error)
 }
 
 #[cfg(test)]
@@ -80,7 +111,13 @@ mod tests {
         let (a, b) = (DVec3::ZERO, DVec3::X);
         // det[x, y, z] = 1.
         assert_eq!(side_sign(a, b, DVec3::Y, DVec3::Z), 1);
-        assert!(side(a, b, DVec3::Y, DVec3::Z) > 0.0);
+        let light = Patch {
+            corner: DVec3::Y,
+            edge_u: DVec3::X,
+            edge_v: DVec3::Z,
+        };
+        let (s, error) = query_plane(a, b, &light, DVec3::Z);
+        assert!(s.c0 > error);
         assert_eq!(side_sign(a, b, DVec3::Z, DVec3::Y), -1);
         // Meeting lines: zero.
         assert_eq!(side_sign(a, b, DVec3::Y, DVec3::new(2.0, 0.0, 0.0)), 0);
@@ -121,6 +158,35 @@ mod tests {
                 d
             };
             prop_assert_eq!(side_sign(a, b, c, d), adaptive_sign(a, b, c, d));
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4096))]
+
+        /// The query plane's constant term lies within its error bound of the determinant
+        /// that the adaptive predicate evaluates (whose own error is below `3 UNIT` times
+        /// the same permanent), also where it cancels: `x` a few ulps off the plane of the
+        /// edge and the light's corner, at scales from 1e-3 to 1e3.
+        #[test]
+        fn the_query_plane_error_bound_holds(
+            (a, b, c, x) in (point(), point(), point(), point()),
+            (s, t) in (-1.0..1.0f64, -1.0..1.0f64),
+            scale in -3.0..3.0f64,
+            near in any::<bool>(),
+        ) {
+            let k = 10f64.powf(scale);
+            let (a, b, c) = (a * k, b * k, c * k + DVec3::splat(k));
+            let x = if near { a + s * (b - a) + t * (c - a) } else { x * k };
+            let light = Patch { corner: c, edge_u: DVec3::X * k, edge_v: DVec3::Y * k };
+            let (plane, error) = query_plane(a, b, &light, x);
+            let exact = -adaptive(a, b, c, x);
+            let terms = cross_terms(x - a, b - a);
+            let reference_error = 3.0 * UNIT * (c - a).abs().dot(terms) * (1.0 + 1e-9);
+            prop_assert!(
+                (plane.c0 - exact).abs() <= error + reference_error,
+                "c0 {} against {} (bound {})", plane.c0, exact, error
+            );
         }
     }
 

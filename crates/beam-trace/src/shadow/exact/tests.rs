@@ -411,3 +411,96 @@ fn squares_inside_a_closed_mesh_change_the_cost_not_the_answer() {
     let (p, f) = (plain.work().inner_nodes, fused.work().inner_nodes);
     assert!(2 * f < p, "{f} nodes with the square against {p}");
 }
+
+/// The closed form of [`a_square_parallel_to_the_light_matches_the_closed_form`]'s
+/// visible fraction, enclosed in outward-rounded intervals.
+fn enclosed_closed_form(x: DVec3, r: Rect, h: f64) -> interval_core::Interval<f64> {
+    use interval_core::Interval;
+    let p = |v: f64| Interval::point(v).expect("finite");
+    let t = p(2.0) / p(h);
+    let side = |(lo, hi): (f64, f64), o: f64, light: (f64, f64)| {
+        let (a, b) = (p(o) + (p(lo) - p(o)) * t, p(o) + (p(hi) - p(o)) * t);
+        let width = b.min(p(light.1)) - a.max(p(light.0));
+        width.max(p(0.0))
+    };
+    p(1.0) - side(r[0], x.x, LIGHT[0]) * side(r[1], x.z, LIGHT[1])
+}
+
+/// Proven bounds: they hold the closed form (both enclosures of the same number must
+/// meet), stay within `1e-9` of it, and the bounds of trees built in other orders (other
+/// seeds, whose fragments are rounded differently) meet too; umbra and lit points are
+/// proven as well as penumbra ones.
+#[test]
+fn proven_bounds_hold_the_closed_form() {
+    let (light, floor) = setup();
+    let r: Rect = [(-0.6, 0.7), (-0.65, 0.6)];
+    let h = 1.0;
+    let q = rect(r[0].0, r[0].1, r[1].0, r[1].1, h);
+    // Two triangles: the diagonal cuts fragments at angles, whose vertices are rounded.
+    let occ = [vec![q[0], q[1], q[2]], vec![q[0], q[2], q[3]]];
+    let mut trees: Vec<ExactShadows> = (1..=3)
+        .map(|seed| ExactShadows::new(light, floor, &occ, seed).unwrap())
+        .collect();
+    let (mut penumbra, mut umbra, mut widened) = (0, 0, 0);
+    for x in floor_points() {
+        let want = enclosed_closed_form(x, r, h);
+        let got: Vec<FractionBounds> = trees
+            .iter_mut()
+            .map(|t| t.visible_bounds(x, Some(DVec3::Y)).unwrap())
+            .collect();
+        for b in &got {
+            assert!(
+                b.lower <= want.sup() && want.inf() <= b.upper,
+                "at {x}: [{}, {}] against {want:?}",
+                b.lower,
+                b.upper
+            );
+            assert!(b.upper - b.lower < 1e-9, "at {x}: {b:?}");
+            assert!(b.lower <= b.fraction && b.fraction <= b.upper);
+            widened += usize::from(b.upper > b.lower);
+        }
+        for (a, b) in got.iter().zip(&got[1..]) {
+            assert!(
+                a.lower <= b.upper && b.lower <= a.upper,
+                "at {x}: {a:?} {b:?}"
+            );
+        }
+        penumbra += usize::from(want.inf() > 0.0 && want.sup() < 1.0);
+        umbra += usize::from(got[0].upper < 1e-9);
+    }
+    assert!(
+        penumbra > 100 && umbra > 10 && widened > 100,
+        "{penumbra} {umbra} {widened}"
+    );
+}
+
+/// No proof where the tree's answer need not be the point's: an occluder reaching
+/// through the receiver's plane (cut there, its cut vertices rounded), or one between the
+/// plane and a point above it.
+#[test]
+fn no_proof_where_occluders_are_cut_or_behind_the_point() {
+    let (light, floor) = setup();
+    let x = DVec3::new(0.1, 0.0, 0.05);
+    let square = rect(-0.3, 0.4, -0.2, 0.25, 1.0);
+    let mut plain = ExactShadows::new(light, floor, std::slice::from_ref(&square), 1).unwrap();
+    let b = plain.visible_bounds(x, None).unwrap();
+    assert!(b.upper - b.lower < 1e-9, "{b:?}");
+    // A wall from below the floor up to the light's height's half.
+    let wall = vec![
+        DVec3::new(0.6, -0.5, -1.0),
+        DVec3::new(0.6, -0.5, 1.0),
+        DVec3::new(0.6, 1.0, 1.0),
+        DVec3::new(0.6, 1.0, -1.0),
+    ];
+    let mut cut = ExactShadows::new(light, floor, &[square.clone(), wall], 1).unwrap();
+    let b = cut.visible_bounds(x, None).unwrap();
+    assert_eq!((b.lower, b.upper), (0.0, 1.0));
+    // A square just above the floor: in front of points on it, but a point lifted past it
+    // (within the plane's tolerance) has it behind.
+    let low = rect(-2.0, 2.0, -2.0, 2.0, 1e-12);
+    let mut thin = ExactShadows::new(light, floor, &[square, low], 1).unwrap();
+    let on = thin.visible_bounds(x, None).unwrap();
+    assert_eq!((on.lower, on.upper), (0.0, 0.0));
+    let above = thin.visible_bounds(x + DVec3::Y * 1e-11, None).unwrap();
+    assert_eq!((above.lower, above.upper), (0.0, 1.0));
+}
