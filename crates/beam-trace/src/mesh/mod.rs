@@ -20,6 +20,7 @@
 
 mod bvh;
 mod closed;
+mod embedded;
 mod inner;
 mod obj;
 mod shaft;
@@ -31,6 +32,7 @@ use crate::ibox::{IBox, disjoint};
 
 pub use bvh::{Bvh, FirstCrossing};
 use closed::{closed_components, facing_of};
+use embedded::embedded_components;
 use inner::inner_squares_of;
 
 pub use closed::facing;
@@ -70,7 +72,9 @@ impl MeshIndex {
         let mut bounds = Vec::new();
         let mut inner = Vec::new();
         for (k, m) in meshes.into_iter().enumerate() {
-            let components = closed_components(m);
+            // Only closed components proven embedded are judged: what the shadows take of
+            // them holds of the boundary of a solid.
+            let components = embedded_components(m, &closed_components(m));
             inner.extend(inner_squares_of(m, &components, MIN_INNER_FACES));
             all.extend_from_slice(m);
             owner.extend(std::iter::repeat_n(k as u32, m.len()));
@@ -126,9 +130,10 @@ impl MeshIndex {
     /// span it: every corner is proven behind the face's outward plane. A segment from any
     /// point to the light that meets such a face meets the solid, and leaves it through a
     /// face the light is not behind before it reaches the light (outside the solid), so
-    /// the face blocks no segment that another face of the mesh does not block. (This
-    /// holds of the boundary of a solid; the mesh's faces are taken as one, as
-    /// [`facing`] checks closure and orientation but not self-intersection.)
+    /// the face blocks no segment that another face of the mesh does not block. This holds
+    /// of the boundary of a solid, so the index judges only closed components proven
+    /// embedded (no two faces meet but where the mesh joins them: `embedded.rs`); the
+    /// faces of others are never turned away.
     pub fn turned_away(&self, triangle: u32, light: &IBox, corners: &[DVec3]) -> bool {
         let t = triangle as usize;
         let facing = self.facing[t];

@@ -86,9 +86,24 @@ impl Part {
 
     /// The part of `light` it stands for.
     fn patch(&self, light: &Patch) -> Patch {
-        let s = 0.5f64.powi(self.level as i32);
-        let (i, j) = (f64::from(self.i), f64::from(self.j));
+        let (i, j, s) = self.square();
         light.part(i * s, (i + 1.0) * s, j * s, (j + 1.0) * s)
+    }
+
+    /// [`Part::patch`] widened by the rounding of its corners ([`Patch::covering_part`]),
+    /// so that its beam's proofs hold for all of it.
+    fn covering_patch(&self, light: &Patch) -> Patch {
+        let (i, j, s) = self.square();
+        light.covering_part(i * s, (i + 1.0) * s, j * s, (j + 1.0) * s)
+    }
+
+    /// Its indices and side in the parameter square.
+    fn square(&self) -> (f64, f64, f64) {
+        (
+            f64::from(self.i),
+            f64::from(self.j),
+            0.5f64.powi(self.level as i32),
+        )
     }
 
     /// Its four quadrants, searched from where its own beam cleared every ray.
@@ -138,7 +153,7 @@ impl Certified {
                 }
                 let class = occluders.beam(
                     q.origin,
-                    &part.patch(&q.light),
+                    &part.covering_patch(&q.light),
                     part.start,
                     true,
                     &mut work.root,

@@ -153,10 +153,10 @@ pub trait Occluders {
 
     /// Convex polygons inside closed meshes that some segment from `from` to `light` may
     /// reach, each blocking only segments that a triangle of [`Occluders::triangles`]
-    /// blocks as well where the mesh does not intersect itself
-    /// ([`crate::mesh::MeshIndex::inner_in`]): occluders a method may put
-    /// first to close an umbra in fewer steps, never the grounds of a proof (none where the
-    /// scene has no closed meshes).
+    /// blocks as well (the index finds them only inside closed meshes proven embedded,
+    /// [`crate::mesh::MeshIndex::inner_in`]): occluders a method may put first to close an
+    /// umbra in fewer steps, which change no fraction (none where the scene has no closed
+    /// meshes).
     fn inner_occluders(&mut self, from: &IBox, light: &Patch) -> Vec<Vec<DVec3>> {
         let _ = (from, light);
         Vec::new()

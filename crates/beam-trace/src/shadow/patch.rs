@@ -82,6 +82,25 @@ impl Patch {
         }
     }
 
+    /// A part that holds the exact sub-parallelogram `[u0, u1] × [v0, v1]` in its
+    /// [`directions_from`](Patch::directions_from) box from any point, despite the
+    /// rounding of [`Patch::part`]: the rectangle widened on every side by the margin that
+    /// rounding needs. A part's corner `c + u0·e_u + v0·e_v` is off by at most `4 UNIT`
+    /// of `|c| + |e_u| + |e_v|` in each coordinate, its edges by `2 UNIT` of theirs; a
+    /// widening by `ρ` moves each coordinate's range by `ρ (|e_u| + |e_v|)`, so `ρ` is
+    /// sixteen units of the largest ratio of the two (coordinates along which the light
+    /// does not extend are the corner's, exactly).
+    pub fn covering_part(&self, u0: f64, u1: f64, v0: f64, v1: f64) -> Patch {
+        let (c, eu, ev) = (self.corner.abs(), self.edge_u.abs(), self.edge_v.abs());
+        let margin = (0..3)
+            .filter(|&k| eu[k] + ev[k] > 0.0)
+            .map(|k| (c[k] + eu[k] + ev[k]) / (eu[k] + ev[k]))
+            .fold(0.0, f64::max)
+            * 8.0
+            * f64::EPSILON;
+        self.part(u0 - margin, u1 + margin, v0 - margin, v1 + margin)
+    }
+
     /// Cell `(i, j)` of the `n × n` grid of equal cells (`i` along `edge_u`).
     pub fn cell(&self, i: u32, j: u32, n: u32) -> Patch {
         let k = f64::from(n);

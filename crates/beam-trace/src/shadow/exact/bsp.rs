@@ -13,9 +13,10 @@
 //! the occluder).
 
 use glam::DVec3;
+use interval_core::{Float, Interval};
 
 use super::fragment::{Fragment, Side};
-use super::orient::{query_plane, side_sign};
+use super::orient::{query_plane, side_sign, side_sign_box};
 use crate::shadow::Patch;
 use crate::shadow::exact_work::BspWork;
 
@@ -72,12 +73,69 @@ fn signs(a: DVec3, b: DVec3, from: &[DVec3], to: &[DVec3]) -> (bool, bool) {
     (plus, minus)
 }
 
+/// Boxes of doubles holding the light's exact corners `c`, `c + e_u + e_v`, `c + e_u`,
+/// `c + e_v` (opposite corners first: a mixed occluder shows both signs sooner): the
+/// outward-rounded interval sums, points where the sums are exact.
+pub(super) fn light_boxes(light: &Patch) -> [(DVec3, DVec3); 4] {
+    let iv = |x: f64| Interval::new_unchecked(x, x);
+    let boxed = |edges: &[DVec3]| -> (DVec3, DVec3) {
+        let b: [Interval<f64>; 3] =
+            std::array::from_fn(|k| edges.iter().fold(iv(light.corner[k]), |s, e| s + iv(e[k])));
+        (
+            DVec3::from(b.map(|i| i.inf())),
+            DVec3::from(b.map(|i| i.sup())),
+        )
+    };
+    let (eu, ev) = (light.edge_u, light.edge_v);
+    [boxed(&[]), boxed(&[eu, ev]), boxed(&[eu]), boxed(&[ev])]
+}
+
+/// Points whose convex hull holds the light: the corners of its [`light_boxes`]. Signs
+/// that are exact for the lines from these points are, by bilinearity, those of the lines
+/// from every point of the light, not only from the hull of its rounded corners.
+pub(super) fn enclosing_corners(light: &Patch) -> Vec<DVec3> {
+    let mut points = Vec::with_capacity(4);
+    for (lo, hi) in light_boxes(light) {
+        for k in 0..8 {
+            let p = DVec3::from(std::array::from_fn(|a| {
+                if k >> a & 1 == 0 { lo[a] } else { hi[a] }
+            }));
+            if !points.contains(&p) {
+                points.push(p);
+            }
+        }
+    }
+    points
+}
+
+/// [`signs`] of the lines from the light's corners, each known as a box of doubles
+/// ([`light_boxes`]): both where a box's sign may vary.
+fn light_signs(a: DVec3, b: DVec3, from: &[(DVec3, DVec3)], to: &[DVec3]) -> (bool, bool) {
+    let (mut plus, mut minus) = (false, false);
+    for &corner in from {
+        for &q in to {
+            match side_sign_box(a, b, corner, q) {
+                Some(1) => plus = true,
+                Some(-1) => minus = true,
+                Some(_) => {}
+                None => return (true, true),
+            }
+            if plus && minus {
+                return (true, true);
+            }
+        }
+    }
+    (plus, minus)
+}
+
 /// The tree of one light and one group of receivers.
 #[derive(Clone, Debug)]
 pub(super) struct Bsp {
     nodes: Vec<Node>,
     occluders: Vec<Occluder>,
     light: Patch,
+    /// Boxes holding the light's corners ([`light_boxes`]): the insertions' light points.
+    corners: [(DVec3, DVec3); 4],
     /// How many of the occluders (the first ones) are chosen before the others, in order.
     first: u32,
     /// The corners of a box holding every query point (empty: no box given). A line that
@@ -101,6 +159,7 @@ impl Bsp {
             nodes: Vec::new(),
             occluders,
             light,
+            corners: light_boxes(&light),
             first: first as u32,
             region: Vec::new(),
             rng: seed,
@@ -205,9 +264,7 @@ impl Bsp {
     fn insert(&mut self, root: u32, o: u32) {
         let mut stack = std::mem::take(&mut self.pending);
         stack.push(root);
-        // Opposite corners first: a mixed occluder shows both signs sooner.
-        let [c0, c1, c2, c3] = self.light.corners();
-        let corners = [c0, c2, c1, c3];
+        let corners = self.corners;
         while let Some(n) = stack.pop() {
             match &mut self.nodes[n as usize] {
                 Node::Leaf { visible, occluders } => {
@@ -220,7 +277,7 @@ impl Bsp {
                     // The lines from the light's corners to the occluder's vertices; where
                     // they lie on both sides, the lines from its vertices to the corners of
                     // the receivers' region (see `Bsp::region`).
-                    let (mut plus, mut minus) = signs(a, b, &corners, original);
+                    let (mut plus, mut minus) = light_signs(a, b, &corners, original);
                     if plus && minus && !self.region.is_empty() {
                         (plus, minus) = signs(a, b, original, &self.region);
                     }
@@ -293,7 +350,7 @@ impl Bsp {
                     self.work.fragments += 1;
                     count += 1;
                     visible.area += f.area();
-                    visible.slack += f.area_error();
+                    visible.slack = visible.slack.add_up(f.area_error());
                     if let Some(p) = parts.as_deref_mut() {
                         p.push(f);
                     }
@@ -306,8 +363,9 @@ impl Bsp {
                     // The query plane through `x` and the edge, in the light's parameters:
                     // side(a → b, l(u, v) → x), affine in (u, v).
                     let (s, error) = query_plane(a, b, &self.light, x);
-                    visible.slack += f.misplaced(&s, error);
-                    match f.side(&s) {
+                    let (side, misplaced) = f.side_and_misplaced(&s, error);
+                    visible.slack = visible.slack.add_up(misplaced);
+                    match side {
                         Side::Pos => stack.push((pos, f)),
                         Side::Neg => stack.push((neg, f)),
                         Side::On => {
@@ -329,7 +387,8 @@ impl Bsp {
             }
         }
         // The sum's own rounding, with a margin.
-        visible.slack += 2.0 * f64::from(count + 1) * f64::EPSILON * visible.area;
+        let summing = 2.0 * f64::from(count + 1) * f64::EPSILON * visible.area;
+        visible.slack = visible.slack.add_up(summing);
         visible
     }
 }

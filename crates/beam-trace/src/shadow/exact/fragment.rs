@@ -78,19 +78,9 @@ impl Fragment {
 
     /// Where the fragment lies against `s = 0`, from the signs at its vertices (the
     /// fragment is convex and `s` affine).
+    #[cfg(test)]
     pub fn side(&self, s: &Affine) -> Side {
-        let (mut pos, mut neg) = (false, false);
-        for &p in &self.verts {
-            let v = s.at(p);
-            pos |= v > 0.0;
-            neg |= v < 0.0;
-        }
-        match (pos, neg) {
-            (true, false) => Side::Pos,
-            (false, true) => Side::Neg,
-            (false, false) => Side::On,
-            (true, true) => Side::Both,
-        }
+        self.side_and_misplaced(s, 0.0).0
     }
 
     /// The parts with `s ≥ 0` and `s ≤ 0` (either may be empty: fewer than 3 vertices).
@@ -164,24 +154,45 @@ impl Fragment {
     /// that cut's band: the sum of this bound over every fragment and every node a query
     /// visits bounds the area it misplaces.
     pub fn misplaced(&self, s: &Affine, error: f64) -> f64 {
+        self.side_and_misplaced(s, error).1
+    }
+
+    /// [`Fragment::side`] and [`Fragment::misplaced`] in one pass over the vertices.
+    pub fn side_and_misplaced(&self, s: &Affine, error: f64) -> (Side, f64) {
         let e = error + SLOP * UNIT * s.magnitude();
+        let (mut pos, mut neg) = (false, false);
         let (mut above, mut below) = (true, true);
         for &p in &self.verts {
             let v = s.at(p);
+            pos |= v > 0.0;
+            neg |= v < 0.0;
             above &= v > e;
             below &= v < -e;
         }
+        let side = match (pos, neg) {
+            (true, false) => Side::Pos,
+            (false, true) => Side::Neg,
+            (false, false) => Side::On,
+            (true, true) => Side::Both,
+        };
         if above || below {
-            return 0.0;
+            return (side, 0.0);
         }
-        let area = (self.area() + self.area_error()) * (1.0 + 1e-12);
+        (side, self.band_area(s, e))
+    }
+
+    /// A bound on the area of the fragment where `|s| ≤ e`.
+    fn band_area(&self, s: &Affine, e: f64) -> f64 {
+        let whole = || (self.area() + self.area_error()) * (1.0 + 1e-12);
         let gradient = s.cu.hypot(s.cv) * (1.0 - 1e-12);
         if gradient <= 0.0 {
-            return area;
+            return whole();
         }
         let (lo, hi) = self.bounds();
         let diameter = (hi[0] - lo[0]).hypot(hi[1] - lo[1]) * (1.0 + 1e-12);
-        area.min(2.0 * e / gradient * diameter * (1.0 + 1e-12))
+        let band = 2.0 * e / gradient * diameter * (1.0 + 1e-12);
+        // A thin band (the usual case) needs no area to compare with.
+        if band < 1e-9 { band } else { band.min(whole()) }
     }
 }
 

@@ -2,8 +2,9 @@
 //! points.
 
 use glam::DVec3;
+use interval_core::Float;
 
-use super::bsp::{Bsp, Occluder};
+use super::bsp::{Bsp, Occluder, enclosing_corners};
 use super::fragment::{Affine, Fragment};
 use super::irradiance::form_factor;
 use super::orient::side_sign;
@@ -24,24 +25,24 @@ impl Plane {
         (p - self.point).dot(self.normal)
     }
 
-    /// [`Plane::height`] and a bound on its rounding (a rounded difference, three products
-    /// and two sums: below `5 UNIT` of the terms' magnitudes; `8` with a margin).
-    fn height_with_error(&self, p: DVec3) -> (f64, f64) {
+    /// [`Plane::height`] and a bound on its error against the plane whose normal differs
+    /// from `normal` by at most `normal_error` in each coordinate (a rounded difference,
+    /// three products and two sums: below `5 UNIT` of the terms' magnitudes; `8` with a
+    /// margin).
+    fn height_with_error(&self, p: DVec3, normal_error: DVec3) -> (f64, f64) {
         let d = p - self.point;
-        (
-            d.dot(self.normal),
-            8.0 * UNIT * d.abs().dot(self.normal.abs()),
-        )
+        let e = 8.0 * UNIT * d.abs().dot(self.normal.abs()) + d.abs().dot(normal_error);
+        (d.dot(self.normal), e * (1.0 + 4.0 * UNIT))
     }
 
     /// Whether every vertex of `poly` lies proven above the plane (`Some(true)`, with the
     /// lowest height's lower bound), proven below (`Some(false)`, with the highest height's
-    /// upper bound), or neither (`None`).
-    fn proven_side(&self, poly: &[DVec3]) -> Option<(bool, f64)> {
+    /// upper bound), or neither (`None`); the normal as in [`Plane::height_with_error`].
+    fn proven_side(&self, poly: &[DVec3], normal_error: DVec3) -> Option<(bool, f64)> {
         let (mut low, mut high) = (f64::INFINITY, f64::NEG_INFINITY);
         let (mut above, mut below) = (true, true);
         for &p in poly {
-            let (h, e) = self.height_with_error(p);
+            let (h, e) = self.height_with_error(p, normal_error);
             above &= h > e;
             below &= h < -e;
             low = low.min(h - e);
@@ -72,15 +73,39 @@ struct Slab {
     front: f64,
     /// An upper bound on the heights of the occluders behind the receiver's plane.
     behind: f64,
+    /// A lower bound on the heights of the light's points.
+    light: f64,
 }
 
 impl Slab {
     /// Whether a point at height `h` (rounding error up to `e`) sees every kept occluder in
-    /// front of it and every dropped one behind it: then the lines from the light through
-    /// the kept occluders to it are its segments, and the tree's answer is its own.
+    /// front of it, every dropped one behind it and the whole light above it; with the
+    /// point on the receiver's side of the light's plane, every line from the light
+    /// through a kept occluder to it then meets the occluder between the two, and the
+    /// tree's answer is its own.
     fn holds_at(&self, (h, e): (f64, f64)) -> bool {
-        self.exact && h + e < self.front && h - e > self.behind
+        self.exact && h + e < self.front.min(self.light) && h - e > self.behind
     }
+}
+
+/// The light's plane with its normal toward the receiver, and a bound on the rounding of
+/// that normal (`e_u × e_v`, two products and a difference per coordinate).
+fn light_plane_of(light: &Patch, ln: DVec3, toward: DVec3) -> (Plane, DVec3) {
+    let (u, v) = (light.edge_u.abs(), light.edge_v.abs());
+    let terms = DVec3::new(
+        u.y * v.z + u.z * v.y,
+        u.z * v.x + u.x * v.z,
+        u.x * v.y + u.y * v.x,
+    );
+    let plane = Plane {
+        point: light.corner,
+        normal: if ln.dot(toward - light.corner) > 0.0 {
+            ln
+        } else {
+            -ln
+        },
+    };
+    (plane, 3.0 * UNIT * terms)
 }
 
 /// Why an exact-shadow group cannot be built or queried.
@@ -125,21 +150,12 @@ pub struct FractionBounds {
 }
 
 impl FractionBounds {
-    fn exactly(fraction: f64) -> Self {
-        FractionBounds {
-            fraction,
-            lower: fraction,
-            upper: fraction,
-        }
-    }
-
     /// `fraction ± slack` (rounded outward), within `[0, 1]`.
     fn around(fraction: f64, slack: f64) -> Self {
-        let (lower, upper) = (fraction - slack, fraction + slack);
         FractionBounds {
             fraction,
-            lower: (lower - lower.abs() * f64::EPSILON).max(0.0),
-            upper: (upper + upper.abs() * f64::EPSILON).min(1.0),
+            lower: fraction.sub_down(slack).max(0.0),
+            upper: fraction.add_up(slack).min(1.0),
         }
     }
 
@@ -166,6 +182,8 @@ pub struct ExactShadows {
     dropped: usize,
     /// The receiver's plane with its normal toward the light.
     toward_light: Plane,
+    /// The light's plane with its normal toward the receiver, and its normal's rounding.
+    light_plane: (Plane, DVec3),
     slab: Slab,
 }
 
@@ -245,32 +263,33 @@ impl ExactShadows {
             point: receiver.point,
             normal: toward_light,
         };
-        let light_plane = Plane {
-            point: light.corner,
-            normal: if ln.dot(receiver.point - light.corner) > 0.0 {
-                ln
-            } else {
-                -ln
-            },
-        };
+        let light_plane = light_plane_of(&light, ln, receiver.point);
         let mut kept = Vec::new();
         let mut dropped = 0;
         let mut kept_first = 0;
+        let corners = enclosing_corners(&light);
         let mut slab = Slab {
             exact: true,
             front: f64::INFINITY,
             behind: f64::NEG_INFINITY,
+            light: corners
+                .iter()
+                .map(|&c| {
+                    let (h, e) = receiver_side.height_with_error(c, DVec3::ZERO);
+                    h - e
+                })
+                .fold(f64::INFINITY, f64::min),
         };
         for (k, poly) in first.iter().chain(occluders).enumerate() {
-            let clipped = clip(&clip(poly, &light_plane), &receiver_side);
+            let clipped = clip(&clip(poly, &light_plane.0), &receiver_side);
             let scale = poly
                 .iter()
                 .map(|p| (*p - poly[0]).length_squared())
                 .fold(0.0, f64::max);
             let degenerate = clipped.len() >= 3 && twice_area(&clipped) <= 1e-12 * scale;
             match (
-                light_plane.proven_side(poly),
-                receiver_side.proven_side(poly),
+                light_plane.0.proven_side(poly, light_plane.1),
+                receiver_side.proven_side(poly, DVec3::ZERO),
             ) {
                 // Behind the light: it blocks nothing.
                 (Some((false, _)), _) => {}
@@ -284,7 +303,7 @@ impl ExactShadows {
                 dropped += 1;
                 continue;
             }
-            let stab = stab_sign(&light, &clipped);
+            let stab = stab_sign(&light, &corners, &clipped);
             kept_first += usize::from(k < first.len());
             kept.push(Occluder {
                 verts: clipped,
@@ -300,6 +319,7 @@ impl ExactShadows {
             given: first.len() + occluders.len(),
             dropped,
             toward_light: receiver_side,
+            light_plane,
             slab,
         })
     }
@@ -312,9 +332,11 @@ impl ExactShadows {
     /// [`ExactError::OffReceiver`] when `x` is not on the receiver's plane (up to rounding
     /// of its size).
     pub fn visible_fraction(&mut self, x: DVec3, normal: Option<DVec3>) -> Result<f64, ExactError> {
-        Ok(match self.above_horizon(x, normal)? {
-            Some((f, _)) => self.bsp.query(x, f),
-            None => 0.0,
+        let (f, _) = self.above_horizon(x, normal)?;
+        Ok(if f.is_empty() {
+            0.0
+        } else {
+            self.bsp.query(x, f)
         })
     }
 
@@ -332,12 +354,18 @@ impl ExactShadows {
         x: DVec3,
         normal: Option<DVec3>,
     ) -> Result<FractionBounds, ExactError> {
-        let Some((f, horizon)) = self.above_horizon(x, normal)? else {
-            return Ok(FractionBounds::exactly(0.0));
-        };
+        let (f, horizon) = self.above_horizon(x, normal)?;
+        if f.is_empty() {
+            // What the horizon's rounding may have cut off is all there may be.
+            return Ok(FractionBounds {
+                fraction: 0.0,
+                lower: 0.0,
+                upper: horizon.min(1.0),
+            });
+        }
         let visible = self.bsp.query_parts(x, f, None);
         Ok(if self.proven_at(x) {
-            FractionBounds::around(visible.area, visible.slack + horizon)
+            FractionBounds::around(visible.area, visible.slack.add_up(horizon))
         } else {
             FractionBounds::estimate(visible.area)
         })
@@ -366,7 +394,12 @@ impl ExactShadows {
     /// occluder was cut or dropped as degenerate, and `x` lies between those behind the
     /// receiver's plane and those in front of it ([`Slab`]).
     fn proven_at(&self, x: DVec3) -> bool {
-        self.slab.holds_at(self.toward_light.height_with_error(x))
+        let (plane, normal_error) = self.light_plane;
+        let (h, e) = plane.height_with_error(x, normal_error);
+        h > e
+            && self
+                .slab
+                .holds_at(self.toward_light.height_with_error(x, DVec3::ZERO))
     }
 
     /// The irradiance at `x` (a point of the receiver's plane, with the normal `normal`:
@@ -385,12 +418,13 @@ impl ExactShadows {
         normal: DVec3,
     ) -> Result<Irradiance, ExactError> {
         let n = normal.normalize_or_zero();
-        let Some((whole, _)) = self.above_horizon(x, Some(n))? else {
+        let (whole, _) = self.above_horizon(x, Some(n))?;
+        if whole.is_empty() {
             return Ok(Irradiance {
                 visible: 0.0,
                 unoccluded: 0.0,
             });
-        };
+        }
         let mut parts = Vec::new();
         self.bsp.query_parts(x, whole.clone(), Some(&mut parts));
         let light = self.light;
@@ -404,13 +438,13 @@ impl ExactShadows {
         })
     }
 
-    /// The part of the light above `x`'s horizon (`None`: nothing), once `x` is checked,
+    /// The part of the light above `x`'s horizon (possibly empty), once `x` is checked,
     /// and a bound on the area the horizon's rounding may misplace.
     fn above_horizon(
         &mut self,
         x: DVec3,
         normal: Option<DVec3>,
-    ) -> Result<Option<(Fragment, f64)>, ExactError> {
+    ) -> Result<(Fragment, f64), ExactError> {
         let tolerance =
             1e-9 * (x - self.receiver.point).length().max(1.0) * self.receiver.normal.length();
         if self.receiver.height(x).abs() > tolerance {
@@ -419,7 +453,7 @@ impl ExactShadows {
         self.check_region(x)?;
         let whole = Fragment::whole();
         let Some(n) = normal else {
-            return Ok(Some((whole, 0.0)));
+            return Ok((whole, 0.0));
         };
         // Above the horizon: (l(u, v) − x) · n ≥ 0.
         let to_corner = self.light.corner - x;
@@ -431,9 +465,7 @@ impl ExactShadows {
         let error = 8.0
             * UNIT
             * (to_corner.abs() + self.light.edge_u.abs() + self.light.edge_v.abs()).dot(n.abs());
-        let misplaced = whole.misplaced(&s, error);
-        let f = whole.clip(&s, 1.0);
-        Ok((!f.is_empty()).then_some((f, misplaced)))
+        Ok((whole.clip(&s, 1.0), whole.misplaced(&s, error)))
     }
 
     /// [`ExactError::OutsideRegion`] where `x` lies outside the region.
@@ -482,20 +514,20 @@ impl ExactShadows {
 
 /// The sign of the edge sides of the lines from the light that cross the convex polygon
 /// `poly`: that of a reference line from a light point off its plane through its centroid;
-/// `0` (both) where the light's corners lie on both sides of its plane.
-fn stab_sign(light: &Patch, poly: &[DVec3]) -> i8 {
+/// `0` (both) where the light may lie on both sides of its plane (its enclosing corners
+/// `corners` do, [`enclosing_corners`]).
+fn stab_sign(light: &Patch, corners: &[DVec3], poly: &[DVec3]) -> i8 {
     let (p0, p1, p2) = (poly[0], poly[1], poly[2]);
-    let sides = light.corners().map(|c| side_sign(p0, p1, p2, c) as i32);
-    if sides.iter().any(|&s| s > 0) && sides.iter().any(|&s| s < 0) {
+    let sides: Vec<i8> = corners.iter().map(|&c| side_sign(p0, p1, p2, c)).collect();
+    if sides.contains(&1) && sides.contains(&-1) {
         return 0;
     }
     let centroid = poly.iter().copied().sum::<DVec3>() / poly.len() as f64;
-    let from = light
-        .corners()
-        .into_iter()
-        .zip(sides)
-        .find(|&(_, s)| s != 0)
-        .map_or(light.center(), |(c, _)| c);
+    let from = corners
+        .iter()
+        .zip(&sides)
+        .find(|&(_, &s)| s != 0)
+        .map_or(light.center(), |(&c, _)| c);
     let s = side_sign(poly[0], poly[1], from, centroid);
     if s == 0 { 1 } else { s }
 }

@@ -32,8 +32,9 @@ const FALLBACK_SAMPLES: u32 = 64;
 ///    is in front of it (see `group_plane`). That plane is the receiver plane, the occluders
 ///    are the group's triangles (less the faces of closed meshes turned away from the light)
 ///    clipped to the region between it and the light's plane, and the tree's region is the
-///    box of the points (moved onto the plane). Its visible fragments are the parts of the
-///    light that no triangle hides, exact up to the rounding of the fragments' vertices. A
+///    box of the points. Each point is queried where it is (off the plane by up to that
+///    tolerance); its visible fragments are the parts of the light that no triangle hides,
+///    exact up to the rounding of the fragments' vertices where the proof below holds. A
 ///    point on a curved receiver is a group of its own.
 /// 3. **Implicit occluders**: one shadow beam over the whole light against the implicit
 ///    surfaces alone ([`Occluders::implicit_beam`]); where it is not rejected, each
@@ -54,8 +55,8 @@ const FALLBACK_SAMPLES: u32 = 64;
 ///   occluder lies proven on one side of the light's plane and of the receiver's (none is
 ///   cut there), none is degenerate between them, and the point lies between those in front
 ///   of the receiver's plane and those behind it. The faces of closed meshes turned away
-///   from the light and the squares inside them change no fraction where each closed mesh
-///   bounds a solid ([`crate::mesh::MeshIndex::turned_away`]);
+///   from the light and the squares inside them change no fraction: the index takes them
+///   only from closed meshes proven embedded ([`crate::mesh::MeshIndex::turned_away`]);
 /// * elsewhere (a wall reaching through the receiver's plane, a point on a ball whose
 ///   tangent plane the light straddles), not at all: `[0, 1]`.
 ///
@@ -85,8 +86,10 @@ struct Sums {
     upper: f64,
     /// The estimate.
     estimate: f64,
-    /// A bound on the rounding of the pieces' areas and of their sums.
+    /// A bound on the rounding of the pieces' areas.
     rounding: f64,
+    /// The pieces summed.
+    pieces: u32,
 }
 
 impl Exact {
@@ -100,9 +103,10 @@ impl Exact {
         work: &mut ShadowWork,
     ) {
         let area = f.area();
-        sums.rounding += f.area_error() + 2.0 * f64::EPSILON * area;
+        sums.rounding = sums.rounding.add_up(f.area_error());
+        sums.pieces += 1;
         let (lo, hi) = f.bounds();
-        let part = q.light.part(lo[0], hi[0], lo[1], hi[1]);
+        let part = q.light.covering_part(lo[0], hi[0], lo[1], hi[1]);
         work.sub_beams += 1;
         match occluders.implicit_beam(q.origin, &part, 0.0, true, &mut work.root) {
             BoxClass::Miss => {
@@ -276,6 +280,7 @@ impl Exact {
                 upper: visible,
                 estimate: visible,
                 rounding: 0.0,
+                pieces: 0,
             },
             // Every ray to the light is blocked, whatever the triangles do.
             BoxClass::Hit { .. } => {
@@ -301,7 +306,9 @@ impl Exact {
         // proven without the tree (`slack` zero) has the whole light and its halves, whose
         // areas are exact.
         let slack = if slack > 0.0 {
-            slack.add_up(sums.rounding)
+            // The sums of `pieces` terms: `pieces − 1` roundings of at most their total.
+            let summing = 2.0 * f64::from(sums.pieces + 1) * f64::EPSILON * sums.upper;
+            slack.add_up(sums.rounding).add_up(summing)
         } else {
             0.0
         };
@@ -353,8 +360,10 @@ const WHOLE_SLACK: f64 = 1e-9;
 
 /// How far, as a share of its distance to the light's centre, a point may lie off the plane
 /// of its group: the points a root search places on a plane (a floor) scatter by about
-/// its tolerance. A group's points are moved onto the plane by this much at most, far less
-/// than the offset of shadow origins off their surfaces (`1e-4` of the scene's diagonal).
+/// its tolerance. A group's tree clips its occluders to the plane, which is what a point
+/// this far off it sees unless an occluder lies that close to the plane (then its answer
+/// carries no proof); far less than the offset of shadow origins off their surfaces
+/// (`1e-4` of the scene's diagonal).
 const GROUP_TOLERANCE: f64 = 1e-6;
 
 /// How wide a group's points may spread, as a share of the diagonal of its light. A tree

@@ -68,6 +68,48 @@ pub(super) fn side_sign(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
     }
 }
 
+/// The sign of `side(a → b, c → d)` for every point `c` of the box `[lo, hi]`, where it is
+/// the same for all of them (`Some`, possibly `0` only where the box is a point), or `None`
+/// where it may vary. The determinant is affine in `c` with gradient `(a − d) × (b − d)`,
+/// so it varies over the box by at most `(hi − lo) · |terms of that gradient|` (`hi − lo`
+/// is exact for the boxes of a rounding); where the filtered determinant at `lo` exceeds
+/// that and its own error bound, its sign holds everywhere; otherwise the box's corners
+/// decide, each exactly.
+pub(super) fn side_sign_box(a: DVec3, b: DVec3, (lo, hi): (DVec3, DVec3), d: DVec3) -> Option<i8> {
+    if lo == hi {
+        return Some(side_sign(a, b, lo, d));
+    }
+    let (ad, bd, cd) = (a - d, b - d, lo - d);
+    let (bc, cb) = (bd.x * cd.y, cd.x * bd.y);
+    let (ca, ac) = (cd.x * ad.y, ad.x * cd.y);
+    let (ab, ba) = (ad.x * bd.y, bd.x * ad.y);
+    let det = ad.z * (bc - cb) + bd.z * (ca - ac) + cd.z * (ab - ba);
+    let permanent = (bc.abs() + cb.abs()) * ad.z.abs()
+        + (ca.abs() + ac.abs()) * bd.z.abs()
+        + (ab.abs() + ba.abs()) * cd.z.abs();
+    let spread = (hi - lo).dot(cross_terms(ad, bd)) * (1.0 + 1e-10);
+    let bound = FILTER * permanent + spread;
+    if det > bound {
+        return Some(-1);
+    }
+    if -det > bound {
+        return Some(1);
+    }
+    let mut seen = None;
+    for k in 0..8 {
+        let c = DVec3::from(std::array::from_fn(|i| {
+            if k >> i & 1 == 0 { lo[i] } else { hi[i] }
+        }));
+        let s = side_sign(a, b, c, d);
+        match seen {
+            None => seen = Some(s),
+            Some(t) if t != s => return None,
+            _ => {}
+        }
+    }
+    seen
+}
+
 /// `(|u_y v_z| + |u_z v_y|, …)`: the cross product's terms in absolute value.
 fn cross_terms(u: DVec3, v: DVec3) -> DVec3 {
     let (u, v) = (u.abs(), v.abs());
@@ -187,6 +229,44 @@ mod tests {
                 (plane.c0 - exact).abs() <= error + reference_error,
                 "c0 {} against {} (bound {})", plane.c0, exact, error
             );
+        }
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(4096))]
+
+        /// A box's sign, where one is given, is that of each of its corners (the
+        /// determinant is affine in the point, so of every point of the box), also for
+        /// boxes a few ulps wide on the plane of the other three points.
+        #[test]
+        fn a_box_sign_holds_at_every_corner(
+            (a, b, d) in (point(), point(), point()),
+            (s, t) in (-1.0..1.0f64, -1.0..1.0f64),
+            ulps in 0i32..=4,
+            near in any::<bool>(),
+            far in point(),
+        ) {
+            let lo = if near { a + s * (b - a) + t * (d - a) } else { far };
+            let hi = DVec3::from(lo.to_array().map(|x| {
+                let mut x = x;
+                for _ in 0..ulps {
+                    x = x.next_up();
+                }
+                x
+            }));
+            let corners: Vec<i8> = (0..8)
+                .map(|k| {
+                    let c = DVec3::from(std::array::from_fn(|i| {
+                        if k >> i & 1 == 0 { lo[i] } else { hi[i] }
+                    }));
+                    side_sign(a, b, c, d)
+                })
+                .collect();
+            if let Some(sign) = side_sign_box(a, b, (lo, hi), d) {
+                prop_assert!(corners.iter().all(|&c| c == sign), "{sign} {corners:?}");
+            } else {
+                prop_assert!(corners.iter().any(|&c| c != corners[0]));
+            }
         }
     }
 

@@ -504,3 +504,38 @@ fn no_proof_where_occluders_are_cut_or_behind_the_point() {
     let above = thin.visible_bounds(x + DVec3::Y * 1e-11, None).unwrap();
     assert_eq!((above.lower, above.upper), (0.0, 1.0));
 }
+
+/// The insertions' light points hold the light's exact corners in their hull, also where
+/// the sums `c + e_u` and `c + e_u + e_v` round (each coordinate of each exact corner lies
+/// between the points' coordinates of its box), and are the four corners where they do not.
+#[test]
+fn the_insertions_light_points_enclose_the_exact_corners() {
+    let exact = Patch::square(DVec3::new(0.0, 2.0, 0.0), 1.0, 1);
+    assert_eq!(super::bsp::enclosing_corners(&exact).len(), 4);
+    let light = Patch {
+        corner: DVec3::new(0.1, 0.7, 0.3),
+        edge_u: DVec3::new(0.2, 0.0, 0.0),
+        edge_v: DVec3::new(0.0, 0.0, 0.7),
+    };
+    let points = super::bsp::enclosing_corners(&light);
+    assert!(points.len() > 4, "{points:?}");
+    // The exact sum of doubles as a double and its rounding error (TwoSum).
+    let two_sum = |a: f64, b: f64| {
+        let s = a + b;
+        let bb = s - a;
+        (s, (a - (s - bb)) + (b - bb))
+    };
+    for edges in [vec![], vec![light.edge_u], vec![light.edge_v]] {
+        for k in 0..3 {
+            let (mut s, mut err) = (light.corner[k], 0.0);
+            for e in &edges {
+                let (t, r) = two_sum(s, e[k]);
+                (s, err) = (t, err + r);
+            }
+            // `s + err` is the exact coordinate (one rounding at most here).
+            let below = points.iter().any(|p| p[k] < s || (p[k] == s && err >= 0.0));
+            let above = points.iter().any(|p| p[k] > s || (p[k] == s && err <= 0.0));
+            assert!(below && above, "corner {edges:?} axis {k}");
+        }
+    }
+}
