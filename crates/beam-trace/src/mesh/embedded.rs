@@ -216,6 +216,14 @@ fn apart_unshared(s: &Triangle, t: &Triangle, (ps, pt): (Projection, Projection)
         || edges(t).iter().any(|&(p, q, _)| segment_meets(p, q, s, ps)))
 }
 
+/// Whether the exact predicates stay exact on `p`: coordinates zero or of magnitude
+/// between `1e-30` and `1e30` (no product of differences overflows or underflows).
+fn in_range(p: DVec3) -> bool {
+    p.to_array()
+        .iter()
+        .all(|&x| x == 0.0 || (1e-30..=1e30).contains(&x.abs()))
+}
+
 /// `components` ([`super::closed::closed_components`]) with every closed component of
 /// `tris` that is not proven embedded set to `None`.
 pub(crate) fn embedded_components(
@@ -234,6 +242,12 @@ pub(crate) fn embedded_components(
     for (i, s) in members.iter().enumerate() {
         let cs = components[closed[i] as usize];
         if bad.contains(&cs) {
+            continue;
+        }
+        // A triangle without area, or with coordinates where the predicates could
+        // overflow or underflow, leaves its component unjudged.
+        if Projection::of(s).is_none() || !s.v.iter().all(|p| in_range(*p)) {
+            bad.insert(cs);
             continue;
         }
         for j in bvh.in_box(&s.bounds()) {

@@ -90,8 +90,8 @@ impl Part {
         light.part(i * s, (i + 1.0) * s, j * s, (j + 1.0) * s)
     }
 
-    /// [`Part::patch`] widened by the rounding of its corners ([`Patch::covering_part`]),
-    /// so that its beam's proofs hold for all of it.
+    /// The outward-rounded box of [`Part::patch`]'s exact points ([`Patch::covering_part`]),
+    /// so that its beam's proofs hold for all of it despite the part's rounding.
     fn covering_patch(&self, light: &Patch) -> Patch {
         let (i, j, s) = self.square();
         light.covering_part(i * s, (i + 1.0) * s, j * s, (j + 1.0) * s)

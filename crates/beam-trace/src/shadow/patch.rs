@@ -82,23 +82,27 @@ impl Patch {
         }
     }
 
-    /// A part that holds the exact sub-parallelogram `[u0, u1] × [v0, v1]` in its
-    /// [`directions_from`](Patch::directions_from) box from any point, despite the
-    /// rounding of [`Patch::part`]: the rectangle widened on every side by the margin that
-    /// rounding needs. A part's corner `c + u0·e_u + v0·e_v` is off by at most `4 UNIT`
-    /// of `|c| + |e_u| + |e_v|` in each coordinate, its edges by `2 UNIT` of theirs; a
-    /// widening by `ρ` moves each coordinate's range by `ρ (|e_u| + |e_v|)`, so `ρ` is
-    /// sixteen units of the largest ratio of the two (coordinates along which the light
-    /// does not extend are the corner's, exactly).
+    /// A patch whose [`directions_from`](Patch::directions_from) box from any point holds
+    /// the exact sub-parallelogram `[u0, u1] × [v0, v1]`, which that of [`Patch::part`]
+    /// may miss by the rounding of its corner and edges: the outward-rounded box of `c +
+    /// [u0, u1]·e_u + [v0, v1]·e_v`, as the patch from its low corner along its diagonal
+    /// (`e_v` zero). For the beams that prove a part free or blocked; it has no area.
     pub fn covering_part(&self, u0: f64, u1: f64, v0: f64, v1: f64) -> Patch {
-        let (c, eu, ev) = (self.corner.abs(), self.edge_u.abs(), self.edge_v.abs());
-        let margin = (0..3)
-            .filter(|&k| eu[k] + ev[k] > 0.0)
-            .map(|k| (c[k] + eu[k] + ev[k]) / (eu[k] + ev[k]))
-            .fold(0.0, f64::max)
-            * 8.0
-            * f64::EPSILON;
-        self.part(u0 - margin, u1 + margin, v0 - margin, v1 + margin)
+        let (u, v) = (ival(u0, u1), ival(v0, v1));
+        let b: IBox = std::array::from_fn(|k| {
+            ipoint(self.corner[k]) + u * ipoint(self.edge_u[k]) + v * ipoint(self.edge_v[k])
+        });
+        let lo = DVec3::from(b.map(|i| i.inf()));
+        let hi = DVec3::from(b.map(|i| i.sup()));
+        // `lo + 1·(hi − lo)` reaches `hi` in the outward box sum: the difference rounded up.
+        let diagonal = DVec3::from(std::array::from_fn(|k| {
+            (ipoint(hi[k]) - ipoint(lo[k])).sup()
+        }));
+        Patch {
+            corner: lo,
+            edge_u: diagonal,
+            edge_v: DVec3::ZERO,
+        }
     }
 
     /// Cell `(i, j)` of the `n × n` grid of equal cells (`i` along `edge_u`).
@@ -149,6 +153,30 @@ mod tests {
         let b = p.bounding_box();
         assert_eq!(b[1], ipoint(5.0));
         assert!(b[0].inf() <= 0.0 && b[0].sup() >= 2.0);
+    }
+
+    /// A covering part's box holds the part's points (here its rounded corners, each within
+    /// the exact part's box up to an ulp) and is no wider than the part, also for a light
+    /// whose edge has a coordinate that is nearly zero.
+    #[test]
+    fn covering_parts_hold_their_part_and_no_more() {
+        let light = Patch {
+            corner: DVec3::new(-0.25, 2.0, -0.25),
+            edge_u: DVec3::new(0.5, 3e-17, 0.0),
+            edge_v: DVec3::new(0.0, 0.0, 0.5),
+        };
+        let (u0, u1, v0, v1) = (0.25, 0.5, 0.1, 0.7);
+        let b = light.covering_part(u0, u1, v0, v1).bounding_box();
+        for p in light.part(u0, u1, v0, v1).corners() {
+            for k in 0..3 {
+                assert!(b[k].inf() <= p[k] && p[k] <= b[k].sup(), "{p} {b:?}");
+            }
+        }
+        assert!((b[0].wid() - 0.125).abs() < 1e-12, "{b:?}");
+        assert!((b[2].wid() - 0.3).abs() < 1e-12, "{b:?}");
+        assert!(b[1].wid() < 1e-15, "{b:?}");
+        // The exact y of the part, 2 + u·3e-17, is not a double: the box holds it.
+        assert!(b[1].inf() <= 2.0 && b[1].sup() > 2.0, "{b:?}");
     }
 
     #[test]

@@ -9,6 +9,8 @@
 
 use glam::DVec3;
 
+use interval_core::Float;
+
 use super::fragment::Affine;
 use crate::shadow::Patch;
 
@@ -69,7 +71,7 @@ pub(super) fn side_sign(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
 }
 
 /// The sign of `side(a → b, c → d)` for every point `c` of the box `[lo, hi]`, where it is
-/// the same for all of them (`Some`, possibly `0` only where the box is a point), or `None`
+/// the same for all of them (`Some`; `0` where the determinant vanishes on the box), or `None`
 /// where it may vary. The determinant is affine in `c` with gradient `(a − d) × (b − d)`,
 /// so it varies over the box by at most `(hi − lo) · |terms of that gradient|` (`hi − lo`
 /// is exact for the boxes of a rounding); where the filtered determinant at `lo` exceeds
@@ -88,7 +90,7 @@ pub(super) fn side_sign_box(a: DVec3, b: DVec3, (lo, hi): (DVec3, DVec3), d: DVe
         + (ca.abs() + ac.abs()) * bd.z.abs()
         + (ab.abs() + ba.abs()) * cd.z.abs();
     let spread = (hi - lo).dot(cross_terms(ad, bd)) * (1.0 + 1e-10);
-    let bound = FILTER * permanent + spread;
+    let bound = (FILTER * permanent).add_up(spread);
     if det > bound {
         return Some(-1);
     }
