@@ -33,6 +33,7 @@ use crate::ibox::{IBox, disjoint};
 pub use bvh::{Bvh, FirstCrossing};
 use closed::{closed_components, facing_of};
 use embedded::embedded_components;
+pub(crate) use embedded::in_range;
 use inner::inner_squares_of;
 
 pub use closed::facing;

@@ -8,6 +8,7 @@ use super::bsp::{Bsp, Occluder, enclosing_corners};
 use super::fragment::{Affine, Fragment};
 use super::irradiance::form_factor;
 use super::orient::side_sign;
+use crate::mesh::in_range;
 use crate::shadow::Patch;
 use crate::shadow::exact_work::BspWork;
 
@@ -269,7 +270,7 @@ impl ExactShadows {
         let mut kept_first = 0;
         let corners = enclosing_corners(&light);
         let mut slab = Slab {
-            exact: true,
+            exact: corners.iter().all(|&c| in_range(c)),
             front: f64::INFINITY,
             behind: f64::NEG_INFINITY,
             light: corners
@@ -287,6 +288,8 @@ impl ExactShadows {
                 .map(|p| (*p - poly[0]).length_squared())
                 .fold(0.0, f64::max);
             let degenerate = clipped.len() >= 3 && twice_area(&clipped) <= 1e-12 * scale;
+            // The exact predicates are exact only where nothing overflows or underflows.
+            slab.exact &= poly.iter().all(|&p| in_range(p));
             match (
                 light_plane.0.proven_side(poly, light_plane.1),
                 receiver_side.proven_side(poly, DVec3::ZERO),
@@ -397,6 +400,7 @@ impl ExactShadows {
         let (plane, normal_error) = self.light_plane;
         let (h, e) = plane.height_with_error(x, normal_error);
         h > e
+            && in_range(x)
             && self
                 .slab
                 .holds_at(self.toward_light.height_with_error(x, DVec3::ZERO))

@@ -28,6 +28,15 @@ const FILTER: f64 = (7.0 + 56.0 * UNIT) * UNIT;
 /// rounding error could reach zero (then the adaptive predicate decides).
 #[inline]
 fn filtered(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Option<f64> {
+    let (det, permanent) = determinant(a, b, c, d);
+    let bound = FILTER * permanent;
+    (det > bound || -det > bound).then_some(det)
+}
+
+/// `orient3d(a, b, c, d)` in floating point, in the order [`FILTER`] is proven for, and
+/// its permanent (the same sum with every term's magnitude).
+#[inline]
+fn determinant(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> (f64, f64) {
     let (ad, bd, cd) = (a - d, b - d, c - d);
     let (bc, cb) = (bd.x * cd.y, cd.x * bd.y);
     let (ca, ac) = (cd.x * ad.y, ad.x * cd.y);
@@ -36,8 +45,7 @@ fn filtered(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Option<f64> {
     let permanent = (bc.abs() + cb.abs()) * ad.z.abs()
         + (ca.abs() + ac.abs()) * bd.z.abs()
         + (ab.abs() + ba.abs()) * cd.z.abs();
-    let bound = FILTER * permanent;
-    (det > bound || -det > bound).then_some(det)
+    (det, permanent)
 }
 
 /// `orient3d(a, b, c, d)` by Shewchuk's adaptive predicate (the `robust` crate): its sign is
@@ -81,15 +89,8 @@ pub(super) fn side_sign_box(a: DVec3, b: DVec3, (lo, hi): (DVec3, DVec3), d: DVe
     if lo == hi {
         return Some(side_sign(a, b, lo, d));
     }
-    let (ad, bd, cd) = (a - d, b - d, lo - d);
-    let (bc, cb) = (bd.x * cd.y, cd.x * bd.y);
-    let (ca, ac) = (cd.x * ad.y, ad.x * cd.y);
-    let (ab, ba) = (ad.x * bd.y, bd.x * ad.y);
-    let det = ad.z * (bc - cb) + bd.z * (ca - ac) + cd.z * (ab - ba);
-    let permanent = (bc.abs() + cb.abs()) * ad.z.abs()
-        + (ca.abs() + ac.abs()) * bd.z.abs()
-        + (ab.abs() + ba.abs()) * cd.z.abs();
-    let spread = (hi - lo).dot(cross_terms(ad, bd)) * (1.0 + 1e-10);
+    let (det, permanent) = determinant(a, b, lo, d);
+    let spread = (hi - lo).dot(cross_terms(a - d, b - d)) * (1.0 + 1e-10);
     let bound = (FILTER * permanent).add_up(spread);
     if det > bound {
         return Some(-1);
