@@ -82,16 +82,21 @@ impl Patch {
         }
     }
 
+    /// The outward-rounded box of the exact points `c + [u0, u1]·e_u + [v0, v1]·e_v`.
+    pub fn exact_box(&self, u0: f64, u1: f64, v0: f64, v1: f64) -> IBox {
+        let (u, v) = (ival(u0, u1), ival(v0, v1));
+        std::array::from_fn(|k| {
+            ipoint(self.corner[k]) + u * ipoint(self.edge_u[k]) + v * ipoint(self.edge_v[k])
+        })
+    }
+
     /// A patch whose [`directions_from`](Patch::directions_from) box from any point holds
     /// the exact sub-parallelogram `[u0, u1] × [v0, v1]`, which that of [`Patch::part`]
     /// may miss by the rounding of its corner and edges: the outward-rounded box of `c +
     /// [u0, u1]·e_u + [v0, v1]·e_v`, as the patch from its low corner along its diagonal
     /// (`e_v` zero). For the beams that prove a part free or blocked; it has no area.
     pub fn covering_part(&self, u0: f64, u1: f64, v0: f64, v1: f64) -> Patch {
-        let (u, v) = (ival(u0, u1), ival(v0, v1));
-        let b: IBox = std::array::from_fn(|k| {
-            ipoint(self.corner[k]) + u * ipoint(self.edge_u[k]) + v * ipoint(self.edge_v[k])
-        });
+        let b = self.exact_box(u0, u1, v0, v1);
         let lo = DVec3::from(b.map(|i| i.inf()));
         let hi = DVec3::from(b.map(|i| i.sup()));
         // `lo + 1·(hi − lo)` reaches `hi` in the outward box sum: the difference rounded up.

@@ -13,10 +13,10 @@
 //! the occluder).
 
 use glam::DVec3;
-use interval_core::{Float, Interval};
+use interval_core::Float;
 
 use super::fragment::{Fragment, Side};
-use super::orient::{query_plane, side_sign, side_sign_box};
+use super::orient::{box_corner, query_plane, side_sign, side_sign_box};
 use crate::shadow::Patch;
 use crate::shadow::exact_work::BspWork;
 
@@ -57,17 +57,25 @@ enum Node {
 /// are seen. By bilinearity of the side operator these are the signs of every line from a
 /// point of the convex hull of `from` to one of `to`.
 fn signs(a: DVec3, b: DVec3, from: &[DVec3], to: &[DVec3]) -> (bool, bool) {
+    both_ways(
+        from.iter()
+            .flat_map(|&p| to.iter().map(move |&q| Some(side_sign(a, b, p, q)))),
+    )
+}
+
+/// Whether some of `signs` are positive and some negative, an unknown sign (`None`)
+/// counting as both; stops once both are seen.
+fn both_ways(signs: impl Iterator<Item = Option<i8>>) -> (bool, bool) {
     let (mut plus, mut minus) = (false, false);
-    for &p in from {
-        for &q in to {
-            match side_sign(a, b, p, q) {
-                1 => plus = true,
-                -1 => minus = true,
-                _ => {}
-            }
-            if plus && minus {
-                return (true, true);
-            }
+    for s in signs {
+        match s {
+            Some(1) => plus = true,
+            Some(-1) => minus = true,
+            Some(_) => {}
+            None => return (true, true),
+        }
+        if plus && minus {
+            break;
         }
     }
     (plus, minus)
@@ -77,17 +85,13 @@ fn signs(a: DVec3, b: DVec3, from: &[DVec3], to: &[DVec3]) -> (bool, bool) {
 /// `c + e_v` (opposite corners first: a mixed occluder shows both signs sooner): the
 /// outward-rounded interval sums, points where the sums are exact.
 pub(super) fn light_boxes(light: &Patch) -> [(DVec3, DVec3); 4] {
-    let iv = |x: f64| Interval::new_unchecked(x, x);
-    let boxed = |edges: &[DVec3]| -> (DVec3, DVec3) {
-        let b: [Interval<f64>; 3] =
-            std::array::from_fn(|k| edges.iter().fold(iv(light.corner[k]), |s, e| s + iv(e[k])));
+    [(0.0, 0.0), (1.0, 1.0), (1.0, 0.0), (0.0, 1.0)].map(|(u, v)| {
+        let b = light.exact_box(u, u, v, v);
         (
             DVec3::from(b.map(|i| i.inf())),
             DVec3::from(b.map(|i| i.sup())),
         )
-    };
-    let (eu, ev) = (light.edge_u, light.edge_v);
-    [boxed(&[]), boxed(&[eu, ev]), boxed(&[eu]), boxed(&[ev])]
+    })
 }
 
 /// Points whose convex hull holds the light: the corners of its [`light_boxes`]. Signs
@@ -97,9 +101,7 @@ pub(super) fn enclosing_corners(light: &Patch) -> Vec<DVec3> {
     let mut points = Vec::with_capacity(4);
     for (lo, hi) in light_boxes(light) {
         for k in 0..8 {
-            let p = DVec3::from(std::array::from_fn(|a| {
-                if k >> a & 1 == 0 { lo[a] } else { hi[a] }
-            }));
+            let p = box_corner(lo, hi, k);
             if !points.contains(&p) {
                 points.push(p);
             }
@@ -111,21 +113,10 @@ pub(super) fn enclosing_corners(light: &Patch) -> Vec<DVec3> {
 /// [`signs`] of the lines from the light's corners, each known as a box of doubles
 /// ([`light_boxes`]): both where a box's sign may vary.
 fn light_signs(a: DVec3, b: DVec3, from: &[(DVec3, DVec3)], to: &[DVec3]) -> (bool, bool) {
-    let (mut plus, mut minus) = (false, false);
-    for &corner in from {
-        for &q in to {
-            match side_sign_box(a, b, corner, q) {
-                Some(1) => plus = true,
-                Some(-1) => minus = true,
-                Some(_) => {}
-                None => return (true, true),
-            }
-            if plus && minus {
-                return (true, true);
-            }
-        }
-    }
-    (plus, minus)
+    both_ways(
+        from.iter()
+            .flat_map(|&corner| to.iter().map(move |&q| side_sign_box(a, b, corner, q))),
+    )
 }
 
 /// The tree of one light and one group of receivers.
@@ -182,15 +173,7 @@ impl Bsp {
     /// Restricts the insertions to the lines that reach the box `[lo, hi]`, which must hold
     /// every later query point (the caller checks it); the tree restarts from its root.
     pub fn set_region(&mut self, lo: DVec3, hi: DVec3) {
-        let mut corners: Vec<DVec3> = (0..8)
-            .map(|k| {
-                DVec3::new(
-                    if k & 1 == 0 { lo.x } else { hi.x },
-                    if k & 2 == 0 { lo.y } else { hi.y },
-                    if k & 4 == 0 { lo.z } else { hi.z },
-                )
-            })
-            .collect();
+        let mut corners: Vec<DVec3> = (0..8).map(|k| box_corner(lo, hi, k)).collect();
         // A flat box (a floor tile) has each corner twice.
         corners.sort_by(|p, q| p.to_array().partial_cmp(&q.to_array()).expect("finite"));
         corners.dedup();

@@ -8,7 +8,7 @@
 //! cut, so that the sum of the visible fragments' areas comes with a proven error bound.
 
 /// The unit roundoff of `f64`.
-const UNIT: f64 = f64::EPSILON / 2.0;
+pub(super) const UNIT: f64 = f64::EPSILON / 2.0;
 
 /// How far rounding may move the computed value of an affine function `s` at a vertex of a
 /// fragment, as a multiple of `UNIT · (|c0| + |cu| + |cv|)`: the evaluation at a vertex

@@ -5,9 +5,9 @@ use glam::DVec3;
 use interval_core::Float;
 
 use super::bsp::{Bsp, Occluder, enclosing_corners};
-use super::fragment::{Affine, Fragment};
+use super::fragment::{Affine, Fragment, UNIT};
 use super::irradiance::form_factor;
-use super::orient::side_sign;
+use super::orient::{cross_terms, side_sign};
 use crate::mesh::in_range;
 use crate::shadow::Patch;
 use crate::shadow::exact_work::BspWork;
@@ -59,9 +59,6 @@ impl Plane {
     }
 }
 
-/// The unit roundoff of `f64`.
-const UNIT: f64 = f64::EPSILON / 2.0;
-
 /// What the slab between the receiver's plane and the light holds, as far as proofs need:
 /// whether every occluder lies proven on one side of each of the two planes (none was cut
 /// by them, whose cut vertices would be rounded, and none dropped as degenerate inside the
@@ -92,12 +89,7 @@ impl Slab {
 /// The light's plane with its normal toward the receiver, and a bound on the rounding of
 /// that normal (`e_u × e_v`, two products and a difference per coordinate).
 fn light_plane_of(light: &Patch, ln: DVec3, toward: DVec3) -> (Plane, DVec3) {
-    let (u, v) = (light.edge_u.abs(), light.edge_v.abs());
-    let terms = DVec3::new(
-        u.y * v.z + u.z * v.y,
-        u.z * v.x + u.x * v.z,
-        u.x * v.y + u.y * v.x,
-    );
+    let terms = cross_terms(light.edge_u, light.edge_v);
     let plane = Plane {
         point: light.corner,
         normal: if ln.dot(toward - light.corner) > 0.0 {

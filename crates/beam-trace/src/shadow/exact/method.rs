@@ -5,11 +5,10 @@
 use std::time::{Duration, Instant};
 
 use glam::DVec3;
+use interval_core::{Float, Interval};
 
 use super::fragment::{Affine, Fragment};
 use super::group::{ExactShadows, Plane};
-use interval_core::{Float, Interval};
-
 use crate::beam::BoxClass;
 use crate::ibox::{IBox, ival, point_box};
 use crate::mesh::Shaft;

@@ -11,11 +11,8 @@ use glam::DVec3;
 
 use interval_core::Float;
 
-use super::fragment::Affine;
+use super::fragment::{Affine, UNIT};
 use crate::shadow::Patch;
-
-/// Half an ulp of 1 (the unit roundoff of `f64`).
-const UNIT: f64 = f64::EPSILON / 2.0;
 
 /// Shewchuk's bound on the rounding error of [`filtered`]'s determinant, relative to its
 /// permanent (`o3derrboundA`, "Adaptive precision floating-point arithmetic and fast robust
@@ -100,10 +97,7 @@ pub(super) fn side_sign_box(a: DVec3, b: DVec3, (lo, hi): (DVec3, DVec3), d: DVe
     }
     let mut seen = None;
     for k in 0..8 {
-        let c = DVec3::from(std::array::from_fn(|i| {
-            if k >> i & 1 == 0 { lo[i] } else { hi[i] }
-        }));
-        let s = side_sign(a, b, c, d);
+        let s = side_sign(a, b, box_corner(lo, hi, k), d);
         match seen {
             None => seen = Some(s),
             Some(t) if t != s => return None,
@@ -113,8 +107,15 @@ pub(super) fn side_sign_box(a: DVec3, b: DVec3, (lo, hi): (DVec3, DVec3), d: DVe
     seen
 }
 
+/// Corner `k` (`0..8`, bit `i` choosing `hi` along axis `i`) of the box `[lo, hi]`.
+pub(super) fn box_corner(lo: DVec3, hi: DVec3, k: usize) -> DVec3 {
+    DVec3::from(std::array::from_fn(|i| {
+        if k >> i & 1 == 0 { lo[i] } else { hi[i] }
+    }))
+}
+
 /// `(|u_y v_z| + |u_z v_y|, …)`: the cross product's terms in absolute value.
-fn cross_terms(u: DVec3, v: DVec3) -> DVec3 {
+pub(super) fn cross_terms(u: DVec3, v: DVec3) -> DVec3 {
     let (u, v) = (u.abs(), v.abs());
     DVec3::new(
         u.y * v.z + u.z * v.y,
@@ -258,12 +259,7 @@ mod tests {
                 x
             }));
             let corners: Vec<i8> = (0..8)
-                .map(|k| {
-                    let c = DVec3::from(std::array::from_fn(|i| {
-                        if k >> i & 1 == 0 { lo[i] } else { hi[i] }
-                    }));
-                    side_sign(a, b, c, d)
-                })
+                .map(|k| side_sign(a, b, box_corner(lo, hi, k), d))
                 .collect();
             if let Some(sign) = side_sign_box(a, b, (lo, hi), d) {
                 prop_assert!(corners.iter().all(|&c| c == sign), "{sign} {corners:?}");
