@@ -162,14 +162,55 @@ pub fn rejection_test(
 /// continuous over `t` by its form, [`RayFn::continuous_everywhere`], or by a checked
 /// evaluation).
 pub fn inclusion_test(g: &mut dyn RayFn, t: Interval<f64>, counters: &mut RootCounters) -> bool {
-    Eval::new(&mut *g, counters).continuous(t) && ends_change_sign(g, t, counters)
+    Eval::new(&mut *g, counters).continuous(t)
+        && ends_change_sign(g, t, &mut Ends::default(), counters)
 }
 
-fn ends_change_sign(g: &mut dyn RayFn, t: Interval<f64>, counters: &mut RootCounters) -> bool {
-    let ra = g.g(ipoint(t.inf()));
-    let rb = g.g(ipoint(t.sup()));
-    counters.g_evals += 2;
+/// Whether `g` changes sign between the ends of `t` for every ray ([`sign_change`]). A
+/// left end whose enclosure holds both signs changes sign only against a right end of
+/// exactly `[0, 0]`, which is not tried.
+fn ends_change_sign(
+    g: &mut dyn RayFn,
+    t: Interval<f64>,
+    ends: &mut Ends,
+    counters: &mut RootCounters,
+) -> bool {
+    let ra = ends.at(g, t.inf(), counters);
+    if ra.inf() < 0.0 && ra.sup() > 0.0 {
+        return false;
+    }
+    let rb = ends.at(g, t.sup(), counters);
     sign_change(ra, rb)
+}
+
+/// The enclosures of `g` at the last few ends a search's inclusion tests took. Bisection
+/// gives a piece one end of its parent's and one of its sibling's, so a depth-first search
+/// asks each end about twice; the second is answered from here. An enclosure made under
+/// one restriction of `g` holds under every other that holds at the same parameter (they
+/// are all enclosures of the same function there), so the answer is a proof either way.
+#[derive(Default)]
+struct Ends {
+    kept: [(f64, Interval<f64>); ENDS_KEPT],
+    len: usize,
+    next: usize,
+}
+
+/// Ends [`Ends`] keeps.
+const ENDS_KEPT: usize = 4;
+
+impl Ends {
+    /// The enclosure of `g` at `t`: kept, or evaluated and kept.
+    fn at(&mut self, g: &mut dyn RayFn, t: f64, counters: &mut RootCounters) -> Interval<f64> {
+        if let Some(&(_, v)) = self.kept[..self.len].iter().find(|(k, _)| *k == t) {
+            return v;
+        }
+        let v = g.g(ipoint(t));
+        counters.g_evals += 1;
+        self.kept[self.next] = (t, v);
+        self.next = (self.next + 1) % ENDS_KEPT;
+        self.len = (self.len + 1).min(ENDS_KEPT);
+        v
+    }
 }
 
 /// The rejection test that also says where it failed: [`BoxClass::Miss`], or
@@ -409,6 +450,7 @@ fn search(
         stack[first].within = Within::Open;
     }
     let mut bisections = 0u64;
+    let mut ends = Ends::default();
     // The restriction of the range being searched.
     let mut range_scope: Option<BeamScope> = None;
     while let Some(Piece { t, range, within }) = stack.pop() {
@@ -488,7 +530,7 @@ fn search(
             && continuous
             && inside(t.inf())
             && inside(t.sup())
-            && ends_change_sign(g, t, counters)
+            && ends_change_sign(g, t, &mut ends, counters)
         {
             return hit(g, t, settings, counters);
         }
@@ -501,7 +543,7 @@ fn search(
             }
             if inclusion
                 && inside(t.inf())
-                && let Some(t) = look_ahead(g, t, end, &inside, counters)
+                && let Some(t) = look_ahead(g, (t, end), &mut ends, &inside, counters)
             {
                 return hit(g, t, settings, counters);
             }
@@ -589,13 +631,13 @@ const LOOK_AHEAD: u32 = 8;
 /// `[a, b']` proves that every ray's first root lies in `[a, b']`.
 fn look_ahead(
     g: &mut dyn RayFn,
-    t: Interval<f64>,
-    end: f64,
+    (t, end): (Interval<f64>, f64),
+    ends: &mut Ends,
     inside: &dyn Fn(f64) -> bool,
     counters: &mut RootCounters,
 ) -> Option<Interval<f64>> {
+    let ra = ends.at(g, t.inf(), counters);
     let mut ev = Eval::new(g, counters);
-    let ra = ev.at(t.inf());
     sign_change_ahead(&mut ev, t, ra, end, LOOK_AHEAD, inside)
 }
 
@@ -659,4 +701,110 @@ fn t_final(
         }
     }
     Interval::new_unchecked(lo, hi)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// `g(t) = (t − 0.3)(t − b)` over a beam of one ray (`b = 0.3`: `t − 0.3`), with its
+    /// interval evaluations counted.
+    #[derive(Default)]
+    struct Line {
+        b: Option<f64>,
+        calls: u32,
+    }
+
+    impl RayFn for Line {
+        fn g(&mut self, t: Interval<f64>) -> Interval<f64> {
+            self.calls += 1;
+            let first = t - ipoint(0.3);
+            match self.b {
+                Some(b) => first * (t - ipoint(b)),
+                None => first,
+            }
+        }
+        fn g_dg(&mut self, t: Interval<f64>) -> (Interval<f64>, Interval<f64>) {
+            (self.g(t), ipoint(1.0))
+        }
+        fn g_checked(&mut self, t: Interval<f64>) -> (Interval<f64>, bool) {
+            (self.g(t), true)
+        }
+        fn g_point(&mut self, t: f64) -> f64 {
+            (t - 0.3) * self.b.map_or(1.0, |b| t - b)
+        }
+    }
+
+    #[test]
+    fn ends_answer_a_kept_parameter_without_evaluating() {
+        let (mut g, mut ends, mut c) = (Line::default(), Ends::default(), RootCounters::default());
+        let a = ends.at(&mut g, 0.5, &mut c);
+        assert_eq!(a, Line::default().g(ipoint(0.5)));
+        assert_eq!((g.calls, c.g_evals), (1, 1));
+        assert_eq!(ends.at(&mut g, 0.5, &mut c), a);
+        assert_eq!((g.calls, c.g_evals), (1, 1));
+        // Only the last ENDS_KEPT parameters are kept.
+        for t in [0.1, 0.2, 0.3, 0.4] {
+            ends.at(&mut g, t, &mut c);
+        }
+        assert_eq!(g.calls, 5);
+        ends.at(&mut g, 0.4, &mut c);
+        assert_eq!(g.calls, 5);
+        ends.at(&mut g, 0.5, &mut c);
+        assert_eq!((g.calls, c.g_evals), (6, 6));
+    }
+
+    #[test]
+    fn a_left_end_of_both_signs_is_not_paired() {
+        let (mut g, mut c) = (Line::default(), RootCounters::default());
+        // g(0.2) < 0 < g(0.4): a sign change, both ends evaluated.
+        assert!(ends_change_sign(
+            &mut g,
+            ival(0.2, 0.4),
+            &mut Ends::default(),
+            &mut c
+        ));
+        assert_eq!(g.calls, 2);
+        // A left end of both signs (a wide beam's cross-section): the right end is not asked.
+        let mut wide = Ends::default();
+        wide.kept[0] = (0.25, ival(-0.1, 0.1));
+        wide.len = 1;
+        assert!(!ends_change_sign(
+            &mut g,
+            ival(0.25, 0.9),
+            &mut wide,
+            &mut c
+        ));
+        assert_eq!(g.calls, 2);
+    }
+
+    #[test]
+    fn the_search_asks_each_shared_end_once() {
+        // g = (t − 0.3)(t − 0.9) on [0, 1]: positive at both ends, so the range is halved;
+        // [0, 0.5] changes sign. Evaluations: [0, 1], g(0), g(1), [0, 0.5], g(0.5) (g(0)
+        // is kept), and T_final's start: 6, where asking every end afresh takes 7.
+        let settings = BeamSettings {
+            epsilon: 1e-3,
+            refine_steps: 0,
+            escalate: false,
+            ..BeamSettings::default()
+        };
+        let mut g = Line {
+            b: Some(0.9),
+            calls: 0,
+        };
+        let mut c = RootCounters::default();
+        let class = evaluate_box(&mut g, &[ival(0.0, 1.0)], None, &settings, &mut c);
+        assert_eq!(
+            class,
+            BoxClass::Hit {
+                t_final: ival(0.0, 0.5)
+            }
+        );
+        assert_eq!((g.calls, c.g_evals), (6, 6));
+    }
+
+    fn ival(a: f64, b: f64) -> Interval<f64> {
+        Interval::new_unchecked(a, b)
+    }
 }
