@@ -258,6 +258,28 @@ pub fn evaluate_box(
     .0
 }
 
+/// [`evaluate_box`] (the rejection test alone without `inclusion`) for a beam lying inside
+/// a beam whose search ended undecided on `near`: each range starts as pieces graded from
+/// `near` ([`Inherited::near`]), so that the search starts at the scale where the other
+/// stopped.
+pub fn evaluate_box_near(
+    g: &mut dyn RayFn,
+    ranges: &[Interval<f64>],
+    (extent, inclusion): (Option<&Extent<'_>>, bool),
+    near: Interval<f64>,
+    settings: &BeamSettings,
+    counters: &mut RootCounters,
+) -> BoxClass {
+    let inherited = Inherited {
+        near: Some(near),
+        ..Inherited::default()
+    };
+    escalating_search(
+        g, ranges, extent, settings, inclusion, inherited, None, counters,
+    )
+    .0
+}
+
 /// What a beam lying inside a classified beam starts its search from.
 #[derive(Copy, Clone, Debug, Default)]
 pub struct Inherited<'a> {

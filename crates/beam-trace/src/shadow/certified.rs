@@ -28,7 +28,6 @@
 //! batched rounds ([`super::rounds`]) on any backend: one round per level and one for the
 //! segments.
 
-use super::beam::cleared;
 use super::hard::Visibility;
 use super::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
 use super::patch::Patch;
@@ -61,13 +60,14 @@ pub struct Certified {
 }
 
 /// A square part of the light's parameter square: `[i, i + 1] × [j, j + 1]` scaled by
-/// `2^-level`, and where the beam of its parent cleared every ray.
+/// `2^-level`, and where the beam of its parent cleared every ray: up to the start of the
+/// parent's undecided piece (`near`; none for the whole light).
 #[derive(Copy, Clone, Debug)]
 struct Part {
     level: u32,
     i: u32,
     j: u32,
-    start: f64,
+    near: Option<Interval<f64>>,
 }
 
 impl Part {
@@ -76,7 +76,7 @@ impl Part {
         level: 0,
         i: 0,
         j: 0,
-        start: 0.0,
+        near: None,
     };
 
     /// Its share of the light's area (exact: a power of 4).
@@ -113,8 +113,13 @@ impl Part {
             level: self.level + 1,
             i: i + di,
             j: j + dj,
-            start: self.start,
+            near: self.near,
         })
+    }
+
+    /// Where its segments start: every one is free before.
+    fn start(&self) -> f64 {
+        self.near.map_or(0.0, |n| n.inf().max(0.0))
     }
 }
 
@@ -151,13 +156,11 @@ impl Certified {
                 } else {
                     work.sub_beams += 1;
                 }
-                let class = occluders.beam(
-                    q.origin,
-                    &part.covering_patch(&q.light),
-                    part.start,
-                    true,
-                    &mut work.root,
-                );
+                let patch = part.covering_patch(&q.light);
+                let class = match part.near {
+                    Some(near) => occluders.beam_near(q.origin, &patch, near, true, &mut work.root),
+                    None => occluders.beam(q.origin, &patch, 0.0, true, &mut work.root),
+                };
                 match class {
                     BoxClass::Miss => lo += part.area(),
                     BoxClass::Hit { .. } => {
@@ -166,8 +169,8 @@ impl Certified {
                             work.umbra_proofs += 1;
                         }
                     }
-                    BoxClass::Undecided { .. } => open.push(Part {
-                        start: cleared(&class),
+                    BoxClass::Undecided { t } => open.push(Part {
+                        near: Some(t),
                         ..*part
                     }),
                 }
@@ -216,7 +219,7 @@ fn estimate(
         for (u, v) in strata(per_part, mix(q.seed ^ (k as u64))) {
             work.rays += 1;
             let to = patch.point(u, v);
-            let o = occluders.segment(q.origin, to, part.start, &mut work.root);
+            let o = occluders.segment(q.origin, to, part.start(), &mut work.root);
             free += u32::from(o.visibility == Visibility::Lit);
         }
         visible += part.area() * f64::from(free) / f64::from(per_part);

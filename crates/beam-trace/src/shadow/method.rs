@@ -3,6 +3,7 @@
 //! [`ShadowWork`] it counts.
 
 use glam::DVec3;
+use interval_core::Interval;
 
 use super::exact_work::{BspWork, ExactTimes};
 use super::hard::Visibility;
@@ -143,6 +144,21 @@ pub trait Occluders {
         inclusion: bool,
         c: &mut RootCounters,
     ) -> BoxClass;
+
+    /// [`Occluders::beam`] over a part of a light whose own beam from `from` ended
+    /// undecided on the parameters `near`: searched from `near.inf()` with pieces graded
+    /// from `near`'s width, at the scale where that search stopped. By default
+    /// [`Occluders::beam`] from `near.inf()`.
+    fn beam_near(
+        &mut self,
+        from: DVec3,
+        light: &Patch,
+        near: Interval<f64>,
+        inclusion: bool,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        self.beam(from, light, near.inf().max(0.0), inclusion, c)
+    }
 
     /// The triangles of the scene's meshes that may block a segment from a point of the
     /// box `from` to a point of `light` (none where the scene has no meshes).

@@ -6,7 +6,9 @@ use interval_core::Interval;
 
 use super::queries::{CpuQueries, Evals, with_mesh};
 use crate::aa::{facing, shadow_origins};
-use crate::beam::{BeamSettings, BoxClass, Extent, evaluate_box, rejection_search};
+use crate::beam::{
+    BeamSettings, BoxClass, Extent, evaluate_box, evaluate_box_near, rejection_search,
+};
 use crate::ibox::{IBox, ipoint};
 use crate::mesh::Shaft;
 use crate::ray::{Beam, Ray, point_box};
@@ -32,6 +34,24 @@ const CENTRED_PIECES: f64 = 64.0;
 /// and 12.3 s without one (every beam), 1.9, 5.8 and 8.2 s with 0.03, and 7.4, 9.0 and 11.9
 /// s with no mean-value form at all.
 const CENTRED_MIN_SPREAD: f64 = 0.01;
+
+/// Where a shadow beam's search starts: at a parameter (every ray free before it), or at
+/// the undecided piece of a beam holding this one, with pieces graded from its width.
+#[derive(Copy, Clone, Debug)]
+enum Start {
+    At(f64),
+    Near(Interval<f64>),
+}
+
+impl Start {
+    /// The parameter the search starts from.
+    fn at(self) -> f64 {
+        match self {
+            Start::At(t) => t,
+            Start::Near(near) => near.inf().max(0.0),
+        }
+    }
+}
 
 /// The scene's occluders as the shadow methods see them: the CPU queries and one thread's
 /// evaluators.
@@ -97,6 +117,20 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         let (beam, settings) = self.light_beam(from, light);
         self.queries
             .shadow_beam(self.ev, &beam, (start, inclusion), &settings, c)
+    }
+
+    fn beam_near(
+        &mut self,
+        from: DVec3,
+        light: &Patch,
+        near: Interval<f64>,
+        inclusion: bool,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        let (beam, settings) = self.light_beam(from, light);
+        let start = Start::Near(near);
+        self.queries
+            .shadow_beam_from(self.ev, &beam, (start, inclusion), &settings, c)
     }
 
     fn triangles(&mut self, from: &IBox, light: &Patch) -> Vec<ShaftTriangle> {
@@ -252,8 +286,20 @@ impl CpuQueries<'_> {
         settings: &BeamSettings,
         c: &mut RootCounters,
     ) -> BoxClass {
-        let window = Interval::new_unchecked(start, 1.0);
-        let implicit = self.shadow_beam_implicit(ev, beam, (start, inclusion), settings, c);
+        self.shadow_beam_from(ev, beam, (Start::At(start), inclusion), settings, c)
+    }
+
+    /// [`shadow_beam`](Self::shadow_beam) from `start`.
+    fn shadow_beam_from(
+        &self,
+        ev: &mut Evals,
+        beam: &Beam,
+        (start, inclusion): (Start, bool),
+        settings: &BeamSettings,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        let window = Interval::new_unchecked(start.at(), 1.0);
+        let implicit = self.implicit_search(ev, beam, (start, inclusion), settings, c);
         // Blocked by the implicit surfaces, or by one triangle, is blocked whatever the
         // other occluders do.
         match (implicit, self.mesh_beam(beam, window)) {
@@ -279,7 +325,19 @@ impl CpuQueries<'_> {
         settings: &BeamSettings,
         c: &mut RootCounters,
     ) -> BoxClass {
-        let ranges = self.beam_ranges(beam, Interval::new_unchecked(start, 1.0));
+        self.implicit_search(ev, beam, (Start::At(start), inclusion), settings, c)
+    }
+
+    /// The search of a shadow beam against the implicit surfaces from `start` on.
+    fn implicit_search(
+        &self,
+        ev: &mut Evals,
+        beam: &Beam,
+        (start, inclusion): (Start, bool),
+        settings: &BeamSettings,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        let ranges = self.beam_ranges(beam, Interval::new_unchecked(start.at(), 1.0));
         if ranges.is_empty() {
             return BoxClass::Miss;
         }
@@ -292,15 +350,19 @@ impl CpuQueries<'_> {
         ev.geo
             .beam
             .set_centred_fallback((inclusion && spread >= CENTRED_MIN_SPREAD).then_some(widest));
-        let class = if inclusion {
-            let bounds = self.scene.geometry.bounds();
-            let extent = Extent {
-                beam,
-                bounds: &bounds,
-            };
-            evaluate_box(&mut ev.geo.beam, &ranges, Some(&extent), settings, c)
-        } else {
-            rejection_search(&mut ev.geo.beam, &ranges, settings, c)
+        let bounds = self.scene.geometry.bounds();
+        let extent = Extent {
+            beam,
+            bounds: &bounds,
+        };
+        let g = &mut ev.geo.beam;
+        let class = match (start, inclusion) {
+            (Start::Near(near), _) => {
+                let extent = (inclusion.then_some(&extent), inclusion);
+                evaluate_box_near(g, &ranges, extent, near, settings, c)
+            }
+            (Start::At(_), true) => evaluate_box(g, &ranges, Some(&extent), settings, c),
+            (Start::At(_), false) => rejection_search(g, &ranges, settings, c),
         };
         ev.geo.beam.set_centred_fallback(None);
         class
