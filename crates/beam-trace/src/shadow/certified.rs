@@ -28,12 +28,15 @@
 //! batched rounds ([`super::rounds`]) on any backend: one round per level and one for the
 //! segments.
 
+use super::beam::cleared;
 use super::hard::Visibility;
 use super::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
 use super::patch::Patch;
 use super::spec::{ShadowSpec, Tolerance};
 use super::stochastic::{mix, strata};
 use crate::beam::BoxClass;
+use crate::root::RootCounters;
+use glam::DVec3;
 use interval_core::Interval;
 
 /// Deepest level of the subdivision: parts of `2^-MAX_LEVEL` of the light's side.
@@ -60,14 +63,13 @@ pub struct Certified {
 }
 
 /// A square part of the light's parameter square: `[i, i + 1] × [j, j + 1]` scaled by
-/// `2^-level`, and where the beam of its parent cleared every ray: up to the start of the
-/// parent's undecided piece (`near`; none for the whole light).
+/// `2^-level`, and how the beam of its parent ended (none for the whole light).
 #[derive(Copy, Clone, Debug)]
 struct Part {
     level: u32,
     i: u32,
     j: u32,
-    near: Option<Interval<f64>>,
+    outer: Option<BoxClass>,
 }
 
 impl Part {
@@ -76,7 +78,7 @@ impl Part {
         level: 0,
         i: 0,
         j: 0,
-        near: None,
+        outer: None,
     };
 
     /// Its share of the light's area (exact: a power of 4).
@@ -113,13 +115,33 @@ impl Part {
             level: self.level + 1,
             i: i + di,
             j: j + dj,
-            near: self.near,
+            outer: self.outer,
         })
+    }
+
+    /// Its beam from `from` over [`Part::covering_patch`] with both tests, searched from
+    /// where its parent's beam cleared every ray, with pieces graded from the parent's
+    /// undecided piece ([`Occluders::beam_near`]: the search starts at the scale where the
+    /// parent's stopped).
+    fn beam(
+        &self,
+        occluders: &mut dyn Occluders,
+        from: DVec3,
+        light: &Patch,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        let patch = self.covering_patch(light);
+        match self.outer {
+            Some(BoxClass::Undecided { t } | BoxClass::Hit { t_final: t }) => {
+                occluders.beam_near(from, &patch, t, true, c)
+            }
+            _ => occluders.beam(from, &patch, 0.0, true, c),
+        }
     }
 
     /// Where its segments start: every one is free before.
     fn start(&self) -> f64 {
-        self.near.map_or(0.0, |n| n.inf().max(0.0))
+        self.outer.as_ref().map_or(0.0, cleared)
     }
 }
 
@@ -156,11 +178,7 @@ impl Certified {
                 } else {
                     work.sub_beams += 1;
                 }
-                let patch = part.covering_patch(&q.light);
-                let class = match part.near {
-                    Some(near) => occluders.beam_near(q.origin, &patch, near, true, &mut work.root),
-                    None => occluders.beam(q.origin, &patch, 0.0, true, &mut work.root),
-                };
+                let class = part.beam(occluders, q.origin, &q.light, &mut work.root);
                 match class {
                     BoxClass::Miss => lo += part.area(),
                     BoxClass::Hit { .. } => {
@@ -169,8 +187,8 @@ impl Certified {
                             work.umbra_proofs += 1;
                         }
                     }
-                    BoxClass::Undecided { t } => open.push(Part {
-                        near: Some(t),
+                    BoxClass::Undecided { .. } => open.push(Part {
+                        outer: Some(class),
                         ..*part
                     }),
                 }
