@@ -178,6 +178,20 @@ pub trait Occluders {
         Vec::new()
     }
 
+    /// [`Occluders::beam_near`] against the implicit surfaces alone (see
+    /// [`Occluders::implicit_beam`]). By default [`Occluders::implicit_beam`] from
+    /// `near.inf()`.
+    fn implicit_beam_near(
+        &mut self,
+        from: DVec3,
+        light: &Patch,
+        near: Interval<f64>,
+        inclusion: bool,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        self.implicit_beam(from, light, near.inf().max(0.0), inclusion, c)
+    }
+
     /// [`Occluders::beam`] against the implicit surfaces alone, for a method that treats
     /// the [`triangles`](Occluders::triangles) itself (the same as `beam` where the scene
     /// has no meshes).

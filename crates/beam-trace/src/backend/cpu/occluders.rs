@@ -177,6 +177,20 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         self.queries
             .shadow_beam_implicit(self.ev, &beam, (start, inclusion), &settings, c)
     }
+
+    fn implicit_beam_near(
+        &mut self,
+        from: DVec3,
+        light: &Patch,
+        near: Interval<f64>,
+        inclusion: bool,
+        c: &mut RootCounters,
+    ) -> BoxClass {
+        let (beam, settings) = self.light_beam(from, light);
+        let start = Start::Near(near);
+        self.queries
+            .implicit_search(self.ev, &beam, (start, inclusion), &settings, c)
+    }
 }
 
 impl SceneOccluders<'_, '_, '_> {

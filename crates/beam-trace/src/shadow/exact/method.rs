@@ -12,6 +12,7 @@ use super::group::{ExactShadows, Plane};
 use crate::beam::BoxClass;
 use crate::ibox::{IBox, ival, point_box};
 use crate::mesh::Shaft;
+use crate::shadow::beam::cleared;
 use crate::shadow::hard::Visibility;
 use crate::shadow::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
 use crate::shadow::spec::ShadowSpec;
@@ -92,12 +93,15 @@ struct Sums {
 }
 
 impl Exact {
-    /// Tests the fragment `f` against the implicit surfaces, `depth` halvings left.
+    /// Tests the fragment `f` against the implicit surfaces, `depth` halvings left, inside
+    /// the beam of the piece it was cut from (or of the whole light), which ended as
+    /// `outer`: searched from where that beam cleared every ray, with pieces graded from
+    /// its undecided piece ([`Occluders::implicit_beam_near`]).
     fn refine(
         &self,
         occluders: &mut dyn Occluders,
         q: &ShadowQuery,
-        (f, depth): (Fragment, u32),
+        (f, depth, outer): (Fragment, u32, Interval<f64>),
         sums: &mut Sums,
         work: &mut ShadowWork,
     ) {
@@ -107,7 +111,8 @@ impl Exact {
         let (lo, hi) = f.bounds();
         let part = q.light.covering_part(lo[0], hi[0], lo[1], hi[1]);
         work.sub_beams += 1;
-        match occluders.implicit_beam(q.origin, &part, 0.0, true, &mut work.root) {
+        let class = occluders.implicit_beam_near(q.origin, &part, outer, true, &mut work.root);
+        match class {
             BoxClass::Miss => {
                 sums.lower += area;
                 sums.upper += area;
@@ -124,14 +129,14 @@ impl Exact {
                 let to = q.light.point(centroid[0] / n, centroid[1] / n);
                 work.rays += 1;
                 if occluders
-                    .segment(q.origin, to, 0.0, &mut work.root)
+                    .segment(q.origin, to, cleared(&class), &mut work.root)
                     .visibility
                     == Visibility::Lit
                 {
                     sums.estimate += area;
                 }
             }
-            BoxClass::Undecided { .. } => {
+            BoxClass::Undecided { t } => {
                 // Halve along the longer side of the rectangle, at its middle.
                 let axis = usize::from(hi[1] - lo[1] > hi[0] - lo[0]);
                 let mid = 0.5 * (lo[axis] + hi[axis]);
@@ -143,7 +148,7 @@ impl Exact {
                 for sign in [-1.0, 1.0] {
                     let piece = f.clip(&cut, sign);
                     if !piece.is_empty() {
-                        self.refine(occluders, q, (piece, depth - 1), sums, work);
+                        self.refine(occluders, q, (piece, depth - 1, t), sums, work);
                     }
                 }
             }
@@ -286,11 +291,11 @@ impl Exact {
                 work.umbra_proofs += 1;
                 return LightVisibility::UMBRA;
             }
-            BoxClass::Undecided { .. } => {
+            BoxClass::Undecided { t } => {
                 work.initial_occluded += 1;
                 let mut sums = Sums::default();
                 for f in parts {
-                    self.refine(occluders, q, (f, self.depth), &mut sums, work);
+                    self.refine(occluders, q, (f, self.depth, t), &mut sums, work);
                 }
                 sums
             }
