@@ -20,7 +20,7 @@
 
 use glam::DVec3;
 
-use super::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
+use super::method::{BeamStart, LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
 use super::patch::Patch;
 use super::spec::ShadowSpec;
 pub use super::spec::Strategy;
@@ -86,7 +86,13 @@ impl ShadowMethod for BeamShadows {
             Strategy::All => sub_beams(occluders, q, 0.0, self.n, work),
             Strategy::Initial => {
                 work.initial_beams += 1;
-                match occluders.beam(q.origin, &q.light, 0.0, false, &mut work.root) {
+                match occluders.beam(
+                    q.origin,
+                    &q.light,
+                    BeamStart::At(0.0),
+                    false,
+                    &mut work.root,
+                ) {
                     BoxClass::Miss => LightVisibility::LIT,
                     other => {
                         work.initial_occluded += 1;
@@ -127,7 +133,9 @@ pub fn sub_beams(
         for i in 0..n {
             work.sub_beams += 1;
             let cell = q.light.cell(i, j, n);
-            if occluders.beam(q.origin, &cell, start, false, &mut work.root) == BoxClass::Miss {
+            if occluders.beam(q.origin, &cell, BeamStart::At(start), false, &mut work.root)
+                == BoxClass::Miss
+            {
                 free += 1;
             }
         }
@@ -176,7 +184,7 @@ fn quadtree(
     } else {
         work.sub_beams += 1;
     }
-    let class = occluders.beam(q.origin, &part, start, false, &mut work.root);
+    let class = occluders.beam(q.origin, &part, BeamStart::At(start), false, &mut work.root);
     if class == BoxClass::Miss {
         *free += u64::from(i1 - i0) * u64::from(j1 - j0);
         return;

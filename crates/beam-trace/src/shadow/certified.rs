@@ -30,7 +30,7 @@
 
 use super::beam::cleared;
 use super::hard::Visibility;
-use super::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
+use super::method::{BeamStart, LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
 use super::patch::Patch;
 use super::spec::{ShadowSpec, Tolerance};
 use super::stochastic::{mix, strata};
@@ -121,7 +121,7 @@ impl Part {
 
     /// Its beam from `from` over [`Part::covering_patch`] with both tests, searched from
     /// where its parent's beam cleared every ray, with pieces graded from the parent's
-    /// undecided piece ([`Occluders::beam_near`]: the search starts at the scale where the
+    /// undecided piece ([`BeamStart::Near`]: the search starts at the scale where the
     /// parent's stopped).
     fn beam(
         &self,
@@ -130,13 +130,11 @@ impl Part {
         light: &Patch,
         c: &mut RootCounters,
     ) -> BoxClass {
-        let patch = self.covering_patch(light);
-        match self.outer {
-            Some(BoxClass::Undecided { t } | BoxClass::Hit { t_final: t }) => {
-                occluders.beam_near(from, &patch, t, true, c)
-            }
-            _ => occluders.beam(from, &patch, 0.0, true, c),
-        }
+        let start = self
+            .outer
+            .as_ref()
+            .map_or(BeamStart::At(0.0), BeamStart::inside);
+        occluders.beam(from, &self.covering_patch(light), start, true, c)
     }
 
     /// Where its segments start: every one is free before.

@@ -109,6 +109,37 @@ pub struct Occlusion {
     pub at: Option<f64>,
 }
 
+/// Where a shadow beam's search starts.
+#[derive(Copy, Clone, Debug, PartialEq)]
+pub enum BeamStart {
+    /// At this parameter: the caller knows every ray free before it.
+    At(f64),
+    /// Inside a beam over a larger part of the light, from the same point, whose search
+    /// ended undecided on these parameters (or proved them to hold every ray's first
+    /// root): every ray is free before them, and the search starts there with pieces
+    /// graded from their width, at the scale where the other stopped
+    /// ([`crate::beam::evaluate_box_near`]).
+    Near(Interval<f64>),
+}
+
+impl BeamStart {
+    /// The search of a beam inside a beam over a larger part that ended as `outer`.
+    pub fn inside(outer: &BoxClass) -> BeamStart {
+        match *outer {
+            BoxClass::Undecided { t } | BoxClass::Hit { t_final: t } => BeamStart::Near(t),
+            BoxClass::Miss => BeamStart::At(0.0),
+        }
+    }
+
+    /// The parameter before which every ray is known free.
+    pub fn at(self) -> f64 {
+        match self {
+            BeamStart::At(t) => t,
+            BeamStart::Near(near) => near.inf().max(0.0),
+        }
+    }
+}
+
 /// The queries a shadow method asks of the scene's occluders.
 pub trait Occluders {
     /// The segment from `from` to `to` for `t ∈ [start, 1]` (the caller knows it free
@@ -131,7 +162,7 @@ pub trait Occluders {
     ) -> bool;
 
     /// The shadow beam from `from` over every point of `light`, for `t ∈ [start, 1]` (the
-    /// caller knows every ray free before `start`): [`BoxClass::Miss`] proves that no ray
+    /// caller knows every ray free before `start`, see [`BeamStart`]): [`BoxClass::Miss`] proves that no ray
     /// of it meets a surface (the light is fully visible); with `inclusion`,
     /// [`BoxClass::Hit`] proves that every ray of it meets one (the light is fully hidden).
     /// Anything else is [`BoxClass::Undecided`] with the first range not cleared: every ray
@@ -140,25 +171,10 @@ pub trait Occluders {
         &mut self,
         from: DVec3,
         light: &Patch,
-        start: f64,
+        start: BeamStart,
         inclusion: bool,
         c: &mut RootCounters,
     ) -> BoxClass;
-
-    /// [`Occluders::beam`] over a part of a light whose own beam from `from` ended
-    /// undecided on the parameters `near`: searched from `near.inf()` with pieces graded
-    /// from `near`'s width, at the scale where that search stopped. By default
-    /// [`Occluders::beam`] from `near.inf()`.
-    fn beam_near(
-        &mut self,
-        from: DVec3,
-        light: &Patch,
-        near: Interval<f64>,
-        inclusion: bool,
-        c: &mut RootCounters,
-    ) -> BoxClass {
-        self.beam(from, light, near.inf().max(0.0), inclusion, c)
-    }
 
     /// The triangles of the scene's meshes that may block a segment from a point of the
     /// box `from` to a point of `light` (none where the scene has no meshes).
@@ -178,20 +194,6 @@ pub trait Occluders {
         Vec::new()
     }
 
-    /// [`Occluders::beam_near`] against the implicit surfaces alone (see
-    /// [`Occluders::implicit_beam`]). By default [`Occluders::implicit_beam`] from
-    /// `near.inf()`.
-    fn implicit_beam_near(
-        &mut self,
-        from: DVec3,
-        light: &Patch,
-        near: Interval<f64>,
-        inclusion: bool,
-        c: &mut RootCounters,
-    ) -> BoxClass {
-        self.implicit_beam(from, light, near.inf().max(0.0), inclusion, c)
-    }
-
     /// [`Occluders::beam`] against the implicit surfaces alone, for a method that treats
     /// the [`triangles`](Occluders::triangles) itself (the same as `beam` where the scene
     /// has no meshes).
@@ -199,7 +201,7 @@ pub trait Occluders {
         &mut self,
         from: DVec3,
         light: &Patch,
-        start: f64,
+        start: BeamStart,
         inclusion: bool,
         c: &mut RootCounters,
     ) -> BoxClass {

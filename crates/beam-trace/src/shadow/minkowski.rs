@@ -19,7 +19,7 @@
 //!   `n × n` sub-beams.
 
 use super::beam::{cleared, sub_beams};
-use super::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
+use super::method::{BeamStart, LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
 use super::spec::{Fine, ShadowSpec};
 use super::stochastic;
 use crate::beam::BoxClass;
@@ -44,7 +44,7 @@ impl ShadowMethod for Minkowski {
     ) -> LightVisibility {
         work.queries += 1;
         work.initial_beams += 1;
-        let class = occluders.beam(q.origin, &q.light, 0.0, true, &mut work.root);
+        let class = occluders.beam(q.origin, &q.light, BeamStart::At(0.0), true, &mut work.root);
         let start = cleared(&class);
         match class {
             BoxClass::Miss => LightVisibility::LIT,

@@ -37,8 +37,8 @@ mod spec;
 pub mod stochastic;
 
 pub use method::{
-    LightVisibility, Occluders, Occlusion, ShadowClass, ShadowMethod, ShadowQuery, ShadowWork,
-    ShaftTriangle,
+    BeamStart, LightVisibility, Occluders, Occlusion, ShadowClass, ShadowMethod, ShadowQuery,
+    ShadowWork, ShaftTriangle,
 };
 pub use patch::Patch;
 pub use spec::{Fine, ShadowSpec, Strategy, Tolerance};

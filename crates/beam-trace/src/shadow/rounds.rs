@@ -23,7 +23,7 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::{
-    LightVisibility, Occluders, Occlusion, Patch, ShadowMethod, ShadowQuery, ShadowWork,
+    BeamStart, LightVisibility, Occluders, Occlusion, Patch, ShadowMethod, ShadowQuery, ShadowWork,
     hard::Visibility,
 };
 use crate::beam::BoxClass;
@@ -159,14 +159,14 @@ impl Occluders for Replay<'_> {
         &mut self,
         from: DVec3,
         light: &Patch,
-        start: f64,
+        start: BeamStart,
         inclusion: bool,
         c: &mut RootCounters,
     ) -> BoxClass {
         let q = Question::Beam {
             from,
             light: *light,
-            start,
+            start: start.at(),
             inclusion,
         };
         match self.ask(q, c) {
@@ -327,14 +327,14 @@ mod tests {
             &mut self,
             from: DVec3,
             light: &Patch,
-            start: f64,
+            start: BeamStart,
             inclusion: bool,
             c: &mut RootCounters,
         ) -> BoxClass {
             let q = Question::Beam {
                 from,
                 light: *light,
-                start,
+                start: start.at(),
                 inclusion,
             };
             let (a, s) = Fake::answer(&q);

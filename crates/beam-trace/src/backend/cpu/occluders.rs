@@ -16,7 +16,7 @@ use crate::root::{Proof, RootCounters, RootFinder, RootResult};
 use crate::sample::SHADOW_OFFSET;
 use crate::shadow::beam::shadow_beam_settings;
 use crate::shadow::hard::segment_visibility;
-use crate::shadow::{Occluders, Occlusion, Patch, ShaftTriangle};
+use crate::shadow::{BeamStart, Occluders, Occlusion, Patch, ShaftTriangle};
 
 /// Pieces of a shadow beam asked to prove both ways (free or blocked) try the mean-value
 /// form where their natural enclosure holds 0 ([`crate::ray::BeamEval::set_centred_fallback`])
@@ -34,24 +34,6 @@ const CENTRED_PIECES: f64 = 64.0;
 /// and 12.3 s without one (every beam), 1.9, 5.8 and 8.2 s with 0.03, and 7.4, 9.0 and 11.9
 /// s with no mean-value form at all.
 const CENTRED_MIN_SPREAD: f64 = 0.01;
-
-/// Where a shadow beam's search starts: at a parameter (every ray free before it), or at
-/// the undecided piece of a beam holding this one, with pieces graded from its width.
-#[derive(Copy, Clone, Debug)]
-enum Start {
-    At(f64),
-    Near(Interval<f64>),
-}
-
-impl Start {
-    /// The parameter the search starts from.
-    fn at(self) -> f64 {
-        match self {
-            Start::At(t) => t,
-            Start::Near(near) => near.inf().max(0.0),
-        }
-    }
-}
 
 /// The scene's occluders as the shadow methods see them: the CPU queries and one thread's
 /// evaluators.
@@ -110,27 +92,13 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         &mut self,
         from: DVec3,
         light: &Patch,
-        start: f64,
+        start: BeamStart,
         inclusion: bool,
         c: &mut RootCounters,
     ) -> BoxClass {
         let (beam, settings) = self.light_beam(from, light);
         self.queries
             .shadow_beam(self.ev, &beam, (start, inclusion), &settings, c)
-    }
-
-    fn beam_near(
-        &mut self,
-        from: DVec3,
-        light: &Patch,
-        near: Interval<f64>,
-        inclusion: bool,
-        c: &mut RootCounters,
-    ) -> BoxClass {
-        let (beam, settings) = self.light_beam(from, light);
-        let start = Start::Near(near);
-        self.queries
-            .shadow_beam_from(self.ev, &beam, (start, inclusion), &settings, c)
     }
 
     fn triangles(&mut self, from: &IBox, light: &Patch) -> Vec<ShaftTriangle> {
@@ -169,27 +137,13 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         &mut self,
         from: DVec3,
         light: &Patch,
-        start: f64,
+        start: BeamStart,
         inclusion: bool,
         c: &mut RootCounters,
     ) -> BoxClass {
         let (beam, settings) = self.light_beam(from, light);
         self.queries
             .shadow_beam_implicit(self.ev, &beam, (start, inclusion), &settings, c)
-    }
-
-    fn implicit_beam_near(
-        &mut self,
-        from: DVec3,
-        light: &Patch,
-        near: Interval<f64>,
-        inclusion: bool,
-        c: &mut RootCounters,
-    ) -> BoxClass {
-        let (beam, settings) = self.light_beam(from, light);
-        let start = Start::Near(near);
-        self.queries
-            .implicit_search(self.ev, &beam, (start, inclusion), &settings, c)
     }
 }
 
@@ -263,7 +217,7 @@ impl CpuQueries<'_> {
             };
             let settings = shadow_beam_settings(&self.plan.beam, diagonal, centre, &patch);
             !matches!(
-                self.shadow_beam(ev, &beam, (start, true), &settings, c),
+                self.shadow_beam(ev, &beam, (BeamStart::At(start), true), &settings, c),
                 BoxClass::Undecided { .. }
             )
         })
@@ -296,24 +250,12 @@ impl CpuQueries<'_> {
         &self,
         ev: &mut Evals,
         beam: &Beam,
-        (start, inclusion): (f64, bool),
-        settings: &BeamSettings,
-        c: &mut RootCounters,
-    ) -> BoxClass {
-        self.shadow_beam_from(ev, beam, (Start::At(start), inclusion), settings, c)
-    }
-
-    /// [`shadow_beam`](Self::shadow_beam) from `start`.
-    fn shadow_beam_from(
-        &self,
-        ev: &mut Evals,
-        beam: &Beam,
-        (start, inclusion): (Start, bool),
+        (start, inclusion): (BeamStart, bool),
         settings: &BeamSettings,
         c: &mut RootCounters,
     ) -> BoxClass {
         let window = Interval::new_unchecked(start.at(), 1.0);
-        let implicit = self.implicit_search(ev, beam, (start, inclusion), settings, c);
+        let implicit = self.shadow_beam_implicit(ev, beam, (start, inclusion), settings, c);
         // Blocked by the implicit surfaces, or by one triangle, is blocked whatever the
         // other occluders do.
         match (implicit, self.mesh_beam(beam, window)) {
@@ -335,19 +277,7 @@ impl CpuQueries<'_> {
         &self,
         ev: &mut Evals,
         beam: &Beam,
-        (start, inclusion): (f64, bool),
-        settings: &BeamSettings,
-        c: &mut RootCounters,
-    ) -> BoxClass {
-        self.implicit_search(ev, beam, (Start::At(start), inclusion), settings, c)
-    }
-
-    /// The search of a shadow beam against the implicit surfaces from `start` on.
-    fn implicit_search(
-        &self,
-        ev: &mut Evals,
-        beam: &Beam,
-        (start, inclusion): (Start, bool),
+        (start, inclusion): (BeamStart, bool),
         settings: &BeamSettings,
         c: &mut RootCounters,
     ) -> BoxClass {
@@ -371,12 +301,12 @@ impl CpuQueries<'_> {
         };
         let g = &mut ev.geo.beam;
         let class = match (start, inclusion) {
-            (Start::Near(near), _) => {
+            (BeamStart::Near(near), _) => {
                 let extent = (inclusion.then_some(&extent), inclusion);
                 evaluate_box_near(g, &ranges, extent, near, settings, c)
             }
-            (Start::At(_), true) => evaluate_box(g, &ranges, Some(&extent), settings, c),
-            (Start::At(_), false) => rejection_search(g, &ranges, settings, c),
+            (BeamStart::At(_), true) => evaluate_box(g, &ranges, Some(&extent), settings, c),
+            (BeamStart::At(_), false) => rejection_search(g, &ranges, settings, c),
         };
         ev.geo.beam.set_centred_fallback(None);
         class

@@ -14,7 +14,9 @@ use crate::ibox::{IBox, ival, point_box};
 use crate::mesh::Shaft;
 use crate::shadow::beam::cleared;
 use crate::shadow::hard::Visibility;
-use crate::shadow::method::{LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
+use crate::shadow::method::{
+    BeamStart, LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork,
+};
 use crate::shadow::spec::ShadowSpec;
 use crate::shadow::stochastic::Stochastic;
 
@@ -96,12 +98,12 @@ impl Exact {
     /// Tests the fragment `f` against the implicit surfaces, `depth` halvings left, inside
     /// the beam of the piece it was cut from (or of the whole light), which ended as
     /// `outer`: searched from where that beam cleared every ray, with pieces graded from
-    /// its undecided piece ([`Occluders::implicit_beam_near`]).
+    /// its undecided piece ([`BeamStart::inside`]).
     fn refine(
         &self,
         occluders: &mut dyn Occluders,
         q: &ShadowQuery,
-        (f, depth, outer): (Fragment, u32, Interval<f64>),
+        (f, depth, outer): (Fragment, u32, BoxClass),
         sums: &mut Sums,
         work: &mut ShadowWork,
     ) {
@@ -111,7 +113,8 @@ impl Exact {
         let (lo, hi) = f.bounds();
         let part = q.light.covering_part(lo[0], hi[0], lo[1], hi[1]);
         work.sub_beams += 1;
-        let class = occluders.implicit_beam_near(q.origin, &part, outer, true, &mut work.root);
+        let start = BeamStart::inside(&outer);
+        let class = occluders.implicit_beam(q.origin, &part, start, true, &mut work.root);
         match class {
             BoxClass::Miss => {
                 sums.lower += area;
@@ -136,7 +139,7 @@ impl Exact {
                     sums.estimate += area;
                 }
             }
-            BoxClass::Undecided { t } => {
+            BoxClass::Undecided { .. } => {
                 // Halve along the longer side of the rectangle, at its middle.
                 let axis = usize::from(hi[1] - lo[1] > hi[0] - lo[0]);
                 let mid = 0.5 * (lo[axis] + hi[axis]);
@@ -148,7 +151,7 @@ impl Exact {
                 for sign in [-1.0, 1.0] {
                     let piece = f.clip(&cut, sign);
                     if !piece.is_empty() {
-                        self.refine(occluders, q, (piece, depth - 1, t), sums, work);
+                        self.refine(occluders, q, (piece, depth - 1, class), sums, work);
                     }
                 }
             }
@@ -277,7 +280,8 @@ impl Exact {
         let visible: f64 = parts.iter().map(Fragment::area).sum();
         // The implicit surfaces: one beam over the whole light first.
         work.initial_beams += 1;
-        let whole = occluders.implicit_beam(q.origin, &q.light, 0.0, true, &mut work.root);
+        let start = BeamStart::At(0.0);
+        let whole = occluders.implicit_beam(q.origin, &q.light, start, true, &mut work.root);
         let sums = match whole {
             BoxClass::Miss => Sums {
                 lower: visible,
@@ -291,11 +295,11 @@ impl Exact {
                 work.umbra_proofs += 1;
                 return LightVisibility::UMBRA;
             }
-            BoxClass::Undecided { t } => {
+            BoxClass::Undecided { .. } => {
                 work.initial_occluded += 1;
                 let mut sums = Sums::default();
                 for f in parts {
-                    self.refine(occluders, q, (f, self.depth, t), &mut sums, work);
+                    self.refine(occluders, q, (f, self.depth, whole), &mut sums, work);
                 }
                 sums
             }
