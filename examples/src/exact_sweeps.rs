@@ -21,8 +21,8 @@ use std::path::Path;
 
 use beam_trace::mesh::Triangle;
 use beam_trace::scene::{AaMode, AreaLight, Material, MeshSurface};
-use beam_trace::shadow::Patch;
 use beam_trace::shadow::exact::NODE_BYTES;
+use beam_trace::shadow::{Patch, ShadowSpec};
 use beam_trace::{Light, NoProgress, RenderOutput, Scene, render};
 
 /// What to run.
@@ -272,7 +272,10 @@ pub fn report(path: &Path, generate: Option<(usize, u64)>, o: &Options) -> Resul
         rayon::current_num_threads()
     );
     let exact = run(&scene, "exact")?;
-    let single = run(&scene, "exact:8:1")?;
+    let single = run(
+        &scene,
+        &format!("exact:{}:1", ShadowSpec::DEFAULT_EXACT_DEPTH),
+    )?;
     let _ = writeln!(
         md,
         "**The exact method and its coherence**\n\n| method | time (s) | BSP nodes | peak nodes | \
@@ -280,7 +283,7 @@ pub fn report(path: &Path, generate: Option<(usize, u64)>, o: &Options) -> Resul
     );
     for (name, r) in [
         ("`exact` (groups)", &exact),
-        ("`exact:8:1` (a tree per query)", &single),
+        ("`exact:D:1` (a tree per query)", &single),
     ] {
         let peak = r.counter("bsp_peak_nodes");
         let _ = writeln!(

@@ -142,8 +142,11 @@ impl ShadowSpec {
     pub const MAX_BUDGET: u32 = 1 << 20;
     /// Largest number of halvings of `exact:D`.
     pub const MAX_EXACT_DEPTH: u32 = 24;
-    /// Halvings of `exact` without a depth.
-    pub const DEFAULT_EXACT_DEPTH: u32 = 8;
+    /// Halvings of `exact` without a depth. On `scenes/meshes.toml` at 96 × 72 (an
+    /// implicit torus among the occluders), against `stochastic:4096`: RMSE 0.00091 with
+    /// 8 halvings, 0.00056 with 9, 0.00038 with 10 and 0.00028 with 12, for 1.09, 1.14,
+    /// 1.49 and 3.08 s of the soft-shadow pass (`stochastic:64`: 0.0056).
+    pub const DEFAULT_EXACT_DEPTH: u32 = 10;
     /// Largest group of `exact:D:G`, and its default: the runs of neighbouring queries
     /// that the renderer hands to a method together (the samples of an 8 × 8 tile of
     /// pixels, one sample each).
