@@ -132,6 +132,9 @@ pub struct BeamSettings {
     /// run again from there in the next precision ([`RayFn::escalate`]; double-double
     /// over a beam is narrowed by the centred form of [`crate::centred`]).
     pub escalate: bool,
+    /// How far the inclusion test looks past a final undecided piece: up to
+    /// `2^look_ahead` widths of that piece.
+    pub look_ahead: u32,
 }
 
 impl Default for BeamSettings {
@@ -142,6 +145,7 @@ impl Default for BeamSettings {
             max_bisections: 1024,
             refine_steps: 12,
             escalate: true,
+            look_ahead: LOOK_AHEAD,
         }
     }
 }
@@ -565,7 +569,7 @@ fn search(
             }
             if inclusion
                 && inside(t.inf())
-                && let Some(t) = look_ahead(g, (t, end), &mut ends, &inside, counters)
+                && let Some(t) = look_ahead(g, (t, end, settings), &mut ends, &inside, counters)
             {
                 return hit(g, t, settings, counters);
             }
@@ -640,8 +644,9 @@ const RESTRICT_AGAIN: f64 = 0.25;
 /// of the tape it prunes, which a short tape does not win back.
 const RESTRICT_MIN_LEN: usize = 128;
 
-/// How far [`look_ahead`] looks: up to `2^LOOK_AHEAD` widths of the final piece.
-const LOOK_AHEAD: u32 = 8;
+/// How far the inclusion test's look-ahead looks by default ([`BeamSettings::look_ahead`]): up to
+/// `2^LOOK_AHEAD` widths of the final piece.
+pub const LOOK_AHEAD: u32 = 8;
 
 /// The inclusion test across piece boundaries. Bisection cuts `T` at the same dyadic
 /// points at every level, so when the roots of the beam's rays straddle such a point, no
@@ -653,14 +658,14 @@ const LOOK_AHEAD: u32 = 8;
 /// `[a, b']` proves that every ray's first root lies in `[a, b']`.
 fn look_ahead(
     g: &mut dyn RayFn,
-    (t, end): (Interval<f64>, f64),
+    (t, end, settings): (Interval<f64>, f64, &BeamSettings),
     ends: &mut Ends,
     inside: &dyn Fn(f64) -> bool,
     counters: &mut RootCounters,
 ) -> Option<Interval<f64>> {
     let ra = ends.at(g, t.inf(), counters);
     let mut ev = Eval::new(g, counters);
-    sign_change_ahead(&mut ev, t, ra, end, LOOK_AHEAD, inside)
+    sign_change_ahead(&mut ev, t, ra, end, settings.look_ahead, inside)
 }
 
 /// Tightens the range `t` of an inclusion into `T_final` (thesis Fig. 5.11): every ray has

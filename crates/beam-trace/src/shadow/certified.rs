@@ -121,8 +121,8 @@ impl Part {
 
     /// Its beam from `from` over [`Part::covering_patch`] with both tests, searched from
     /// where its parent's beam cleared every ray, with pieces graded from the parent's
-    /// undecided piece ([`BeamStart::Near`]: the search starts at the scale where the
-    /// parent's stopped).
+    /// undecided piece, and final pieces scaled to its width ([`BeamStart::Finer`]: the
+    /// search starts at the scale where the parent's stopped, and decides small parts).
     fn beam(
         &self,
         occluders: &mut dyn Occluders,
@@ -133,7 +133,7 @@ impl Part {
         let start = self
             .outer
             .as_ref()
-            .map_or(BeamStart::At(0.0), BeamStart::inside);
+            .map_or(BeamStart::At(0.0), BeamStart::finer_inside);
         occluders.beam(from, &self.covering_patch(light), start, true, c)
     }
 

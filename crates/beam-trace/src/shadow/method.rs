@@ -120,6 +120,11 @@ pub enum BeamStart {
     /// graded from their width, at the scale where the other stopped
     /// ([`crate::beam::evaluate_box_near`]).
     Near(Interval<f64>),
+    /// As [`BeamStart::Near`], for a part meant to be decided whole however small it is
+    /// (a subdivision of the light towards a tolerance): its final pieces are also at most
+    /// a quarter of the part's angular size long, and its inclusion test looks further
+    /// ahead ([`crate::shadow::beam::inner_beam_settings`]).
+    Finer(Interval<f64>),
 }
 
 impl BeamStart {
@@ -131,11 +136,19 @@ impl BeamStart {
         }
     }
 
+    /// [`BeamStart::inside`], with [`BeamStart::Finer`] pieces.
+    pub fn finer_inside(outer: &BoxClass) -> BeamStart {
+        match BeamStart::inside(outer) {
+            BeamStart::Near(t) => BeamStart::Finer(t),
+            other => other,
+        }
+    }
+
     /// The parameter before which every ray is known free.
     pub fn at(self) -> f64 {
         match self {
             BeamStart::At(t) => t,
-            BeamStart::Near(near) => near.inf().max(0.0),
+            BeamStart::Near(near) | BeamStart::Finer(near) => near.inf().max(0.0),
         }
     }
 }

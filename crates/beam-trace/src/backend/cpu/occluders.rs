@@ -14,7 +14,7 @@ use crate::mesh::Shaft;
 use crate::ray::{Beam, Ray, point_box};
 use crate::root::{Proof, RootCounters, RootFinder, RootResult};
 use crate::sample::SHADOW_OFFSET;
-use crate::shadow::beam::shadow_beam_settings;
+use crate::shadow::beam::{inner_beam_settings, shadow_beam_settings};
 use crate::shadow::hard::segment_visibility;
 use crate::shadow::{BeamStart, Occluders, Occlusion, Patch, ShaftTriangle};
 
@@ -96,7 +96,7 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         inclusion: bool,
         c: &mut RootCounters,
     ) -> BoxClass {
-        let (beam, settings) = self.light_beam(from, light);
+        let (beam, settings) = self.light_beam(from, light, start);
         self.queries
             .shadow_beam(self.ev, &beam, (start, inclusion), &settings, c)
     }
@@ -141,15 +141,16 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         inclusion: bool,
         c: &mut RootCounters,
     ) -> BoxClass {
-        let (beam, settings) = self.light_beam(from, light);
+        let (beam, settings) = self.light_beam(from, light, start);
         self.queries
             .shadow_beam_implicit(self.ev, &beam, (start, inclusion), &settings, c)
     }
 }
 
 impl SceneOccluders<'_, '_, '_> {
-    /// The shadow beam from `from` over `light`, and its search settings.
-    fn light_beam(&self, from: DVec3, light: &Patch) -> (Beam, BeamSettings) {
+    /// The shadow beam from `from` over `light`, and its search settings (finer for
+    /// [`BeamStart::Finer`], [`inner_beam_settings`]).
+    fn light_beam(&self, from: DVec3, light: &Patch, start: BeamStart) -> (Beam, BeamSettings) {
         let beam = Beam {
             origin: point_box(from),
             dir: light.directions_from(from),
@@ -160,6 +161,10 @@ impl SceneOccluders<'_, '_, '_> {
             from,
             light,
         );
+        let settings = match start {
+            BeamStart::Finer(_) => inner_beam_settings(&settings, from, light),
+            BeamStart::At(_) | BeamStart::Near(_) => settings,
+        };
         (beam, settings)
     }
 }
@@ -301,7 +306,7 @@ impl CpuQueries<'_> {
         };
         let g = &mut ev.geo.beam;
         let class = match (start, inclusion) {
-            (BeamStart::Near(near), _) => {
+            (BeamStart::Near(near) | BeamStart::Finer(near), _) => {
                 let extent = (inclusion.then_some(&extent), inclusion);
                 evaluate_box_near(g, &ranges, extent, near, settings, c)
             }
