@@ -150,6 +150,8 @@ pub(super) fn query_plane(a: DVec3, b: DVec3, light: &Patch, x: DVec3) -> (Affin
 #[cfg(test)]
 mod tests {
     use super::*;
+    use interval_core::Interval;
+    use interval_core::dd::DdInterval;
     use proptest::prelude::*;
 
     #[test]
@@ -210,10 +212,11 @@ mod tests {
     proptest! {
         #![proptest_config(ProptestConfig::with_cases(4096))]
 
-        /// The query plane's constant term lies within its error bound of the determinant
-        /// that the adaptive predicate evaluates (whose own error is below `3 UNIT` times
-        /// the same permanent), also where it cancels: `x` a few ulps off the plane of the
-        /// edge and the light's corner, at scales from 1e-3 to 1e3.
+        /// The query plane's coefficients lie within its error bound of the exact ones
+        /// (enclosed in double-double interval arithmetic, far tighter than the bound),
+        /// summed as the bound is over the light's square, also where they cancel: `x` a
+        /// few ulps off the plane of the edge and the light's corner, at scales from 1e-3
+        /// to 1e3.
         #[test]
         fn the_query_plane_error_bound_holds(
             (a, b, c, x) in (point(), point(), point(), point()),
@@ -226,14 +229,42 @@ mod tests {
             let x = if near { a + s * (b - a) + t * (c - a) } else { x * k };
             let light = Patch { corner: c, edge_u: DVec3::X * k, edge_v: DVec3::Y * k };
             let (plane, error) = query_plane(a, b, &light, x);
-            let exact = -adaptive(a, b, c, x);
-            let terms = cross_terms(x - a, b - a);
-            let reference_error = 3.0 * UNIT * (c - a).abs().dot(terms) * (1.0 + 1e-9);
+            let off = |computed: f64, exact: Interval<f64>| {
+                (computed - exact.inf()).abs().max((exact.sup() - computed).abs())
+            };
+            let (c0, cu, cv) = exact_plane(a, b, &light, x);
+            let misplaced = off(plane.c0, c0) + off(plane.cu, cu) + off(plane.cv, cv);
             prop_assert!(
-                (plane.c0 - exact).abs() <= error + reference_error,
-                "c0 {} against {} (bound {})", plane.c0, exact, error
+                misplaced <= error,
+                "c0 {} against {:?}, cu {} against {:?}, cv {} against {:?} (bound {})",
+                plane.c0, c0, plane.cu, cu, plane.cv, cv, error
             );
         }
+    }
+
+    /// Enclosures of the query plane's coefficients `((c − a) · m, e_u · m, e_v · m)` for
+    /// `m = (x − a) × (b − a)` on the doubles given, in double-double interval arithmetic.
+    fn exact_plane(
+        a: DVec3,
+        b: DVec3,
+        light: &Patch,
+        x: DVec3,
+    ) -> (Interval<f64>, Interval<f64>, Interval<f64>) {
+        let v = |p: DVec3| p.to_array().map(DdInterval::point);
+        let sub = |p: [DdInterval; 3], q: [DdInterval; 3]| std::array::from_fn(|i| p[i] - q[i]);
+        let (a, b, x) = (v(a), v(b), v(x));
+        let (w, d) = (sub(x, a), sub(b, a));
+        let m: [DdInterval; 3] = [
+            w[1] * d[2] - w[2] * d[1],
+            w[2] * d[0] - w[0] * d[2],
+            w[0] * d[1] - w[1] * d[0],
+        ];
+        let dot = |e: [DdInterval; 3]| (e[0] * m[0] + e[1] * m[1] + e[2] * m[2]).to_interval();
+        (
+            dot(sub(v(light.corner), a)),
+            dot(v(light.edge_u)),
+            dot(v(light.edge_v)),
+        )
     }
 
     proptest! {
