@@ -644,9 +644,9 @@ const RESTRICT_AGAIN: f64 = 0.25;
 /// of the tape it prunes, which a short tape does not win back.
 const RESTRICT_MIN_LEN: usize = 128;
 
-/// How far the inclusion test's look-ahead looks by default ([`BeamSettings::look_ahead`]): up to
-/// `2^LOOK_AHEAD` widths of the final piece.
-pub const LOOK_AHEAD: u32 = 8;
+/// How far the inclusion test's look-ahead looks by default
+/// ([`BeamSettings::look_ahead`]): up to `2^LOOK_AHEAD` widths of the final piece.
+const LOOK_AHEAD: u32 = 8;
 
 /// The inclusion test across piece boundaries. Bisection cuts `T` at the same dyadic
 /// points at every level, so when the roots of the beam's rays straddle such a point, no
@@ -734,7 +734,7 @@ fn t_final(
 mod tests {
     use super::*;
 
-    /// `g(t) = (t − 0.3)(t − b)` over a beam of one ray (`b = 0.3`: `t − 0.3`), with its
+    /// `g(t) = t − 0.3`, or `(t − 0.3)(t − b)` with `b`, over a beam of one ray, with its
     /// interval evaluations counted.
     #[derive(Default)]
     struct Line {

@@ -150,10 +150,7 @@ impl ShadowMethod for BeamShadows {
 /// How far a beam over the light cleared every ray: the start of its first undecided
 /// range (0 when it did not say).
 pub fn cleared(class: &BoxClass) -> f64 {
-    match class {
-        BoxClass::Undecided { t } | BoxClass::Hit { t_final: t } => t.inf().max(0.0),
-        BoxClass::Miss => 0.0,
-    }
+    BeamStart::inside(class).at()
 }
 
 /// The `n × n` sub-beams of `q`, searched from `start` on: the share of them proven free

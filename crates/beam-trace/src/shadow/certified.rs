@@ -28,7 +28,6 @@
 //! batched rounds ([`super::rounds`]) on any backend: one round per level and one for the
 //! segments.
 
-use super::beam::cleared;
 use super::hard::Visibility;
 use super::method::{BeamStart, LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
 use super::patch::Patch;
@@ -130,16 +129,15 @@ impl Part {
         light: &Patch,
         c: &mut RootCounters,
     ) -> BoxClass {
-        let start = self
-            .outer
-            .as_ref()
-            .map_or(BeamStart::At(0.0), BeamStart::finer_inside);
-        occluders.beam(from, &self.covering_patch(light), start, true, c)
+        occluders.beam(from, &self.covering_patch(light), self.start(), true, c)
     }
 
-    /// Where its segments start: every one is free before.
-    fn start(&self) -> f64 {
-        self.outer.as_ref().map_or(0.0, cleared)
+    /// Where its searches start (its segments from [`BeamStart::at`]: every one is free
+    /// before).
+    fn start(&self) -> BeamStart {
+        self.outer
+            .as_ref()
+            .map_or(BeamStart::At(0.0), BeamStart::finer_inside)
     }
 }
 
@@ -235,7 +233,7 @@ fn estimate(
         for (u, v) in strata(per_part, mix(q.seed ^ (k as u64))) {
             work.rays += 1;
             let to = patch.point(u, v);
-            let o = occluders.segment(q.origin, to, part.start(), &mut work.root);
+            let o = occluders.segment(q.origin, to, part.start().at(), &mut work.root);
             free += u32::from(o.visibility == Visibility::Lit);
         }
         visible += part.area() * f64::from(free) / f64::from(per_part);

@@ -175,8 +175,8 @@ pub trait Occluders {
     ) -> bool;
 
     /// The shadow beam from `from` over every point of `light`, for `t ∈ [start, 1]` (the
-    /// caller knows every ray free before `start`, see [`BeamStart`]): [`BoxClass::Miss`] proves that no ray
-    /// of it meets a surface (the light is fully visible); with `inclusion`,
+    /// caller knows every ray free before `start`, see [`BeamStart`]): [`BoxClass::Miss`]
+    /// proves that no ray of it meets a surface (the light is fully visible); with `inclusion`,
     /// [`BoxClass::Hit`] proves that every ray of it meets one (the light is fully hidden).
     /// Anything else is [`BoxClass::Undecided`] with the first range not cleared: every ray
     /// is free before it, which sub-beams and segments of the same light may start from.
