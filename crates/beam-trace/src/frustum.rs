@@ -51,7 +51,6 @@
 
 use implicit_expr::Tape;
 use interval_core::Interval;
-use rustc_hash::FxHashMap;
 
 use crate::beam::{BeamScope, BoxClass, Extent, inclusion_test};
 use crate::camera::{Camera, EdgeBeams};
@@ -182,30 +181,71 @@ pub fn first_cells(
         filled: Filled::new(tile),
         counters,
         chain: Vec::new(),
-        columns: FxHashMap::default(),
+        columns: Columns::new(tile),
     };
     if !range.is_empty() {
-        let column = search.column(tile);
+        let column = search.column(tile, 0);
         search.visit(&column, range, false);
     }
     search.first
 }
 
 /// A rectangle of pixels with its beam and the beam's largest spread of directions (its
-/// cross-section at `t` is the spread times `t`: the origin is the eye).
+/// cross-section at `t` is the spread times `t`: the origin is the eye), and its node in
+/// the tile's quadtree.
 #[derive(Copy, Clone)]
 struct Column {
     r: PixelRect,
     beam: Beam,
     spread: f64,
+    node: usize,
 }
 
 impl Column {
-    /// The column of `r`, whose beam `beams` gives.
-    fn of(beams: &EdgeBeams, r: PixelRect) -> Self {
+    /// The column of `r`, node `node` of the quadtree, whose beam `beams` gives.
+    fn of(beams: &EdgeBeams, r: PixelRect, node: usize) -> Self {
         let beam = beams.beam(r);
         let spread = beam.dir.iter().map(|d| d.wid()).fold(0.0, f64::max);
-        Self { r, beam, spread }
+        Self {
+            r,
+            beam,
+            spread,
+            node,
+        }
+    }
+
+    /// The quadtree node of the quadrant at `position` (0 to 3) of this column's rectangle:
+    /// the tile is node 0, the quadrants of node `n` are `4n + 1` to `4n + 4`.
+    fn child(&self, position: usize) -> usize {
+        4 * self.node + 1 + position
+    }
+}
+
+/// The columns of a tile's quadtree made so far, by node: a rectangle is split again in
+/// each range of its parent's column that is split, and its beam (rounded sums per axis)
+/// is made once.
+struct Columns {
+    /// Per node, 0 where its column is not made yet, else its index in `made` plus one.
+    slots: Vec<u32>,
+    made: Vec<Column>,
+}
+
+impl Columns {
+    /// Quadtrees deeper than this (tiles wider than 1024 pixels) make their deepest
+    /// columns each time (the table would grow past a million nodes).
+    const MAX_DEPTH: u32 = 10;
+
+    /// No column of `tile`'s quadtree made.
+    fn new(tile: PixelRect) -> Self {
+        // Halving a side of `n` pixels (the larger half first) reaches one pixel after
+        // `ceil(log2 n)` splits.
+        let side = (tile.x1 - tile.x0).max(tile.y1 - tile.y0).max(1);
+        let depth = side.next_power_of_two().trailing_zeros().min(Self::MAX_DEPTH);
+        let nodes = (4usize.pow(depth + 1) - 1) / 3;
+        Self {
+            slots: vec![0; nodes],
+            made: Vec::new(),
+        }
     }
 }
 
@@ -288,19 +328,22 @@ struct Search<'a> {
     /// The restrictions of `g` of the cells holding the one searched, outermost first
     /// (each over its own cell, a part of the one before); empty: the whole `g`.
     chain: Vec<BeamScope>,
-    /// The columns made so far: a rectangle is split again in each range of its parent's
-    /// column that is split, and its beam (rounded sums per axis) is made once.
-    columns: FxHashMap<PixelRect, Column>,
+    /// The columns made so far.
+    columns: Columns,
 }
 
 impl Search<'_> {
-    /// The column of `r`, made on first use.
-    fn column(&mut self, r: PixelRect) -> Column {
-        let beams = &self.beams;
-        *self
-            .columns
-            .entry(r)
-            .or_insert_with(|| Column::of(beams, r))
+    /// The column of `r`, node `node` of the tile's quadtree, made on first use.
+    fn column(&mut self, r: PixelRect, node: usize) -> Column {
+        let Columns { slots, made } = &mut self.columns;
+        let Some(slot) = slots.get_mut(node) else {
+            return Column::of(&self.beams, r, node);
+        };
+        if *slot == 0 {
+            made.push(Column::of(&self.beams, r, node));
+            *slot = made.len() as u32;
+        }
+        made[*slot as usize - 1]
     }
 
     fn index(&self, x: u32, y: u32) -> usize {
@@ -489,6 +532,7 @@ impl Search<'_> {
             r,
             ref beam,
             spread,
+            ..
         } = *column;
         if self.filled.all(r) {
             return false;
@@ -570,13 +614,13 @@ impl Search<'_> {
         let (near, far) = t.bisect();
         let far_positive = if shallow {
             let mut all = true;
-            for q in r.quadrants() {
+            for (k, q) in r.numbered_quadrants() {
                 if self.filled.all(q) {
                     // Both halves would return at once (not proven positive): no beam.
                     all = false;
                     continue;
                 }
-                let quadrant = self.column(q);
+                let quadrant = self.column(q, column.child(k));
                 let middle = self.visit(&quadrant, near, near_positive);
                 all &= self.visit(&quadrant, far, middle);
             }

@@ -46,6 +46,12 @@ impl PixelRect {
     /// The (up to) four quadrants, top left, top right, bottom left, bottom right (the
     /// empty ones of a rectangle one pixel wide or high left out), without allocating.
     pub fn quadrants(&self) -> impl Iterator<Item = PixelRect> + use<> {
+        self.numbered_quadrants().map(|(_, q)| q)
+    }
+
+    /// The quadrants of [`PixelRect::quadrants`], each with its position among the four
+    /// (0 top left to 3 bottom right), also where an empty one was left out before it.
+    pub fn numbered_quadrants(&self) -> impl Iterator<Item = (usize, PixelRect)> + use<> {
         let xm = self.x0 + (self.x1 - self.x0).div_ceil(2);
         let ym = self.y0 + (self.y1 - self.y0).div_ceil(2);
         let xs = [(self.x0, xm), (xm, self.x1)];
@@ -53,9 +59,9 @@ impl PixelRect {
         (0..4)
             .map(move |k| {
                 let ((x0, x1), (y0, y1)) = (xs[k % 2], ys[k / 2]);
-                PixelRect { x0, y0, x1, y1 }
+                (k, PixelRect { x0, y0, x1, y1 })
             })
-            .filter(|q| q.x1 > q.x0 && q.y1 > q.y0)
+            .filter(|(_, q)| q.x1 > q.x0 && q.y1 > q.y0)
     }
 
     /// The pixels, row by row.
