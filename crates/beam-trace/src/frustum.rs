@@ -150,6 +150,15 @@ impl FirstCell {
 /// costs what its surface does, not a record per pixel.
 pub type TileCells = Vec<(u32, FirstCell)>;
 
+/// The memory a tile's search works in, kept from one tile to the next so that a render
+/// does not map fresh pages for every tile (a tile of 64 × 64 pixels makes up to 5,461
+/// columns).
+#[derive(Default)]
+pub struct Scratch {
+    columns: Columns,
+    filled: Filled,
+}
+
 /// The first cell of each pixel of `tile` that has one ([`TileCells`]), searched in the
 /// parameter range `range` (where the tile's beam lies in the scene bounds `bounds`), with `g` the scene
 /// function of the camera's beams; leaves are no longer than `epsilon` or the pixel's
@@ -157,13 +166,16 @@ pub type TileCells = Vec<(u32, FirstCell)>;
 /// is undecided, at the stratified positions of that many, are searched on from there
 /// ([`FirstCell::traced`]). Counts each cell's
 /// evaluation (and the inclusion tests', and the traced rays') in `counters.g_evals`.
+/// `scratch` is working memory (what it held before does not matter).
 pub fn first_cells(
-    g: &mut BeamEval,
+    (g, scratch): (&mut BeamEval, &mut Scratch),
     (cam, bounds): (&Camera, &IBox),
     tile: PixelRect,
     (range, epsilon, traced_rays): (Interval<f64>, f64, u32),
     counters: &mut RootCounters,
 ) -> TileCells {
+    scratch.columns.reset(tile);
+    scratch.filled.reset(tile);
     let mut search = Search {
         g,
         cam,
@@ -178,10 +190,10 @@ pub fn first_cells(
         tile,
         epsilon,
         first: Vec::new(),
-        filled: Filled::new(tile),
+        filled: &mut scratch.filled,
         counters,
         chain: Vec::new(),
-        columns: Columns::new(tile),
+        columns: &mut scratch.columns,
     };
     if !range.is_empty() {
         let column = search.column(tile, 0);
@@ -224,6 +236,7 @@ impl Column {
 /// The columns of a tile's quadtree made so far, by node: a rectangle is split again in
 /// each range of its parent's column that is split, and its beam (rounded sums per axis)
 /// is made once.
+#[derive(Default)]
 struct Columns {
     /// Per node, 0 where its column is not made yet, else its index in `made` plus one.
     slots: Vec<u32>,
@@ -236,20 +249,20 @@ impl Columns {
     const MAX_DEPTH: u32 = 10;
 
     /// No column of `tile`'s quadtree made.
-    fn new(tile: PixelRect) -> Self {
+    fn reset(&mut self, tile: PixelRect) {
         // Halving a side of `n` pixels (the larger half first) reaches one pixel after
         // `ceil(log2 n)` splits.
         let side = (tile.x1 - tile.x0).max(tile.y1 - tile.y0).max(1);
         let depth = side.next_power_of_two().trailing_zeros().min(Self::MAX_DEPTH);
         let nodes = (4usize.pow(depth + 1) - 1) / 3;
-        Self {
-            slots: vec![0; nodes],
-            made: Vec::new(),
-        }
+        self.slots.clear();
+        self.slots.resize(nodes, 0);
+        self.made.clear();
     }
 }
 
 /// Which pixels of a tile have their first cell: a bit per pixel, rows of 64-bit words.
+#[derive(Default)]
 struct Filled {
     tile: PixelRect,
     words: usize,
@@ -258,13 +271,11 @@ struct Filled {
 
 impl Filled {
     /// No pixel of `tile` filled.
-    fn new(tile: PixelRect) -> Self {
-        let words = ((tile.x1 - tile.x0) as usize).div_ceil(64);
-        Self {
-            tile,
-            words,
-            bits: vec![0; words * (tile.y1 - tile.y0) as usize],
-        }
+    fn reset(&mut self, tile: PixelRect) {
+        self.tile = tile;
+        self.words = ((tile.x1 - tile.x0) as usize).div_ceil(64);
+        self.bits.clear();
+        self.bits.resize(self.words * (tile.y1 - tile.y0) as usize, 0);
     }
 
     /// Marks pixel `(x, y)`.
@@ -323,13 +334,13 @@ struct Search<'a> {
     epsilon: f64,
     first: TileCells,
     /// The pixels that have their first cell in `first`.
-    filled: Filled,
+    filled: &'a mut Filled,
     counters: &'a mut RootCounters,
     /// The restrictions of `g` of the cells holding the one searched, outermost first
     /// (each over its own cell, a part of the one before); empty: the whole `g`.
     chain: Vec<BeamScope>,
     /// The columns made so far.
-    columns: Columns,
+    columns: &'a mut Columns,
 }
 
 impl Search<'_> {
@@ -650,7 +661,8 @@ mod tests {
             x1: 3 + 70,
             y1: 5 + 4,
         };
-        let mut filled = Filled::new(tile);
+        let mut filled = Filled::default();
+        filled.reset(tile);
         let mut plain = std::collections::HashSet::new();
         for (k, (x, y)) in tile.pixels().enumerate() {
             if k % 7 != 3 {

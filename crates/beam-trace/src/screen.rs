@@ -15,7 +15,7 @@ pub const SCREEN_TILE: u32 = 32;
 pub const OCTREE_TILE: u32 = 64;
 
 /// A rectangle of pixels `[x0, x1) × [y0, y1)`.
-#[derive(Copy, Clone, Debug, PartialEq, Eq, Hash)]
+#[derive(Copy, Clone, Debug, Default, PartialEq, Eq, Hash)]
 pub struct PixelRect {
     /// Left column.
     pub x0: u32,

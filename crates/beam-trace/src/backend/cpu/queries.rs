@@ -14,7 +14,7 @@ use crate::beam::{
     BeamScope, BoxClass, Extent, Inherited, child_window, evaluate_box_within, forward,
 };
 use crate::free_ranges::BeamKey;
-use crate::frustum::{TileCells, first_cells};
+use crate::frustum::{self, TileCells, first_cells};
 use crate::grid::{Grid, GridEval};
 use crate::mesh::MeshIndex;
 use crate::plan::Plan;
@@ -86,6 +86,8 @@ pub(crate) struct Evals {
     pub(super) geo: GeometryEval,
     pub(super) grid: Option<GridEval>,
     pub(super) scoped: ScopedEval,
+    /// The frustum octree's working memory for the tiles this thread searches.
+    pub(super) cells: frustum::Scratch,
 }
 
 impl CpuQueries<'_> {
@@ -110,6 +112,7 @@ impl CpuQueries<'_> {
             geo,
             grid: self.grid.as_ref().map(|g| g.evaluator_with(precision)),
             scoped: ScopedEval::new(self.scene.geometry.ray_function(), precision),
+            cells: frustum::Scratch::default(),
         }
     }
 
@@ -219,7 +222,7 @@ impl CpuQueries<'_> {
             .is_none_or(|g| g.stats().cell_instrs >= TRACE_MIN_CELL_INSTRS);
         let traced_rays = if long_cells { query.traced_rays } else { 0 };
         first_cells(
-            &mut ev.geo.beam,
+            (&mut ev.geo.beam, &mut ev.cells),
             (cam, &bounds),
             r,
             (range, self.plan.beam.epsilon, traced_rays),
