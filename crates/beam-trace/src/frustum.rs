@@ -253,7 +253,10 @@ impl Columns {
         // Halving a side of `n` pixels (the larger half first) reaches one pixel after
         // `ceil(log2 n)` splits.
         let side = (tile.x1 - tile.x0).max(tile.y1 - tile.y0).max(1);
-        let depth = side.next_power_of_two().trailing_zeros().min(Self::MAX_DEPTH);
+        let depth = side
+            .next_power_of_two()
+            .trailing_zeros()
+            .min(Self::MAX_DEPTH);
         let nodes = (4usize.pow(depth + 1) - 1) / 3;
         self.slots.clear();
         self.slots.resize(nodes, 0);
@@ -275,7 +278,8 @@ impl Filled {
         self.tile = tile;
         self.words = ((tile.x1 - tile.x0) as usize).div_ceil(64);
         self.bits.clear();
-        self.bits.resize(self.words * (tile.y1 - tile.y0) as usize, 0);
+        self.bits
+            .resize(self.words * (tile.y1 - tile.y0) as usize, 0);
     }
 
     /// Marks pixel `(x, y)`.

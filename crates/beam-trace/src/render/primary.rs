@@ -13,7 +13,7 @@ use crate::beam::{BeamScope, BoxClass};
 use crate::beam::{child_window, forward};
 use crate::camera::{Camera, RayTable};
 use crate::error::Error;
-use crate::frustum::Traced;
+use crate::frustum::{TileCells, Traced};
 use crate::plan::{Pass, Plan, Primary};
 use crate::progress::Progress;
 use crate::ray::Ray;
@@ -107,11 +107,13 @@ fn octree(
 ) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
     let t0 = Instant::now();
     progress.begin(Pass::ScreenBoxes.name(), u64::from(window.height()));
-    let mut classes: PixelClasses = vec![None; window.len()];
-    let mut scopes: PixelScopes = vec![None; window.len()];
     let mut traced: PixelTraces = Vec::new();
     let mut c = ScreenBoxCounters::default();
     let all = window.tiles(OCTREE_TILE);
+    // Each tile's first cells, and for each of its pixels the index of its first cell
+    // among them (`u32::MAX`: none, the pixel is proven missed).
+    let mut firsts: Vec<TileCells> = Vec::with_capacity(all.len());
+    let mut slots: Vec<Vec<u32>> = Vec::with_capacity(all.len());
     for band in all.chunk_by(|a, b| a.y0 / (4 * OCTREE_TILE) == b.y0 / (4 * OCTREE_TILE)) {
         let queries: Vec<CellQuery> = band
             .iter()
@@ -119,28 +121,52 @@ fn octree(
             .collect();
         let answers = q.first_cells(&queries)?;
         c.search.add(&answers.search);
-        for (tile, firsts) in band.iter().zip(answers.values) {
-            // The pixels without a first cell are proven missed.
-            for (x, y) in tile.pixels() {
-                classes[window.local(x, y)] = Some(BoxPixel::of(BoxClass::Miss, false));
+        slots.par_extend(band.par_iter().zip(&answers.values).map(|(tile, cells)| {
+            let mut slot = vec![u32::MAX; tile.area() as usize];
+            for (j, (k, _)) in cells.iter().enumerate() {
+                slot[*k as usize] = j as u32;
             }
-            c.add_pixels(&BoxClass::Miss, tile.area() - firsts.len() as u64);
+            slot
+        }));
+        for (tile, mut cells) in band.iter().zip(answers.values) {
+            c.add_pixels(&BoxClass::Miss, tile.area() - cells.len() as u64);
             let width = tile.x1 - tile.x0;
-            for (k, f) in firsts {
-                let (x, y) = (tile.x0 + k % width, tile.y0 + k / width);
-                let i = window.local(x, y);
-                let class = f.class();
-                c.add_pixels(&class, 1);
-                classes[i] = Some(BoxPixel::of(class, false));
-                scopes[i] = f.scope;
+            for (k, f) in &mut cells {
+                c.add_pixels(&f.class(), 1);
                 if !f.traced.is_empty() {
-                    traced.push((i as u32, f.traced));
+                    let (x, y) = (tile.x0 + *k % width, tile.y0 + *k / width);
+                    traced.push((window.local(x, y) as u32, std::mem::take(&mut f.traced)));
                 }
             }
+            firsts.push(cells);
         }
         progress.advance(u64::from(band[band.len() - 1].y1 - band[0].y0));
     }
     traced.sort_unstable_by_key(|&(p, _)| p);
+    // Every pixel's class and scope, in parallel: the tiles lie on the image's grid of
+    // `OCTREE_TILE` from the window's corner, row by row.
+    let (corner, width) = (window.rect(), window.width());
+    let columns = width.div_ceil(OCTREE_TILE) as usize;
+    let mut classes: PixelClasses = Vec::new();
+    let mut scopes: PixelScopes = Vec::new();
+    (0..window.len())
+        .into_par_iter()
+        .map(|i| {
+            let (x, y) = ((i as u32) % width, (i as u32) / width);
+            let t = (y / OCTREE_TILE) as usize * columns + (x / OCTREE_TILE) as usize;
+            let tile = &all[t];
+            let (x, y) = (corner.x0 + x, corner.y0 + y);
+            debug_assert!(x >= tile.x0 && x < tile.x1 && y >= tile.y0 && y < tile.y1);
+            let k = (y - tile.y0) * (tile.x1 - tile.x0) + (x - tile.x0);
+            match slots[t][k as usize] {
+                u32::MAX => (Some(BoxPixel::of(BoxClass::Miss, false)), None),
+                j => {
+                    let f = &firsts[t][j as usize].1;
+                    (Some(BoxPixel::of(f.class(), false)), f.scope.clone())
+                }
+            }
+        })
+        .unzip_into_vecs(&mut classes, &mut scopes);
     // The beams evaluated: the cells and the leaves' inclusion tests.
     c.beams = c.search.g_evals;
     progress.end();
