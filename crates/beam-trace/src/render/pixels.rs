@@ -4,6 +4,8 @@
 
 use std::ops::Range;
 
+use rayon::prelude::*;
+
 use crate::sample::Sample;
 
 /// The samples of every pixel, in pixel order.
@@ -54,6 +56,19 @@ impl Pixels {
     /// Pixel `p`'s samples.
     pub(super) fn pixel(&self, p: usize) -> &[Sample] {
         &self.samples[self.range(p)]
+    }
+
+    /// Appends pixels whose samples are `samples`, pixel `p`'s at `first[p]..first[p + 1]`
+    /// of them (see [`offsets`]), written in place in parallel.
+    pub(super) fn par_extend(
+        &mut self,
+        samples: impl IndexedParallelIterator<Item = Sample>,
+        first: &[usize],
+    ) {
+        let base = self.samples.len();
+        self.samples.par_extend(samples);
+        debug_assert_eq!(self.samples.len() - base, first[first.len() - 1]);
+        self.first.extend(first[1..].iter().map(|&f| base + f));
     }
 
     /// Appends the pixels of `more`.

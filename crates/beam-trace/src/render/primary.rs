@@ -658,16 +658,12 @@ pub(super) fn primary_rays(
         cost.extend((0..n).map(|k| ray_cost[first_ray[k]..first_ray[k + 1]].iter().sum::<f32>()));
         // Each pixel's samples: one per ray, in order. A Miss box's pixel has none: it is
         // background, proven missed.
-        let samples: Vec<Sample> = ray_pixel
-            .par_iter()
-            .enumerate()
-            .map(|(j, &k)| Sample {
-                weight: batch[j].weight,
-                hit: hit_of(j),
-                area: sample_area(classes[first + k as usize]),
-            })
-            .collect();
-        pixels.append(Pixels::from_offsets(samples, first_ray));
+        let samples = ray_pixel.par_iter().enumerate().map(|(j, &k)| Sample {
+            weight: batch[j].weight,
+            hit: hit_of(j),
+            area: sample_area(classes[first + k as usize]),
+        });
+        pixels.par_extend(samples, &first_ray);
         progress.advance(u64::from(rows));
     }
     progress.end();

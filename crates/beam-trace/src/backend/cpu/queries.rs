@@ -73,6 +73,23 @@ impl DerefMut for Lease<'_> {
     }
 }
 
+/// A piece of work of [`CpuQueries::map_pieces`]: the thread's evaluators, the counters of
+/// its queries (added to `total` when it ends) and when its last answer was made.
+struct Piece<'q> {
+    evals: Lease<'q>,
+    counters: RootCounters,
+    total: &'q Mutex<RootCounters>,
+    last: Option<Instant>,
+}
+
+impl Drop for Piece<'_> {
+    fn drop(&mut self) {
+        if let Ok(mut total) = self.total.lock() {
+            total.add(&self.counters);
+        }
+    }
+}
+
 impl Drop for Lease<'_> {
     fn drop(&mut self) {
         if let (Some(e), Ok(mut pool)) = (self.evals.take(), self.pool.lock()) {
@@ -129,8 +146,11 @@ impl CpuQueries<'_> {
         self.map_pieces(queries, PIECE, timed, f)
     }
 
-    /// [`map`](Self::map) with `piece` queries per piece of work (fewer for queries that
-    /// are much work each).
+    /// [`map`](Self::map) with at least `piece` queries per piece of work (fewer for
+    /// queries that are much work each). The answers are written in place, in the
+    /// queries' order, by the threads that compute them; each piece of work adds its
+    /// counters to the total when it ends (sums of whole numbers: the same whatever the
+    /// split).
     pub(super) fn map_pieces<Q: Sync, T: Send>(
         &self,
         queries: &[Q],
@@ -138,41 +158,38 @@ impl CpuQueries<'_> {
         timed: bool,
         f: impl Fn(&mut Evals, &Q, &mut RootCounters) -> T + Sync,
     ) -> Answers<T> {
-        let pieces: Vec<(Vec<T>, Vec<f32>, RootCounters)> = queries
-            .par_chunks(piece.max(1))
+        let total = Mutex::new(RootCounters::default());
+        let mut values = Vec::new();
+        let mut cost = Vec::new();
+        queries
+            .par_iter()
+            .with_min_len(piece.max(1))
             .map_init(
-                || self.evals(),
-                |ev, chunk| {
-                    let mut c = RootCounters::default();
-                    let mut values = Vec::with_capacity(chunk.len());
-                    let mut cost = Vec::with_capacity(chunk.len());
-                    if timed {
-                        let mut t0 = Instant::now();
-                        for q in chunk {
-                            values.push(f(ev, q, &mut c));
-                            let t1 = Instant::now();
-                            cost.push((t1 - t0).as_secs_f32());
-                            t0 = t1;
-                        }
-                    } else {
-                        values.extend(chunk.iter().map(|q| f(ev, q, &mut c)));
-                        cost.resize(chunk.len(), 0.0);
-                    }
-                    (values, cost, c)
+                || Piece {
+                    evals: self.evals(),
+                    counters: RootCounters::default(),
+                    total: &total,
+                    last: timed.then(Instant::now),
+                },
+                |w, q| {
+                    let value = f(&mut w.evals, q, &mut w.counters);
+                    // Each answer's time runs from the end of the one before.
+                    let cost = w.last.as_mut().map_or(0.0, |last| {
+                        let now = Instant::now();
+                        let t = (now - *last).as_secs_f32();
+                        *last = now;
+                        t
+                    });
+                    (value, cost)
                 },
             )
-            .collect();
-        let mut out = Answers {
-            values: Vec::with_capacity(queries.len()),
-            cost: Vec::with_capacity(queries.len()),
-            search: RootCounters::default(),
-        };
-        for (v, cost, c) in pieces {
-            out.values.extend(v);
-            out.cost.extend(cost);
-            out.search.add(&c);
+            .unzip_into_vecs(&mut values, &mut cost);
+        let search = total.into_inner().unwrap_or_else(|e| e.into_inner());
+        Answers {
+            values,
+            cost,
+            search,
         }
-        out
     }
 
     /// The parameter ranges a beam must search inside `window`: the grid's non-empty
