@@ -106,62 +106,20 @@ pub(super) fn assemble(
     (setup, pieces): (&[PassStats], Vec<Piece>),
     started: Instant,
 ) -> Result<RenderOutput, Error> {
-    let npix = width as usize * height as usize;
     let tolerance = plan.shadow_method.method().tolerance();
     let soft = plan.runs(Pass::SoftShadows);
-    let nl = plan.soft_shadow_lights;
-    let mut seen = vec![false; npix];
-    let mut colors = vec![[0f32; 3]; npix];
-    let mut classes: Vec<Option<(BoxClass, bool)>> = vec![None; npix];
-    let no_coverage = Coverage {
-        proven: 0.0,
-        possible: 0.0,
-    };
-    let mut coverage = vec![no_coverage; npix];
-    let mut cost = vec![0f32; npix];
-    let mut shadow_classes: Vec<Option<ShadowClass>> = vec![None; npix];
-    let maps = || vec![vec![f32::NAN; npix]; if soft { nl } else { 0 }];
-    let (mut fractions, mut lower, mut upper) = (maps(), maps(), maps());
-    let mut passes: Vec<PassStats> = Vec::new();
-    let mut lights: Vec<PassStats> = Vec::new();
-    for piece in pieces {
-        if piece.window.image_size() != (width, height) {
-            return Err(piece.malformed(&format!("a window of a {width} x {height} image")));
-        }
-        if piece.shadows.is_some() != soft {
-            return Err(piece.malformed("the plan's soft-shadow maps"));
-        }
-        piece.check(nl)?;
-        for k in 0..piece.window.len() {
-            let g = piece.window.global(k);
-            if std::mem::replace(&mut seen[g], true) {
-                let (x, y) = piece.window.pixel(k);
-                return Err(Error::Data(format!(
-                    "pixel ({x}, {y}) is in two pieces of the render"
-                )));
-            }
-            colors[g] = piece.colors[k];
-            classes[g] = piece.classes[k];
-            coverage[g] = piece.coverage[k];
-            cost[g] = piece.cost[k];
-            if let Some(s) = &piece.shadows {
-                shadow_classes[g] = s.classes[k];
-                for li in 0..nl {
-                    fractions[li][g] = s.fractions[li][k];
-                    lower[li][g] = s.lower[li][k];
-                    upper[li][g] = s.upper[li][k];
-                }
-            }
-        }
-        merge_stats(&mut passes, piece.passes)?;
-        merge_stats(&mut lights, piece.lights)?;
-    }
-    if let Some(g) = seen.iter().position(|&s| !s) {
-        let (x, y) = (g as u32 % width, g as u32 / width);
-        return Err(Error::Data(format!(
-            "pixel ({x}, {y}) is in no piece of the render"
-        )));
-    }
+    let (maps, passes, mut lights) = gather((width, height), plan, pieces)?;
+    let ImageMaps {
+        colors,
+        classes,
+        coverage,
+        cost,
+        shadow_classes,
+        fractions,
+        lower,
+        upper,
+    } = maps;
+    let mut passes = passes;
     let shadows = soft.then(|| {
         // The bound widths, pixel by pixel in image order, per light and over all.
         let mut all = BoundWidths::default();
@@ -206,6 +164,135 @@ pub(super) fn assemble(
         },
         plan: plan.clone(),
     })
+}
+
+/// Every pixel's values of the image, in image order.
+struct ImageMaps {
+    colors: Vec<[f32; 3]>,
+    classes: Vec<Option<(BoxClass, bool)>>,
+    coverage: Vec<Coverage>,
+    cost: Vec<f32>,
+    shadow_classes: Vec<Option<ShadowClass>>,
+    fractions: Vec<Vec<f32>>,
+    lower: Vec<Vec<f32>>,
+    upper: Vec<Vec<f32>>,
+}
+
+/// Whether `piece` belongs to a `width × height` image rendered with soft shadows where
+/// `soft` (of `lights` area lights), with one value per pixel of its window in every map.
+fn check_piece(
+    piece: &Piece,
+    (width, height): (u32, u32),
+    soft: bool,
+    lights: usize,
+) -> Result<(), Error> {
+    if piece.window.image_size() != (width, height) {
+        return Err(piece.malformed(&format!("a window of a {width} x {height} image")));
+    }
+    if piece.shadows.is_some() != soft {
+        return Err(piece.malformed("the plan's soft-shadow maps"));
+    }
+    piece.check(lights)
+}
+
+/// The maps of the `width × height` image from `pieces` covering it, each pixel once, and
+/// their passes' and lights' statistics summed. A single piece over the whole image hands
+/// its maps on as they are.
+fn gather(
+    (width, height): (u32, u32),
+    plan: &Plan,
+    pieces: Vec<Piece>,
+) -> Result<(ImageMaps, Vec<PassStats>, Vec<PassStats>), Error> {
+    let npix = width as usize * height as usize;
+    let soft = plan.runs(Pass::SoftShadows);
+    let nl = plan.soft_shadow_lights;
+    let mut pieces = pieces;
+    if pieces.len() == 1
+        && pieces[0].window.rect() == Window::full(width, height).rect()
+        && let Some(piece) = pieces.pop()
+    {
+        check_piece(&piece, (width, height), soft, nl)?;
+        let shadows = piece.shadows.unwrap_or_else(|| PieceShadows {
+            classes: vec![None; npix],
+            fractions: Vec::new(),
+            lower: Vec::new(),
+            upper: Vec::new(),
+        });
+        return Ok((
+            ImageMaps {
+                colors: piece.colors,
+                classes: piece.classes,
+                coverage: piece.coverage,
+                cost: piece.cost,
+                shadow_classes: shadows.classes,
+                fractions: shadows.fractions,
+                lower: shadows.lower,
+                upper: shadows.upper,
+            },
+            piece.passes,
+            piece.lights,
+        ));
+    }
+    let mut seen = vec![false; npix];
+    let mut colors = vec![[0f32; 3]; npix];
+    let mut classes: Vec<Option<(BoxClass, bool)>> = vec![None; npix];
+    let no_coverage = Coverage {
+        proven: 0.0,
+        possible: 0.0,
+    };
+    let mut coverage = vec![no_coverage; npix];
+    let mut cost = vec![0f32; npix];
+    let mut shadow_classes: Vec<Option<ShadowClass>> = vec![None; npix];
+    let maps = || vec![vec![f32::NAN; npix]; if soft { nl } else { 0 }];
+    let (mut fractions, mut lower, mut upper) = (maps(), maps(), maps());
+    let mut passes: Vec<PassStats> = Vec::new();
+    let mut lights: Vec<PassStats> = Vec::new();
+    for piece in pieces {
+        check_piece(&piece, (width, height), soft, nl)?;
+        for k in 0..piece.window.len() {
+            let g = piece.window.global(k);
+            if std::mem::replace(&mut seen[g], true) {
+                let (x, y) = piece.window.pixel(k);
+                return Err(Error::Data(format!(
+                    "pixel ({x}, {y}) is in two pieces of the render"
+                )));
+            }
+            colors[g] = piece.colors[k];
+            classes[g] = piece.classes[k];
+            coverage[g] = piece.coverage[k];
+            cost[g] = piece.cost[k];
+            if let Some(s) = &piece.shadows {
+                shadow_classes[g] = s.classes[k];
+                for li in 0..nl {
+                    fractions[li][g] = s.fractions[li][k];
+                    lower[li][g] = s.lower[li][k];
+                    upper[li][g] = s.upper[li][k];
+                }
+            }
+        }
+        merge_stats(&mut passes, piece.passes)?;
+        merge_stats(&mut lights, piece.lights)?;
+    }
+    if let Some(g) = seen.iter().position(|&s| !s) {
+        let (x, y) = (g as u32 % width, g as u32 / width);
+        return Err(Error::Data(format!(
+            "pixel ({x}, {y}) is in no piece of the render"
+        )));
+    }
+    Ok((
+        ImageMaps {
+            colors,
+            classes,
+            coverage,
+            cost,
+            shadow_classes,
+            fractions,
+            lower,
+            upper,
+        },
+        passes,
+        lights,
+    ))
 }
 
 /// Adds the passes `more` into `into` (empty: taken as they are): the counters summed by

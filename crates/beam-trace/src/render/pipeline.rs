@@ -201,7 +201,7 @@ impl<'a> Pipeline<'a> {
             window: *window,
             colors,
             classes: classes
-                .iter()
+                .par_iter()
                 .map(|c| c.map(|c| (c.class, c.edge)))
                 .collect(),
             coverage,
