@@ -14,18 +14,23 @@
 //!   a hole in `g`'s domain allows after positive cells), or where it may vanish and it is a
 //!   leaf: one pixel wide, and `T` no longer than the pixel's cross-section at `T`'s far
 //!   end (nor `epsilon`);
+//! * **first** for the pixels of a block of up to 2 × 2 pixels whose `T` is no longer than
+//!   the block's cross-section where it passes the inclusion test (below) as a whole: every
+//!   ray of every pixel of the block meets the surface in one range (a face seen head on);
+//!   a block that fails it is searched as its quadrants over the same `T`;
 //! * else split: `T` in two where it is longer than the cross-section of `R`'s beam, else
 //!   `R` in four and `T` in two.
 //!
 //! What a pixel's first cell proves: every earlier cell of its column was rejected, so no
 //! ray of the pixel meets the surface before `T`: the pixel is
 //! [`BoxClass::Undecided`] with `T`, and its rays search
-//! from there. Where the first cell is a leaf that passes the inclusion test
-//! ([`inclusion_test`]: `g` continuous over the pixel's beam and `T`, with opposite signs at
+//! from there. Where the first cell is a leaf or a block that passes the inclusion test
+//! ([`inclusion_test`]: `g` continuous over the cell's beam and `T`, with opposite signs at
 //! `T`'s ends for every ray, both ends inside the scene bounds) on `T`, or on `[inf T, p]`
-//! for a probe `p` up to 16 lengths of `T` further, every ray of the pixel has its first
-//! root in that range: the pixel is a [`BoxClass::Hit`] with it
-//! as `T_final`. A pixel without a first cell is a
+//! for a probe `p` up to 16 lengths of `T` further, every ray of its pixels has its first
+//! root in that range: each pixel is a [`BoxClass::Hit`] with it
+//! as `T_final` (no longer than the pixel's cross-section, or the block's, before the
+//! probes). A pixel without a first cell is a
 //! [`BoxClass::Miss`].
 //! Each cell that is split prunes `g` to its beam over `T` ([`RayFn::restrict`]) for the
 //! cells inside it, so the deep cells evaluate a few instructions of a long formula; the
@@ -66,6 +71,13 @@ const LOOK_AHEAD: u32 = 4;
 /// Tapes this short are not pruned for the cells inside a cell (a pruning costs about two
 /// evaluations of the tape it prunes).
 const PRUNE_MIN_LEN: usize = 16;
+
+/// The side in pixels of the largest block of pixels tried as one leaf: a cell at most this
+/// wide whose range is no longer than its beam's cross-section passes the inclusion test
+/// for all its pixels at once where their rays meet the surface in that range alike (a
+/// face seen head on: 27 % fewer evaluations on `csg3d-660`, 46 % on `csg3d-2k`), and is
+/// searched as its quadrants over the same range where not.
+const BLOCK: u32 = 2;
 
 /// How far below its leaf size a traced ray's range is halved in search of a sign change
 /// before the ray is left to the root finder: `2^-TRACE_DEPTH` of it.
@@ -565,16 +577,25 @@ impl Search<'_> {
         let across = spread * t.sup().abs();
         let shallow = t.wid() <= self.epsilon.max(across);
         let leaf = r.is_pixel() && shallow;
-        if gt.sup() < 0.0 || leaf {
+        // A block: a leaf, or a cell of a few pixels as shallow, tried as one leaf.
+        let side = (r.x1 - r.x0).max(r.y1 - r.y0);
+        let block = side <= BLOCK && shallow;
+        if gt.sup() < 0.0 || block {
             let extent = Extent {
                 beam,
                 bounds: self.bounds,
             };
-            let included = if leaf && gt.inf() < 0.0 && extent.holds(t.inf()) {
+            let included = if block && gt.inf() < 0.0 && extent.holds(t.inf()) {
                 self.included(beam, t, &extent, near_positive)
             } else {
                 None
             };
+            if included.is_none() && gt.sup() >= 0.0 && !r.is_pixel() {
+                // A block whose rays the inclusion test cannot place together: its
+                // quadrants over the same range (most are rejected where the block only
+                // grazes the surface), down to single pixels.
+                return self.quadrants(column, &[t], near_positive);
+            }
             // A Hit's scope is asked about its range only; an undecided cell's keeps the
             // whole region it holds for, where the pixel's rays search on from the cell.
             let first = match included {
@@ -608,8 +629,48 @@ impl Search<'_> {
             }
             return false;
         }
+        self.split(column, t, near_positive)
+    }
+
+    /// Searches each quadrant of `column` over `ranges` in turn (consecutive, nearest
+    /// first), where `near_positive` says that `g > 0` at the near end of the first for every
+    /// ray of the column. Returns whether that is proven at the far end of the last.
+    fn quadrants(
+        &mut self,
+        column: &Column,
+        ranges: &[Interval<f64>],
+        near_positive: bool,
+    ) -> bool {
+        let mut all = true;
+        for (k, q) in column.r.numbered_quadrants() {
+            if self.filled.all(q) {
+                // Every range would return at once (not proven positive): no beam.
+                all = false;
+                continue;
+            }
+            let quadrant = self.column(q, column.child(k));
+            let mut positive = near_positive;
+            for &t in ranges {
+                positive = self.visit(&quadrant, t, positive);
+            }
+            all &= positive;
+        }
+        all
+    }
+
+    /// Searches the cells inside the cell `column × t` (see [`Search::visit`]), with `g`
+    /// pruned to it: `t` in two where it is longer than the cross-section of the column's
+    /// beam, else the rectangle in four and `t` in two. Returns whether `g > 0` is proven
+    /// at `sup t` for every ray of the column.
+    fn split(&mut self, column: &Column, t: Interval<f64>, near_positive: bool) -> bool {
+        let Column {
+            ref beam, spread, ..
+        } = *column;
+        let shallow = t.wid() <= self.epsilon.max(spread * t.sup().abs());
         // The cells inside this one search with `g` pruned to it; where pruning decides
         // nothing, the tape keeps the wider region it holds for.
+        self.g
+            .set_interval_beam(beam, self.chain.last().map(|s| &s.tape));
         let mut pushed = false;
         if let Some(tape) = self.g.scope()
             && tape.len() > PRUNE_MIN_LEN
@@ -628,18 +689,7 @@ impl Search<'_> {
         // after the other.
         let (near, far) = t.bisect();
         let far_positive = if shallow {
-            let mut all = true;
-            for (k, q) in r.numbered_quadrants() {
-                if self.filled.all(q) {
-                    // Both halves would return at once (not proven positive): no beam.
-                    all = false;
-                    continue;
-                }
-                let quadrant = self.column(q, column.child(k));
-                let middle = self.visit(&quadrant, near, near_positive);
-                all &= self.visit(&quadrant, far, middle);
-            }
-            all
+            self.quadrants(column, &[near, far], near_positive)
         } else {
             let middle = self.visit(column, near, near_positive);
             self.visit(column, far, middle)
