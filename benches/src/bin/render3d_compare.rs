@@ -465,7 +465,7 @@ fn run() -> Result<(), String> {
                     format!("{name}-{size}.png"),
                     &comparison_image(size, &our_hits, &jit_hits),
                 )?;
-                write(format!("{name}-{size}-boxes.png"), &out.classification)?;
+                write(format!("{name}-{size}-boxes.png"), &out.classification())?;
             }
         }
     }

@@ -262,7 +262,7 @@ impl Run<'_, '_> {
             .iter()
             .map(|p| p.counter("block_proven"))
             .sum();
-        let open = open_pixels(&out.box_classes);
+        let open = open_pixels(&out.box_classes());
         self.frames.done(self.offset + k, out)?;
         Ok((saved, open))
     }

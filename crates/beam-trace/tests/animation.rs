@@ -107,7 +107,7 @@ fn every_frame_is_the_static_file_with_its_numbers() {
             .unwrap_or_else(|e| panic!("{e}"));
         let reference = render(&alone, &NoProgress).expect("renders");
         assert_eq!(frame.image.pixels, reference.image.pixels, "frame {t}");
-        assert_eq!(frame.box_classes, reference.box_classes, "frame {t}");
+        assert_eq!(frame.box_classes(), reference.box_classes(), "frame {t}");
         images.push(frame.image.pixels);
     }
     // The frames move.

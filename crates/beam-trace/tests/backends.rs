@@ -179,7 +179,7 @@ fn batches_cut_in_pieces_give_the_same_output() {
         let a = render(&s, &NoProgress).unwrap();
         let b = render_on(&s, &backend, &NoProgress).unwrap();
         assert_eq!(a.image.pixels, b.image.pixels);
-        assert_eq!(a.classification.pixels, b.classification.pixels);
+        assert_eq!(a.classification().pixels, b.classification().pixels);
         assert_eq!(a.stats.work(), b.stats.work());
         let (sa, sb) = (a.shadows.unwrap(), b.shadows.unwrap());
         assert_eq!(sa.classes, sb.classes);

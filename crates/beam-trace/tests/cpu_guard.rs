@@ -79,7 +79,7 @@ fn digest(name: &str, out: &RenderOutput) -> String {
     format!(
         "{name} image={:016x} classification={:016x} shadows={:016x} counters={:016x}",
         pixels_hash(&out.image),
-        pixels_hash(&out.classification),
+        pixels_hash(&out.classification()),
         shadows,
         Fnv::new().bytes(counters.as_bytes()).0,
     )

@@ -181,9 +181,9 @@ fn octree_images_are_the_screen_boxes_images() {
             let boxes = with_light("primary = \"screen-rays\"\nrays_per_undecided = 1");
             let a = render(&octree, &NoProgress).unwrap_or_else(|e| panic!("{e}"));
             let b = render(&boxes, &NoProgress).unwrap_or_else(|e| panic!("{e}"));
-            assert!(a.box_classes.iter().all(Option::is_some));
+            assert!(a.box_classes().iter().all(Option::is_some));
             assert!(
-                a.box_classes
+                a.box_classes()
                     .iter()
                     .any(|c| matches!(c, Some(BoxClass::Hit { .. })))
             );

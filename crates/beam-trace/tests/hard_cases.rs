@@ -314,7 +314,7 @@ fn pixel_rays(cam: &Camera, x: u32, y: u32) -> Vec<Ray> {
 
 /// The class of a pixel of the classification image (base colour or darkened outline).
 fn class_at(out: &RenderOutput, x: u32, y: u32) -> &'static str {
-    let c = out.classification.get(x, y);
+    let c = out.classification().get(x, y);
     let is = |base: [f32; 3]| c == base || c == base.map(|v| v * 0.6);
     if is([0.1, 0.25, 0.8]) {
         "miss"
@@ -1298,7 +1298,7 @@ material = { color = [1.0, 0.0, 0.0] }
         "the floor is in view"
     );
     assert_eq!(alone.image.pixels, with_ghost.image.pixels);
-    assert_eq!(alone.box_classes, with_ghost.box_classes);
+    assert_eq!(alone.box_classes(), with_ghost.box_classes());
 }
 
 #[test]

@@ -104,7 +104,7 @@ fn check_box_classes(settings: &str) {
     );
     let rays = render_model(&formula, size, "primary = \"per-pixel\"\ngrid = 0");
     let (mut miss, mut hit) = (0, 0);
-    for (p, class) in boxes.box_classes.iter().enumerate() {
+    for (p, class) in boxes.box_classes().iter().enumerate() {
         // White where the pixel's ray meets the model (no light: the material's colour),
         // black where it does not.
         let seen = rays.image.pixels[p][0] > 0.5;

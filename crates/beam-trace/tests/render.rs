@@ -242,8 +242,8 @@ fn assert_thread_independent(scene: &Scene) {
         |img: &Image| -> Vec<[u32; 3]> { img.pixels.iter().map(|p| p.map(f32::to_bits)).collect() };
     assert_eq!(bits(&one.image), bits(&two.image), "images differ");
     assert_eq!(
-        bits(&one.classification),
-        bits(&two.classification),
+        bits(&one.classification()),
+        bits(&two.classification()),
         "classification images differ"
     );
     assert_eq!(one.stats.work(), two.stats.work(), "work counters differ");
@@ -293,7 +293,7 @@ catalog = "sphere"
 "#;
     let scene = Scene::from_toml(text, "sphere.toml", None).unwrap();
     let out = run(&scene);
-    let cls = &out.classification;
+    let cls = out.classification();
     assert_eq!((cls.width, cls.height), (32, 32));
     // Corners are far from the sphere (it covers the middle ~ 17 pixels).
     for (x, y) in [(0, 0), (31, 0), (0, 31), (31, 31), (2, 16)] {
@@ -327,7 +327,7 @@ catalog = "sphere"
         counts.get("undecided").copied().unwrap_or(0)
     );
     // The cost map has the image's size.
-    assert_eq!(out.cost_map.pixels.len(), 32 * 32);
+    assert_eq!(out.cost_map().pixels.len(), 32 * 32);
 }
 
 /// A fresh, empty folder for this test.

@@ -80,11 +80,15 @@ fn assert_same(name: &str, whole: &RenderOutput, parts: &RenderOutput) {
         "{name}: images differ"
     );
     assert_eq!(
-        bits(&whole.classification),
-        bits(&parts.classification),
+        bits(&whole.classification()),
+        bits(&parts.classification()),
         "{name}: classification images differ"
     );
-    assert_eq!(whole.box_classes, parts.box_classes, "{name}: box classes");
+    assert_eq!(
+        whole.box_classes(),
+        parts.box_classes(),
+        "{name}: box classes"
+    );
     assert_eq!(whole.stats.work(), parts.stats.work(), "{name}: counters");
     assert_eq!(
         whole.shadows.is_some(),

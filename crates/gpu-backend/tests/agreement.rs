@@ -93,7 +93,7 @@ fn suite() -> Vec<(String, Scene)> {
 /// What contradicts between `a` and the reference `r`.
 fn contradictions(a: &RenderOutput, r: &RenderOutput) -> Vec<String> {
     let mut bad = Vec::new();
-    for (i, (x, y)) in a.box_classes.iter().zip(&r.box_classes).enumerate() {
+    for (i, (x, y)) in a.box_classes().iter().zip(&r.box_classes()).enumerate() {
         match (x, y) {
             (Some(BoxClass::Miss), Some(BoxClass::Hit { .. }))
             | (Some(BoxClass::Hit { .. }), Some(BoxClass::Miss)) => {
@@ -227,7 +227,7 @@ position = [3.0, 5.0, 2.0]
     }
     let out = render_on(&s, &backend, &NoProgress).expect("the GPU backend renders");
     let reference = render(&s, &NoProgress).expect("the CPU renders");
-    assert_eq!(out.box_classes, reference.box_classes);
+    assert_eq!(out.box_classes(), reference.box_classes());
 }
 
 #[test]

@@ -304,11 +304,13 @@ fn run(args: Args) -> Result<(), String> {
     println!("{}", out.stats);
     println!("wrote {}", args.out.display());
     if let Some(p) = &args.classification {
-        out.classification.write_png(p).map_err(|e| e.to_string())?;
+        out.classification()
+            .write_png(p)
+            .map_err(|e| e.to_string())?;
         println!("wrote {}", p.display());
     }
     if let Some(p) = &args.cost_map {
-        out.cost_map.write_png(p).map_err(|e| e.to_string())?;
+        out.cost_map().write_png(p).map_err(|e| e.to_string())?;
         println!("wrote {}", p.display());
     }
     if let Some(p) = &args.shadow_classes {

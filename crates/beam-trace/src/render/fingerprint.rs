@@ -46,8 +46,8 @@ impl RenderOutput {
     pub fn fingerprint(&self) -> u64 {
         let mut h = Fnv::new();
         h.image(&self.image);
-        h.image(&self.classification);
-        for c in &self.box_classes {
+        h.image(&self.classification());
+        for c in &self.box_classes() {
             match c {
                 None => h.u64(0),
                 Some(BoxClass::Miss) => h.u64(1),

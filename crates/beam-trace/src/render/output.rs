@@ -1,5 +1,8 @@
 //! What a render produces: the image, the per-pixel maps and the statistics.
 
+use rayon::prelude::*;
+
+use super::images::{classification_image, cost_image};
 use crate::beam::BoxClass;
 use crate::float_map::FloatMap;
 use crate::image::Image;
@@ -15,20 +18,39 @@ pub struct RenderOutput {
     pub image: Image,
     /// Per-pass time and counters.
     pub stats: RenderStats,
-    /// Proven-miss (blue), proven-hit (red) and undecided (yellow) screen boxes, with box
-    /// outlines (thesis fig. 5.13); grey where no beam classified the pixel.
-    pub classification: Image,
-    /// The cost of primary visibility per pixel, as a heat map (thesis fig. 5.8), in the
-    /// backend's unit of cost (time on the CPU).
-    pub cost_map: Image,
-    /// Each pixel's screen box class (`None` where no screen box pass ran).
-    pub box_classes: Vec<Option<BoxClass>>,
+    /// The cost of primary visibility per pixel, row-major, in the backend's unit of cost
+    /// (time on the CPU); [`RenderOutput::cost_map`] draws it.
+    pub cost: Vec<f32>,
+    /// Each pixel's screen box class and whether it lies on its box's top or left edge
+    /// (`None` where no screen box pass ran).
+    pub(super) boxes: Vec<Option<(BoxClass, bool)>>,
     /// Each pixel's proven bounds on the share of its area whose rays meet a surface.
     pub coverage: Vec<Coverage>,
     /// Soft shadows per pixel; `None` without a soft-shadow pass.
     pub shadows: Option<ShadowMaps>,
     /// The plan that ran.
     pub plan: Plan,
+}
+
+impl RenderOutput {
+    /// Each pixel's screen box class, row-major (`None` where no screen box pass ran).
+    pub fn box_classes(&self) -> Vec<Option<BoxClass>> {
+        self.boxes
+            .par_iter()
+            .map(|c| c.map(|(class, _)| class))
+            .collect()
+    }
+
+    /// Proven-miss (blue), proven-hit (red) and undecided (yellow) screen boxes, with box
+    /// outlines (thesis fig. 5.13); grey where no beam classified the pixel.
+    pub fn classification(&self) -> Image {
+        classification_image(self.image.width, self.image.height, &self.boxes)
+    }
+
+    /// The cost of primary visibility per pixel as a heat map (thesis fig. 5.8).
+    pub fn cost_map(&self) -> Image {
+        cost_image(self.image.width, self.image.height, &self.cost)
+    }
 }
 
 /// What the soft-shadow pass found, per pixel (row-major).

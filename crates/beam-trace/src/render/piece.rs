@@ -3,9 +3,7 @@
 
 use std::time::Instant;
 
-use rayon::prelude::*;
-
-use super::images::{classification_image, cost_image, shadow_class_image};
+use super::images::shadow_class_image;
 use super::output::{RenderOutput, ShadowMaps};
 use crate::beam::BoxClass;
 use crate::error::Error;
@@ -147,10 +145,9 @@ pub(super) fn assemble(
     let mut all_passes = setup.to_vec();
     all_passes.extend(passes);
     Ok(RenderOutput {
-        classification: classification_image(width, height, &classes),
-        box_classes: classes.par_iter().map(|c| c.map(|c| c.0)).collect(),
+        boxes: classes,
         coverage,
-        cost_map: cost_image(width, height, &cost),
+        cost,
         shadows,
         image: Image {
             width,
