@@ -241,8 +241,30 @@ impl Column {
     /// The quadtree node of the quadrant at `position` (0 to 3) of this column's rectangle:
     /// the tile is node 0, the quadrants of node `n` are `4n + 1` to `4n + 4`.
     fn child(&self, position: usize) -> usize {
-        4 * self.node + 1 + position
+        // Saturating: a node past any table (a tile deeper than `MAX_DEPTH`) is looked up
+        // nowhere.
+        self.node.saturating_mul(4).saturating_add(1 + position)
     }
+}
+
+/// Tiles whose quadtree is deeper than this (wider than 1024 pixels) keep no table per node
+/// (it would hold more than a million nodes): their columns are made each time and their
+/// filled pixels counted from the bitmap.
+const MAX_DEPTH: u32 = 10;
+
+/// The row-major index of pixel `(x, y)` in `tile`.
+fn pixel_index(tile: PixelRect, x: u32, y: u32) -> usize {
+    let width = (tile.x1 - tile.x0) as usize;
+    (y - tile.y0) as usize * width + (x - tile.x0) as usize
+}
+
+/// The number of nodes of `tile`'s quadtree where it is at most [`MAX_DEPTH`] deep.
+fn quadtree_nodes(tile: PixelRect) -> Option<usize> {
+    // Halving a side of `n` pixels (the larger half first) reaches one pixel after
+    // `ceil(log2 n)` splits.
+    let side = (tile.x1 - tile.x0).max(tile.y1 - tile.y0).max(1);
+    let depth = side.next_power_of_two().trailing_zeros();
+    (depth <= MAX_DEPTH).then(|| (4usize.pow(depth + 1) - 1) / 3)
 }
 
 /// The columns of a tile's quadtree made so far, by node: a rectangle is split again in
@@ -258,30 +280,23 @@ struct Columns {
 impl Columns {
     /// Quadtrees deeper than this (tiles wider than 1024 pixels) make their deepest
     /// columns each time (the table would grow past a million nodes).
-    const MAX_DEPTH: u32 = 10;
-
     /// No column of `tile`'s quadtree made.
     fn reset(&mut self, tile: PixelRect) {
-        // Halving a side of `n` pixels (the larger half first) reaches one pixel after
-        // `ceil(log2 n)` splits.
-        let side = (tile.x1 - tile.x0).max(tile.y1 - tile.y0).max(1);
-        let depth = side
-            .next_power_of_two()
-            .trailing_zeros()
-            .min(Self::MAX_DEPTH);
-        let nodes = (4usize.pow(depth + 1) - 1) / 3;
         self.slots.clear();
-        self.slots.resize(nodes, 0);
+        self.slots.resize(quadtree_nodes(tile).unwrap_or(0), 0);
         self.made.clear();
     }
 }
 
-/// Which pixels of a tile have their first cell: a bit per pixel, rows of 64-bit words.
+/// Which pixels of a tile have their first cell: a bit per pixel, rows of 64-bit words,
+/// and per node of the tile's quadtree the number of its pixels marked through it or a
+/// node inside it.
 #[derive(Default)]
 struct Filled {
     tile: PixelRect,
     words: usize,
     bits: Vec<u64>,
+    counts: Vec<u32>,
 }
 
 impl Filled {
@@ -292,6 +307,44 @@ impl Filled {
         self.bits.clear();
         self.bits
             .resize(self.words * (tile.y1 - tile.y0) as usize, 0);
+        self.counts.clear();
+        self.counts.resize(quadtree_nodes(tile).unwrap_or(0), 0);
+    }
+
+    /// Marks the pixels of `r`, node `node` of the quadtree, that are not marked yet,
+    /// calling `each` with every one.
+    fn fill(&mut self, r: PixelRect, node: usize, mut each: impl FnMut(u32, u32)) {
+        let mut n = 0;
+        for (x, y) in r.pixels() {
+            if !self.get(x, y) {
+                self.set(x, y);
+                each(x, y);
+                n += 1;
+            }
+        }
+        if self.counts.is_empty() {
+            return;
+        }
+        // The node and every node holding it.
+        let mut k = node;
+        loop {
+            self.counts[k] += n;
+            if k == 0 {
+                break;
+            }
+            k = (k - 1) / 4;
+        }
+    }
+
+    /// Whether every pixel of `r`, node `node` of the quadtree, is marked: by the node's
+    /// count. A node is only asked about while no node holding it was filled whole (a
+    /// filled node is not searched again, nor anything inside it), so the count of its
+    /// own fills and those inside it is all of its marked pixels.
+    fn complete(&self, r: PixelRect, node: usize) -> bool {
+        match self.counts.get(node) {
+            Some(&n) => u64::from(n) == r.area(),
+            None => self.all(r),
+        }
     }
 
     /// Marks pixel `(x, y)`.
@@ -371,11 +424,6 @@ impl Search<'_> {
             *slot = made.len() as u32;
         }
         made[*slot as usize - 1]
-    }
-
-    fn index(&self, x: u32, y: u32) -> usize {
-        let width = (self.tile.x1 - self.tile.x0) as usize;
-        (y - self.tile.y0) as usize * width + (x - self.tile.x0) as usize
     }
 
     /// Where every ray of the leaf's beam (set on `g` with the innermost restriction) has
@@ -561,7 +609,7 @@ impl Search<'_> {
             spread,
             ..
         } = *column;
-        if self.filled.all(r) {
+        if self.filled.complete(r, column.node) {
             return false;
         }
         self.g
@@ -621,12 +669,10 @@ impl Search<'_> {
                     },
                 },
             };
-            for (x, y) in r.pixels() {
-                if !self.filled.get(x, y) {
-                    self.filled.set(x, y);
-                    self.first.push((self.index(x, y) as u32, first.clone()));
-                }
-            }
+            let (tile, found) = (self.tile, &mut self.first);
+            self.filled.fill(r, column.node, |x, y| {
+                found.push((pixel_index(tile, x, y) as u32, first.clone()));
+            });
             return false;
         }
         self.split(column, t, near_positive)
@@ -643,7 +689,7 @@ impl Search<'_> {
     ) -> bool {
         let mut all = true;
         for (k, q) in column.r.numbered_quadrants() {
-            if self.filled.all(q) {
+            if self.filled.complete(q, column.child(k)) {
                 // Every range would return at once (not proven positive): no beam.
                 all = false;
                 continue;
@@ -742,5 +788,54 @@ mod tests {
                 }
             }
         }
+    }
+
+    /// The per-node counts agree with the bitmap on every node that the search may still
+    /// ask about (no node holding it filled whole), after fills of nodes in a scattered
+    /// order, on a tile whose sides split unevenly.
+    #[test]
+    fn node_counts_agree_with_the_bitmap() {
+        let tile = PixelRect {
+            x0: 64,
+            y0: 128,
+            x1: 64 + 45,
+            y1: 128 + 23,
+        };
+        // Every node with its rectangle and the nodes holding it.
+        let mut nodes = Vec::new();
+        let mut stack = vec![(tile, 0usize, Vec::new())];
+        while let Some((r, id, above)) = stack.pop() {
+            let mut inner = above.clone();
+            inner.push(id);
+            for (k, q) in r.numbered_quadrants() {
+                if !r.is_pixel() {
+                    stack.push((q, 4 * id + 1 + k, inner.clone()));
+                }
+            }
+            nodes.push((r, id, above));
+        }
+        let mut filled = Filled::default();
+        filled.reset(tile);
+        let mut whole = std::collections::HashSet::new();
+        let mut state = 0x9e37_79b9_7f4a_7c15_u64;
+        for _ in 0..400 {
+            // A node that may still be searched: none holding it filled whole.
+            state = state
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            let (r, id, above) = &nodes[(state >> 33) as usize % nodes.len()];
+            if whole.contains(id) || above.iter().any(|a| whole.contains(a)) {
+                continue;
+            }
+            filled.fill(*r, *id, |_, _| {});
+            whole.insert(*id);
+            for (r, id, above) in &nodes {
+                if above.iter().any(|a| whole.contains(a)) {
+                    continue;
+                }
+                assert_eq!(filled.complete(*r, *id), filled.all(*r), "{r:?}");
+            }
+        }
+        assert!(whole.len() > 20, "{} fills", whole.len());
     }
 }
