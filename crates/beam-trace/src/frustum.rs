@@ -79,6 +79,10 @@ const PRUNE_MIN_LEN: usize = 16;
 /// searched as its quadrants over the same range where not.
 const BLOCK: u32 = 2;
 
+/// Tapes this long are evaluated in the cells with their `min`/`max` choices recorded, so
+/// that a cell that is split prunes without evaluating again.
+const TRACED_MIN_LEN: usize = 24;
+
 /// How far below its leaf size a traced ray's range is halved in search of a sign change
 /// before the ray is left to the root finder: `2^-TRACE_DEPTH` of it.
 const TRACE_DEPTH: i32 = 10;
@@ -614,7 +618,17 @@ impl Search<'_> {
         }
         self.g
             .set_interval_beam(beam, self.chain.last().map(|s| &s.tape));
-        let gt = self.g.g(t);
+        // A long tape is evaluated with its choices recorded: a cell that is split prunes
+        // by them instead of evaluating again.
+        let gt = if self
+            .g
+            .scope()
+            .is_some_and(|tape| tape.len() >= TRACED_MIN_LEN)
+        {
+            self.g.g_traced(t)
+        } else {
+            self.g.g(t)
+        };
         self.counters.g_evals += 1;
         if gt.is_empty() {
             return false;
@@ -709,19 +723,14 @@ impl Search<'_> {
     /// beam, else the rectangle in four and `t` in two. Returns whether `g > 0` is proven
     /// at `sup t` for every ray of the column.
     fn split(&mut self, column: &Column, t: Interval<f64>, near_positive: bool) -> bool {
-        let Column {
-            ref beam, spread, ..
-        } = *column;
-        let shallow = t.wid() <= self.epsilon.max(spread * t.sup().abs());
+        let shallow = t.wid() <= self.epsilon.max(column.spread * t.sup().abs());
         // The cells inside this one search with `g` pruned to it; where pruning decides
         // nothing, the tape keeps the wider region it holds for.
-        self.g
-            .set_interval_beam(beam, self.chain.last().map(|s| &s.tape));
         let mut pushed = false;
         if let Some(tape) = self.g.scope()
             && tape.len() > PRUNE_MIN_LEN
         {
-            self.g.restrict(t);
+            self.g.restrict_traced(t);
             if let Some(pruned) = self.g.scope().filter(|p| !p.ptr_eq(&tape)) {
                 self.chain.push(BeamScope {
                     tape: pruned,

@@ -537,6 +537,28 @@ impl BeamEval {
             .enclose(tape, &points)
     }
 
+    /// [`RayFn::g`], recording the `min`/`max` choices of the evaluation in `f64` (the other
+    /// precisions evaluate plainly), so that [`BeamEval::restrict_traced`] to the same `t`
+    /// right after prunes without evaluating again. The same enclosure as `g`.
+    pub fn g_traced(&mut self, t: Interval<f64>) -> Interval<f64> {
+        match self.precision {
+            Precision::F64 => {
+                let natural = self.interval.g_traced(t);
+                self.narrowed(t, natural, false)
+            }
+            Precision::F32 | Precision::Dd => self.g(t),
+        }
+    }
+
+    /// [`RayFn::restrict`] to `t`, by the choices of the last [`BeamEval::g_traced`] where
+    /// it was over `t` with the tape and beam set now ([`RayEvaluator::restrict_traced`]).
+    pub fn restrict_traced(&mut self, t: Interval<f64>) {
+        match self.precision {
+            Precision::F64 => self.interval.restrict_traced(t),
+            Precision::F32 | Precision::Dd => self.restrict(t),
+        }
+    }
+
     /// Sets the interval evaluator's ray or beam with the restriction `scope` (which must
     /// hold for it, as for [`RayFn::set_scope`]), without loading the whole `g` in between;
     /// the whole `g` without one.

@@ -144,6 +144,9 @@ pub struct RayEvaluator<N> {
     /// [`RayEvaluator::restrict`]).
     g_full: Tape,
     trace: Vec<crate::Choice>,
+    /// The parameters and tape of the evaluation whose choices `trace` holds, where it was
+    /// [`RayEvaluator::g_traced`] for the ray or beam set now.
+    traced: Option<(N, Tape)>,
     g_dg: Evaluator<N>,
     vars: Vec<N>,
     out: [N; 2],
@@ -173,6 +176,7 @@ impl<N: Number> RayEvaluator<N> {
             g: Evaluator::new(&f.g),
             g_full: f.g.clone(),
             trace: Vec::new(),
+            traced: None,
             g_dg: Evaluator::new(&f.g_dg),
             vars,
             out: [zero; 2],
@@ -227,6 +231,38 @@ impl<N: Number> RayEvaluator<N> {
         }
     }
 
+    /// `g(t)`, recording the `min`/`max` choices of the evaluation, so that a
+    /// [`restrict_traced`](Self::restrict_traced) to the same `t` right after prunes
+    /// without evaluating again (the same enclosure as [`g`](Self::g)).
+    pub fn g_traced(&mut self, t: N) -> N {
+        self.vars[T.index()] = t;
+        let g = self
+            .g
+            .eval_traced(&self.vars, &mut self.trace)
+            .expect("slot count checked at construction");
+        self.traced = Some((t, self.g.tape().clone()));
+        g
+    }
+
+    /// [`restrict`](Self::restrict) to `t`, by the choices that the last
+    /// [`g_traced`](Self::g_traced) recorded where it was over `t` with the tape and the
+    /// ray or beam set now (no evaluation spent); otherwise as `restrict`.
+    pub fn restrict_traced(&mut self, t: N)
+    where
+        N: PartialEq,
+    {
+        let fresh =
+            matches!(&self.traced, Some((at, tape)) if *at == t && tape.ptr_eq(self.g.tape()));
+        if !fresh {
+            self.restrict(t);
+            return;
+        }
+        self.vars[T.index()] = t;
+        if let Ok(p) = self.g.tape().simplify(&self.trace) {
+            self.g.set_tape(&p);
+        }
+    }
+
     /// Undoes every [`restrict`](Self::restrict): `g` is evaluated whole again.
     pub fn unrestrict(&mut self) {
         self.g.set_tape(&self.g_full);
@@ -270,6 +306,7 @@ impl<N: Number> RayEvaluator<N> {
 
     /// The variable slots of the ray's origin and direction.
     fn set_ray_vars(&mut self, origin: [N; 3], dir: [N; 3]) {
+        self.traced = None;
         self.vars[0..3].copy_from_slice(&origin);
         self.vars[4..7].copy_from_slice(&dir);
     }

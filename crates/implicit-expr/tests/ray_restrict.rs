@@ -44,6 +44,53 @@ fn a_restricted_tape_compiles_shorter() {
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
 
+    /// A restriction by the choices of the evaluation just made over the same range
+    /// (`g_traced`, `restrict_traced`) is the restriction `restrict` makes: the same
+    /// enclosure, and the same pruned tape; one over another range, or after the beam
+    /// changed, is made afresh.
+    #[test]
+    fn a_restriction_by_the_last_trace_is_a_fresh_one(
+        cx in -1.5f64..1.5, cy in -1.5f64..1.5,
+        half in 1e-4f64..0.05,
+        t0 in 0.0f64..4.0, w in 0.01f64..1.0, shift in 0.0f64..1.0,
+    ) {
+        let f = ray_function();
+        let origin = [ival(cx - half, cx + half), ival(cy - half, cy + half), ival(3.0, 3.0)];
+        let dir = [ival(-half, half), ival(-half, half), ival(-1.0, -1.0)];
+        let t = ival(t0, t0 + w);
+        let other = ival(t0 + shift, t0 + shift + w);
+        let mut fresh = RayEvaluator::<Interval<f64>>::new(&f, &[]).unwrap();
+        fresh.set_ray(origin, dir);
+        let g = fresh.g(t);
+        fresh.restrict(t);
+        let mut traced = RayEvaluator::<Interval<f64>>::new(&f, &[]).unwrap();
+        traced.set_ray(origin, dir);
+        prop_assert_eq!(traced.g_traced(t), g);
+        traced.restrict_traced(t);
+        prop_assert_eq!(traced.scope().instrs(), fresh.scope().instrs());
+        prop_assert_eq!(traced.g(t), fresh.g(t));
+        // Traced over `t`, restricted to another range: as `restrict` there.
+        let mut stale = RayEvaluator::<Interval<f64>>::new(&f, &[]).unwrap();
+        stale.set_ray(origin, dir);
+        stale.g_traced(t);
+        stale.restrict_traced(other);
+        let mut elsewhere = RayEvaluator::<Interval<f64>>::new(&f, &[]).unwrap();
+        elsewhere.set_ray(origin, dir);
+        elsewhere.restrict(other);
+        prop_assert_eq!(stale.scope().instrs(), elsewhere.scope().instrs());
+        // Traced for one beam, restricted after another was set: as `restrict` for it.
+        let moved = [ival(-cx - half, -cx + half), origin[1], origin[2]];
+        let mut rebeamed = RayEvaluator::<Interval<f64>>::new(&f, &[]).unwrap();
+        rebeamed.set_ray(origin, dir);
+        rebeamed.g_traced(t);
+        rebeamed.set_ray(moved, dir);
+        rebeamed.restrict_traced(t);
+        let mut direct = RayEvaluator::<Interval<f64>>::new(&f, &[]).unwrap();
+        direct.set_ray(moved, dir);
+        direct.restrict(t);
+        prop_assert_eq!(rebeamed.scope().instrs(), direct.scope().instrs());
+    }
+
     /// Inside the region it was restricted to, the scoped function has the whole
     /// function's values and derivatives at points, and its interval enclosures over
     /// parts of the region contain the whole function's point values.
