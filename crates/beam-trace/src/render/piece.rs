@@ -106,18 +106,8 @@ pub(super) fn assemble(
 ) -> Result<RenderOutput, Error> {
     let tolerance = plan.shadow_method.method().tolerance();
     let soft = plan.runs(Pass::SoftShadows);
-    let (maps, passes, mut lights) = gather((width, height), plan, pieces)?;
-    let ImageMaps {
-        colors,
-        classes,
-        coverage,
-        cost,
-        shadow_classes,
-        fractions,
-        lower,
-        upper,
-    } = maps;
-    let mut passes = passes;
+    let (maps, mut passes, mut lights) = gather((width, height), plan, pieces)?;
+    let (lower, upper) = (maps.lower, maps.upper);
     let shadows = soft.then(|| {
         // The bound widths, pixel by pixel in image order, per light and over all.
         let mut all = BoundWidths::default();
@@ -133,9 +123,9 @@ pub(super) fn assemble(
             all.write(stats);
         }
         ShadowMaps {
-            image: shadow_class_image(width, height, &shadow_classes),
-            classes: shadow_classes,
-            fractions,
+            image: shadow_class_image(width, height, &maps.shadow_classes),
+            classes: maps.shadow_classes,
+            fractions: maps.fractions,
             lower,
             upper,
             width,
@@ -145,14 +135,14 @@ pub(super) fn assemble(
     let mut all_passes = setup.to_vec();
     all_passes.extend(passes);
     Ok(RenderOutput {
-        boxes: classes,
-        coverage,
-        cost,
+        boxes: maps.classes,
+        coverage: maps.coverage,
+        cost: maps.cost,
         shadows,
         image: Image {
             width,
             height,
-            pixels: colors,
+            pixels: maps.colors,
         },
         stats: RenderStats {
             passes: all_passes,
