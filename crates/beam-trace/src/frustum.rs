@@ -190,8 +190,9 @@ pub fn first_cells(
     (range, epsilon, traced_rays): (Interval<f64>, f64, u32),
     counters: &mut RootCounters,
 ) -> TileCells {
-    scratch.columns.reset(tile);
-    scratch.filled.reset(tile);
+    let nodes = quadtree_nodes(tile).unwrap_or(0);
+    scratch.columns.reset(nodes);
+    scratch.filled.reset(tile, nodes);
     let mut search = Search {
         g,
         cam,
@@ -282,12 +283,10 @@ struct Columns {
 }
 
 impl Columns {
-    /// Quadtrees deeper than this (tiles wider than 1024 pixels) make their deepest
-    /// columns each time (the table would grow past a million nodes).
-    /// No column of `tile`'s quadtree made.
-    fn reset(&mut self, tile: PixelRect) {
+    /// No column made, with a table of `nodes` nodes (0: none kept, see [`MAX_DEPTH`]).
+    fn reset(&mut self, nodes: usize) {
         self.slots.clear();
-        self.slots.resize(quadtree_nodes(tile).unwrap_or(0), 0);
+        self.slots.resize(nodes, 0);
         self.made.clear();
     }
 }
@@ -304,15 +303,16 @@ struct Filled {
 }
 
 impl Filled {
-    /// No pixel of `tile` filled.
-    fn reset(&mut self, tile: PixelRect) {
+    /// No pixel of `tile` filled, with counts for `nodes` nodes of its quadtree (0: none
+    /// kept, see [`MAX_DEPTH`]).
+    fn reset(&mut self, tile: PixelRect, nodes: usize) {
         self.tile = tile;
         self.words = ((tile.x1 - tile.x0) as usize).div_ceil(64);
         self.bits.clear();
         self.bits
             .resize(self.words * (tile.y1 - tile.y0) as usize, 0);
         self.counts.clear();
-        self.counts.resize(quadtree_nodes(tile).unwrap_or(0), 0);
+        self.counts.resize(nodes, 0);
     }
 
     /// Marks the pixels of `r`, node `node` of the quadtree, that are not marked yet,
@@ -689,7 +689,7 @@ impl Search<'_> {
             });
             return false;
         }
-        self.split(column, t, near_positive)
+        self.split(column, t, (near_positive, shallow))
     }
 
     /// Searches each quadrant of `column` over `ranges` in turn (consecutive, nearest
@@ -720,10 +720,14 @@ impl Search<'_> {
 
     /// Searches the cells inside the cell `column × t` (see [`Search::visit`]), with `g`
     /// pruned to it: `t` in two where it is longer than the cross-section of the column's
-    /// beam, else the rectangle in four and `t` in two. Returns whether `g > 0` is proven
-    /// at `sup t` for every ray of the column.
-    fn split(&mut self, column: &Column, t: Interval<f64>, near_positive: bool) -> bool {
-        let shallow = t.wid() <= self.epsilon.max(column.spread * t.sup().abs());
+    /// beam, else (`shallow`) the rectangle in four and `t` in two. Returns whether `g > 0`
+    /// is proven at `sup t` for every ray of the column.
+    fn split(
+        &mut self,
+        column: &Column,
+        t: Interval<f64>,
+        (near_positive, shallow): (bool, bool),
+    ) -> bool {
         // The cells inside this one search with `g` pruned to it; where pruning decides
         // nothing, the tape keeps the wider region it holds for.
         let mut pushed = false;
@@ -771,7 +775,7 @@ mod tests {
             y1: 5 + 4,
         };
         let mut filled = Filled::default();
-        filled.reset(tile);
+        filled.reset(tile, 0);
         let mut plain = std::collections::HashSet::new();
         for (k, (x, y)) in tile.pixels().enumerate() {
             if k % 7 != 3 {
@@ -824,7 +828,7 @@ mod tests {
             nodes.push((r, id, above));
         }
         let mut filled = Filled::default();
-        filled.reset(tile);
+        filled.reset(tile, quadtree_nodes(tile).unwrap_or(0));
         let mut whole = std::collections::HashSet::new();
         let mut state = 0x9e37_79b9_7f4a_7c15_u64;
         for _ in 0..400 {

@@ -253,7 +253,7 @@ impl<N: Number> RayEvaluator<N> {
     {
         let fresh =
             matches!(&self.traced, Some((at, tape)) if *at == t && tape.ptr_eq(self.g.tape()));
-        if !fresh {
+        if !fresh || self.g.tape().choice_count() == 0 {
             self.restrict(t);
             return;
         }
