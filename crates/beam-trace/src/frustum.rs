@@ -160,11 +160,38 @@ impl FirstCell {
     }
 }
 
-/// The first cells of a tile's pixels that have one, each with its pixel's row-major index
-/// in the tile, in the order the search found them; the tile's other pixels are proven
-/// missed (no ray of theirs meets a surface in the range searched). Sparse, so that a tile
-/// costs what its surface does, not a record per pixel.
-pub type TileCells = Vec<(u32, FirstCell)>;
+/// The first cells of a tile's pixels that have one, in the order the search found them;
+/// the tile's other pixels are proven missed (no ray of theirs meets a surface in the range
+/// searched). Sparse, so that a tile costs what its surface does, not a record per pixel;
+/// the pixels of one leaf share its record.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TileCells {
+    /// The cells, each the first cell of one or more pixels.
+    pub cells: Vec<FirstCell>,
+    /// Each pixel that has a first cell: its row-major index in the tile, and its cell's
+    /// index in [`cells`](Self::cells). A pixel appears once.
+    pub pixels: Vec<(u32, u32)>,
+}
+
+impl TileCells {
+    /// The number of pixels that have a first cell.
+    pub fn len(&self) -> usize {
+        self.pixels.len()
+    }
+
+    /// Whether no pixel has a first cell (every one is proven missed).
+    pub fn is_empty(&self) -> bool {
+        self.pixels.is_empty()
+    }
+
+    /// Each pixel that has a first cell, by its row-major index in the tile, with that
+    /// cell.
+    pub fn iter(&self) -> impl Iterator<Item = (u32, &FirstCell)> {
+        self.pixels
+            .iter()
+            .map(|&(k, c)| (k, &self.cells[c as usize]))
+    }
+}
 
 /// The memory a tile's search works in, kept from one tile to the next so that a render
 /// does not map fresh pages for every tile (a tile of 64 × 64 pixels makes up to 5,461
@@ -206,7 +233,7 @@ pub fn first_cells(
         range,
         tile,
         epsilon,
-        first: Vec::new(),
+        first: TileCells::default(),
         filled: &mut scratch.filled,
         counters,
         chain: Vec::new(),
@@ -684,8 +711,10 @@ impl Search<'_> {
                 },
             };
             let (tile, found) = (self.tile, &mut self.first);
+            let cell = found.cells.len() as u32;
+            found.cells.push(first);
             self.filled.fill(r, column.node, |x, y| {
-                found.push((pixel_index(tile, x, y) as u32, first.clone()));
+                found.pixels.push((pixel_index(tile, x, y) as u32, cell));
             });
             return false;
         }

@@ -60,12 +60,12 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
     for (tile, cells) in tiles.iter().zip(&answers.values) {
         // One record per pixel: its first cell where it has one.
         let mut firsts: Vec<Option<&FirstCell>> = vec![None; tile.area() as usize];
-        for (k, f) in cells {
+        for (k, f) in cells.iter() {
             assert!(
-                firsts[*k as usize].is_none(),
+                firsts[k as usize].is_none(),
                 "pixel {k} of {tile:?} given twice"
             );
-            firsts[*k as usize] = Some(f);
+            firsts[k as usize] = Some(f);
         }
         for ((x, y), first) in tile.pixels().zip(firsts) {
             for k in 0..25 {
@@ -143,7 +143,7 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
     let hits: usize = answers
         .values
         .iter()
-        .flatten()
+        .flat_map(|cells| cells.iter())
         .filter(|(_, f)| f.hit)
         .count();
     assert!(

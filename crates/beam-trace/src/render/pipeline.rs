@@ -200,8 +200,10 @@ impl<'a> Pipeline<'a> {
         Ok(Piece {
             window: *window,
             colors,
+            // In place: the two records have the same layout, so the map reuses the
+            // classes' memory instead of mapping fresh pages for every pixel.
             classes: classes
-                .par_iter()
+                .into_iter()
                 .map(|c| c.map(|c| (c.class, c.edge)))
                 .collect(),
             coverage,

@@ -87,7 +87,9 @@ pub(super) fn structure(
 ) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
     match plan.primary {
         // The octree traces each undecided pixel's rays.
-        Primary::Octree { rays_per_undecided } => octree(q, window, rays_per_undecided, progress),
+        Primary::Octree { rays_per_undecided } => {
+            octree(q, window, (rays_per_undecided, plan.narrow_hits), progress)
+        }
         _ => {
             let (classes, scopes, stats) = screen_boxes(q, scene, plan, window, progress)?;
             Ok((classes, scopes, Vec::new(), stats))
@@ -102,7 +104,7 @@ pub(super) fn structure(
 fn octree(
     q: &dyn Queries,
     window: &Window,
-    traced_rays: u32,
+    (traced_rays, narrow_hits): (u32, bool),
     progress: &dyn Progress,
 ) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
     let t0 = Instant::now();
@@ -123,18 +125,20 @@ fn octree(
         c.search.add(&answers.search);
         slots.par_extend(band.par_iter().zip(&answers.values).map(|(tile, cells)| {
             let mut slot = vec![u32::MAX; tile.area() as usize];
-            for (j, (k, _)) in cells.iter().enumerate() {
-                slot[*k as usize] = j as u32;
+            for &(k, j) in &cells.pixels {
+                slot[k as usize] = j;
             }
             slot
         }));
         for (tile, mut cells) in band.iter().zip(answers.values) {
             c.add_pixels(&BoxClass::Miss, tile.area() - cells.len() as u64);
             let width = tile.x1 - tile.x0;
-            for (k, f) in &mut cells {
+            for &(k, j) in &cells.pixels {
+                let f = &mut cells.cells[j as usize];
                 c.add_pixels(&f.class(), 1);
                 if !f.traced.is_empty() {
-                    let (x, y) = (tile.x0 + *k % width, tile.y0 + *k / width);
+                    // A traced cell is a single pixel's.
+                    let (x, y) = (tile.x0 + k % width, tile.y0 + k / width);
                     traced.push((window.local(x, y) as u32, std::mem::take(&mut f.traced)));
                 }
             }
@@ -161,8 +165,15 @@ fn octree(
             match slots[t][k as usize] {
                 u32::MAX => (Some(BoxPixel::of(BoxClass::Miss, false)), None),
                 j => {
-                    let f = &firsts[t][j as usize].1;
-                    (Some(BoxPixel::of(f.class(), false)), f.scope.clone())
+                    let f = &firsts[t].cells[j as usize];
+                    // A Hit pixel's ray is searched (in the cell's scope) only where
+                    // the plan narrows hits.
+                    let scope = if f.hit && !narrow_hits {
+                        None
+                    } else {
+                        f.scope.clone()
+                    };
+                    (Some(BoxPixel::of(f.class(), false)), scope)
                 }
             }
         })
@@ -543,48 +554,47 @@ pub(super) fn primary_rays(
                 .map(|class| ray_count(*class, pixel_rays.count())),
         );
         let ray_pixel = owners(&first_ray);
-        let batch: Vec<PixelRay> = ray_pixel
-            .par_iter()
-            .enumerate()
-            .map(|(j, &k)| {
-                let k = k as usize;
-                let r = j - first_ray[k];
-                let p = first + k;
-                pixel_ray(
-                    (&pixel_rays, start, narrow),
-                    p,
-                    window,
-                    (classes[p], &scopes[p], traces_of(traced, p)),
-                    r,
-                )
-            })
+        // Ray `j` of the batch, made again where it is needed rather than kept: most rays
+        // are known (a Hit box's), and a record of every ray would be most of the pass's
+        // memory.
+        let ray_of = |j: usize| {
+            let k = ray_pixel[j] as usize;
+            let p = first + k;
+            pixel_ray(
+                (&pixel_rays, start, narrow),
+                p,
+                window,
+                (classes[p], &scopes[p], traces_of(traced, p)),
+                j - first_ray[k],
+            )
+        };
+        let known: Vec<Option<RootResult>> = (0..ray_pixel.len())
+            .into_par_iter()
+            .map(|j| ray_of(j).known)
             .collect();
-        let searched: Vec<usize> = (0..batch.len())
-            .filter(|&j| batch[j].known.is_none())
-            .collect();
-        let queries: Vec<RayQuery> = searched
-            .par_iter()
-            .map(|&j| batch[j].query.clone())
-            .collect();
+        let searched: Vec<usize> = (0..known.len()).filter(|&j| known[j].is_none()).collect();
+        let queries: Vec<RayQuery> = searched.par_iter().map(|&j| ray_of(j).query).collect();
         let first_try = q.roots(&queries)?;
         c.rays += queries.len() as u64;
         c.search.add(&first_try.search);
-        let mut results: Vec<RootResult> = batch
-            .iter()
-            .map(|r| r.known.unwrap_or(RootResult::NoRoot))
+        let mut results: Vec<RootResult> = known
+            .into_iter()
+            .map(|r| r.unwrap_or(RootResult::NoRoot))
             .collect();
-        let mut ray_cost = vec![0f32; batch.len()];
+        let mut ray_cost = vec![0f32; results.len()];
         for ((&j, r), t) in searched.iter().zip(first_try.values).zip(first_try.cost) {
             results[j] = r;
             ray_cost[j] = t;
         }
         // No root where one was expected first: search the fallback window, past the
         // first window where that one is proven root-free.
-        let retry: Vec<(usize, Interval<f64>)> = (0..batch.len())
-            .filter(|&j| !matches!(results[j], RootResult::Root { .. }))
-            .filter_map(|j| {
-                let w = batch[j].fallback?;
-                let searched = batch[j].query.window;
+        let retry: Vec<(usize, Interval<f64>)> = searched
+            .iter()
+            .filter(|&&j| !matches!(results[j], RootResult::Root { .. }))
+            .filter_map(|&j| {
+                let ray = ray_of(j);
+                let w = ray.fallback?;
+                let searched = ray.query.window;
                 Some(match results[j] {
                     RootResult::NoRoot if searched.inf() <= w.inf() => (
                         j,
@@ -598,7 +608,7 @@ pub(super) fn primary_rays(
             let queries: Vec<RayQuery> = retry
                 .iter()
                 .map(|&(j, window)| RayQuery {
-                    ray: batch[j].query.ray,
+                    ray: ray_of(j).query.ray,
                     window,
                     scope: None,
                 })
@@ -630,19 +640,22 @@ pub(super) fn primary_rays(
             .collect();
         let hit_queries: Vec<HitQuery> = hit_rays
             .par_iter()
-            .map(|&j| HitQuery {
-                ray: batch[j].query.ray,
-                scope: batch[j].query.scope.clone(),
-                t: match results[j] {
-                    RootResult::Root { t, .. } | RootResult::Undecided { t } => t,
-                    RootResult::NoRoot => unreachable!("only rays that met a surface"),
-                },
+            .map(|&j| {
+                let RayQuery { ray, scope, .. } = ray_of(j).query;
+                HitQuery {
+                    ray,
+                    scope,
+                    t: match results[j] {
+                        RootResult::Root { t, .. } | RootResult::Undecided { t } => t,
+                        RootResult::NoRoot => unreachable!("only rays that met a surface"),
+                    },
+                }
             })
             .collect();
         let hits = q.hit_points(&hit_queries)?;
         c.search.add(&hits.search);
         // The hit of ray `j` is `hits.values[hit_rank[j]]` when it has one.
-        let mut hit_rank = Vec::with_capacity(batch.len());
+        let mut hit_rank = Vec::with_capacity(results.len());
         let mut rank = 0;
         for r in &results {
             hit_rank.push(rank);
@@ -659,7 +672,7 @@ pub(super) fn primary_rays(
         // Each pixel's samples: one per ray, in order. A Miss box's pixel has none: it is
         // background, proven missed.
         let samples = ray_pixel.par_iter().enumerate().map(|(j, &k)| Sample {
-            weight: batch[j].weight,
+            weight: ray_of(j).weight,
             hit: hit_of(j),
             area: sample_area(classes[first + k as usize]),
         });
