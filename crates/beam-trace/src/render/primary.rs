@@ -68,6 +68,16 @@ pub(super) type PixelScopes = Vec<Option<BeamScope>>;
 /// (few pixels have them: the silhouette's); empty after the screen box structure.
 pub(super) type PixelTraces = Vec<(u32, Vec<Traced>)>;
 
+/// The traces of pixel `p`'s rays in `traces` (empty where it has none): only an
+/// Undecided pixel's rays are traced, so a Hit or Miss pixel's are known empty without a
+/// look-up.
+fn traces_at(class: Option<BoxPixel>, traces: &PixelTraces, p: usize) -> &[Traced] {
+    match class.map(|c| c.class) {
+        Some(BoxClass::Hit { .. } | BoxClass::Miss) => &[],
+        _ => traces_of(traces, p),
+    }
+}
+
 /// The traces of pixel `p`'s rays in `traces` (empty where it has none).
 fn traces_of(traces: &PixelTraces, p: usize) -> &[Traced] {
     match traces.binary_search_by_key(&p, |&(q, _)| q as usize) {
@@ -377,15 +387,14 @@ impl PixelRays {
     }
 }
 
-/// One ray of a pixel: its weight, the query, the window searched (with the whole
-/// function) when the query's search ends without a root (the whole ray after a Hit box's
-/// `T_final`, where a root is known to exist, so a limit was reached; the rest of the ray
-/// after a first cell of the frustum octree), and the answer where the box proved it and
-/// the plan asks no more (see [`Plan::narrow_hits`](crate::plan::Plan)): then it is not
-/// searched.
+/// One ray of a pixel (each of a pixel's rays weighs the same in its colour): the query,
+/// the window searched (with the whole function) when the query's search ends without a
+/// root (the whole ray after a Hit box's `T_final`, where a root is known to exist, so a
+/// limit was reached; the rest of the ray after a first cell of the frustum octree), and
+/// the answer where the box proved it and the plan asks no more (see
+/// [`Plan::narrow_hits`](crate::plan::Plan)): then it is not searched.
 #[derive(Clone)]
 struct PixelRay {
-    weight: f32,
     query: RayQuery,
     fallback: Option<Interval<f64>>,
     known: Option<RootResult>,
@@ -440,10 +449,8 @@ fn pixel_ray(
     if let (Some(traced), true) = (traced.get(r), traced.len() == rays.count()) {
         // The octree's ray `r` is this one: at the same stratified position.
         let ray = rays.stratified(x, y, r);
-        let weight = 1.0 / rays.count() as f32;
         return match traced {
             Traced::NoRoot => PixelRay {
-                weight,
                 query: RayQuery {
                     ray,
                     window: forward(),
@@ -453,7 +460,6 @@ fn pixel_ray(
                 known: Some(RootResult::NoRoot),
             },
             Traced::First { t, scope } => PixelRay {
-                weight,
                 query: RayQuery {
                     ray,
                     window: *t,
@@ -464,7 +470,6 @@ fn pixel_ray(
             },
             // The rest of the ray, with the whole function.
             &Traced::Clear { until } => PixelRay {
-                weight,
                 query: RayQuery {
                     ray,
                     window: Interval::new_unchecked(until, f64::INFINITY),
@@ -477,7 +482,6 @@ fn pixel_ray(
     }
     match class.map(|c| c.class) {
         Some(BoxClass::Hit { t_final }) => PixelRay {
-            weight: 1.0,
             query: RayQuery {
                 ray: rays.centre(x, y),
                 window: t_final,
@@ -506,7 +510,6 @@ fn pixel_ray(
                 _ => (child_window(class.as_ref()), None, None),
             };
             PixelRay {
-                weight: 1.0 / rays.count() as f32,
                 query: RayQuery {
                     ray: rays.stratified(x, y, r),
                     window,
@@ -564,7 +567,7 @@ pub(super) fn primary_rays(
                 (&pixel_rays, start, narrow),
                 p,
                 window,
-                (classes[p], &scopes[p], traces_of(traced, p)),
+                (classes[p], &scopes[p], traces_at(classes[p], traced, p)),
                 j - first_ray[k],
             )
         };
@@ -672,7 +675,8 @@ pub(super) fn primary_rays(
         // Each pixel's samples: one per ray, in order. A Miss box's pixel has none: it is
         // background, proven missed.
         let samples = ray_pixel.par_iter().enumerate().map(|(j, &k)| Sample {
-            weight: ray_of(j).weight,
+            // Each of the pixel's rays weighs the same.
+            weight: 1.0 / (first_ray[k as usize + 1] - first_ray[k as usize]) as f32,
             hit: hit_of(j),
             area: sample_area(classes[first + k as usize]),
         });
