@@ -136,4 +136,4 @@ pub use eval::{Choice, Evaluator, Grad, Number, SliceEvaluator};
 pub use op::{BinaryOp, Op, UnaryOp};
 pub use ray::{RayEvaluator, RayFunction};
 pub use semantics::{SemanticResult, Theorem, analyze};
-pub use tape::Tape;
+pub use tape::{PruneCache, Tape};

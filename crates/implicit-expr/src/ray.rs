@@ -19,7 +19,7 @@ use crate::context::{Context, NodeId, Var};
 use crate::contractor::Contractor;
 use crate::error::Error;
 use crate::eval::{Evaluator, Number};
-use crate::tape::Tape;
+use crate::tape::{PruneCache, Tape};
 use interval_core::Interval;
 
 /// Names of the variable slots of a ray function, in slot order (then the surface's
@@ -147,6 +147,9 @@ pub struct RayEvaluator<N> {
     /// The parameters and tape of the evaluation whose choices `trace` holds, where it was
     /// [`RayEvaluator::g_traced`] for the ray or beam set now.
     traced: Option<(N, Tape)>,
+    /// The prunings of `g` made so far, for the restrictions that prune a tape by choices
+    /// it was pruned by before (sibling cells, neighbouring beams).
+    prunings: PruneCache,
     g_dg: Evaluator<N>,
     vars: Vec<N>,
     out: [N; 2],
@@ -177,6 +180,7 @@ impl<N: Number> RayEvaluator<N> {
             g_full: f.g.clone(),
             trace: Vec::new(),
             traced: None,
+            prunings: PruneCache::new(),
             g_dg: Evaluator::new(&f.g_dg),
             vars,
             out: [zero; 2],
@@ -212,7 +216,8 @@ impl<N: Number> RayEvaluator<N> {
     /// [`g`](Self::g) and [`g_checked`](Self::g_checked) evaluate the pruned tape
     /// ([`Tape::simplify`]), which equals `g` at every point of the region and gives the
     /// same enclosure over every part of it. `g'` is not pruned. Where the trace cannot be
-    /// taken, `g` stays as it was.
+    /// taken, `g` stays as it was. A pruning made before by the same choices of the same
+    /// tape is taken from the evaluator's [`PruneCache`] (the same tape, bit for bit).
     ///
     /// The tape pruned is the one evaluated now: the whole `g`, or the tape of an earlier
     /// `restrict` (or [`scope`](Self::scope) set again by [`set_scope`](Self::set_scope))
@@ -226,7 +231,9 @@ impl<N: Number> RayEvaluator<N> {
             return;
         }
         self.vars[T.index()] = t;
-        if let Ok(p) = self.g.pruned(&self.vars, &mut self.trace) {
+        if self.g.eval_traced(&self.vars, &mut self.trace).is_ok()
+            && let Ok(p) = self.prunings.simplify(self.g.tape(), &self.trace)
+        {
             self.g.set_tape(&p);
         }
     }
@@ -258,7 +265,7 @@ impl<N: Number> RayEvaluator<N> {
             return;
         }
         self.vars[T.index()] = t;
-        if let Ok(p) = self.g.tape().simplify(&self.trace) {
+        if let Ok(p) = self.prunings.simplify(self.g.tape(), &self.trace) {
             self.g.set_tape(&p);
         }
     }

@@ -10,9 +10,12 @@
 //! Tapes are cheap to clone (an `Arc`) and immutable; [`Tape::simplify`] makes the shorter
 //! tape valid inside a region from the `min`/`max` choices of an interval evaluation there.
 
+mod cache;
 mod graph;
 mod prune;
 mod regalloc;
+
+pub use cache::PruneCache;
 
 use std::sync::Arc;
 
@@ -282,6 +285,12 @@ impl Tape {
     /// Whether two handles share one tape.
     pub fn ptr_eq(&self, other: &Tape) -> bool {
         Arc::ptr_eq(&self.0, &other.0)
+    }
+
+    /// The identity of the shared tape (its address): equal for handles that
+    /// [`ptr_eq`](Self::ptr_eq), and not reused while a handle lives.
+    pub(crate) fn id(&self) -> usize {
+        Arc::as_ptr(&self.0) as usize
     }
 }
 
