@@ -581,7 +581,17 @@ impl Search<'_> {
             return Step::Stuck(t.inf());
         }
         self.g.set_interval_beam(beam, tape);
-        let gt = self.g.g(t);
+        // A long tape is evaluated with its choices recorded, so that a range that is
+        // halved prunes without evaluating again.
+        let gt = if self
+            .g
+            .scope()
+            .is_some_and(|tape| tape.len() >= TRACED_MIN_LEN)
+        {
+            self.g.g_traced(t)
+        } else {
+            self.g.g(t)
+        };
         self.counters.g_evals += 1;
         if gt.is_empty() || gt.inf() > 0.0 {
             return Step::Rejected;
@@ -617,8 +627,9 @@ impl Search<'_> {
         if let Some(current) = self.g.scope()
             && current.len() > PRUNE_MIN_LEN
         {
-            self.g.set_interval_beam(beam, tape);
-            self.g.restrict(t);
+            // The ray and tape are still those of the evaluation above (the inclusion test
+            // only evaluates them): its choices, where recorded, prune.
+            self.g.restrict_traced(t);
             if let Some(pruned) = self.g.scope().filter(|p| !p.ptr_eq(&current)) {
                 inner = Some(pruned);
             }
