@@ -464,7 +464,10 @@ impl Search<'_> {
     /// positive there where `near_positive`), with `g` continuous up to `p` and both ends
     /// inside the scene bounds. Each probe is made with the innermost restriction whose
     /// region holds it (the whole `g` only without any), so the probes reach as far as the
-    /// leaf's depth needs, each made once.
+    /// leaf's depth needs, each made once. Where `g > 0` at `inf t` and a probe's upper
+    /// bound is no lower than the last one's (a ray that passes the surface by), the
+    /// probes stop: the leaf is left undecided (this decides nothing wrongly, it only
+    /// gives up).
     fn included(
         &mut self,
         beam: &Beam,
@@ -493,6 +496,9 @@ impl Search<'_> {
         };
         let mut level = self.chain.len();
         let mut step = 0.0;
+        // The upper bound of `g` at the last probe (`g > 0` at `inf t` is what the probes
+        // look past).
+        let mut last_sup = f64::INFINITY;
         for k in 0..=LOOK_AHEAD + 1 {
             let p = b + step;
             step = if k == 0 { w } else { 2.0 * step };
@@ -509,15 +515,24 @@ impl Search<'_> {
                 return None;
             }
             let mut ev = Eval::new(&mut *self.g, self.counters);
-            if sign_change(start, ev.at(p)) {
-                if !extent.holds(p) {
+            let at = ev.at(p);
+            if !sign_change(start, at) {
+                if sign(start) > 0 && at.sup() >= last_sup {
+                    // Some ray of the leaf is no nearer the surface than at the last probe
+                    // (it passes the surface by, at a silhouette): the look-ahead is given
+                    // up rather than spent on ever longer tapes.
                     return None;
                 }
-                let h = Interval::new_unchecked(a, p);
-                let continuous = ev.continuous(h);
-                let scope = level.checked_sub(1).map(|i| self.chain[i].clone());
-                return continuous.then_some((h, scope));
+                last_sup = at.sup();
+                continue;
             }
+            if !extent.holds(p) {
+                return None;
+            }
+            let h = Interval::new_unchecked(a, p);
+            let continuous = ev.continuous(h);
+            let scope = level.checked_sub(1).map(|i| self.chain[i].clone());
+            return continuous.then_some((h, scope));
         }
         None
     }
