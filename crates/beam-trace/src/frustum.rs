@@ -596,18 +596,7 @@ impl Search<'_> {
             return Step::Stuck(t.inf());
         }
         self.g.set_interval_beam(beam, tape);
-        // A long tape is evaluated with its choices recorded, so that a range that is
-        // halved prunes without evaluating again.
-        let gt = if self
-            .g
-            .scope()
-            .is_some_and(|tape| tape.len() >= TRACED_MIN_LEN)
-        {
-            self.g.g_traced(t)
-        } else {
-            self.g.g(t)
-        };
-        self.counters.g_evals += 1;
+        let gt = self.enclosure(t);
         if gt.is_empty() || gt.inf() > 0.0 {
             return Step::Rejected;
         }
@@ -655,6 +644,22 @@ impl Search<'_> {
         }
     }
 
+    /// `g` over `t` on the beam and tape set, counted. A long tape is evaluated with its
+    /// choices recorded, so that a cell or range that is split prunes by them
+    /// (`restrict_traced`) instead of evaluating again.
+    fn enclosure(&mut self, t: Interval<f64>) -> Interval<f64> {
+        self.counters.g_evals += 1;
+        if self
+            .g
+            .scope()
+            .is_some_and(|tape| tape.len() >= TRACED_MIN_LEN)
+        {
+            self.g.g_traced(t)
+        } else {
+            self.g.g(t)
+        }
+    }
+
     /// Searches the cell `column × t` with the innermost restriction of the chain, where
     /// `near_positive` says that `g > 0` at `inf t` on every ray of the cell's beam (a cell
     /// before it in each of its pixels' columns was rejected as positive). Returns whether
@@ -671,18 +676,7 @@ impl Search<'_> {
         }
         self.g
             .set_interval_beam(beam, self.chain.last().map(|s| &s.tape));
-        // A long tape is evaluated with its choices recorded: a cell that is split prunes
-        // by them instead of evaluating again.
-        let gt = if self
-            .g
-            .scope()
-            .is_some_and(|tape| tape.len() >= TRACED_MIN_LEN)
-        {
-            self.g.g_traced(t)
-        } else {
-            self.g.g(t)
-        };
-        self.counters.g_evals += 1;
+        let gt = self.enclosure(t);
         if gt.is_empty() {
             return false;
         }

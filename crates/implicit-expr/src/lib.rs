@@ -136,4 +136,5 @@ pub use eval::{Choice, Evaluator, Grad, Number, SliceEvaluator};
 pub use op::{BinaryOp, Op, UnaryOp};
 pub use ray::{RayEvaluator, RayFunction};
 pub use semantics::{SemanticResult, Theorem, analyze};
-pub use tape::{PruneCache, Tape};
+pub use tape::Tape;
+pub use tape::cache::PruneCache;

@@ -19,7 +19,8 @@ use crate::context::{Context, NodeId, Var};
 use crate::contractor::Contractor;
 use crate::error::Error;
 use crate::eval::{Evaluator, Number};
-use crate::tape::{PruneCache, Tape};
+use crate::tape::Tape;
+use crate::tape::cache::PruneCache;
 use interval_core::Interval;
 
 /// Names of the variable slots of a ray function, in slot order (then the surface's

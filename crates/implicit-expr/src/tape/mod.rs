@@ -10,12 +10,10 @@
 //! Tapes are cheap to clone (an `Arc`) and immutable; [`Tape::simplify`] makes the shorter
 //! tape valid inside a region from the `min`/`max` choices of an interval evaluation there.
 
-mod cache;
+pub mod cache;
 mod graph;
 mod prune;
 mod regalloc;
-
-pub use cache::PruneCache;
 
 use std::sync::Arc;
 
