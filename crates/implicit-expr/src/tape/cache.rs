@@ -11,8 +11,9 @@ use super::Tape;
 use crate::error::Error;
 use crate::number::Choice;
 
-/// The instructions of pruned tapes a [`PruneCache`] holds before it starts afresh: a few
-/// megabytes.
+/// The instructions of tapes a [`PruneCache`] holds (each entry's pruned tape and the tape
+/// it was pruned from, counted again for every entry that holds it) before it starts
+/// afresh: a few megabytes.
 const HELD_INSTRS: usize = 1 << 18;
 
 /// One pruning kept: the tape, the choices and the result.
@@ -29,10 +30,9 @@ struct Pruned {
 /// not reload their constants), bit for bit what `simplify` makes.
 ///
 /// Keyed by the tape's identity and the choices (compared in full on a hit, so a hash
-/// collision only costs a pruning). It holds at most about 2^18 instructions of pruned
-/// tapes (and the tapes they were pruned from, most of them alive anyway as the scopes of
-/// a search) and empties itself when full. Make one per thread, next to the evaluator that
-/// prunes.
+/// collision only costs a pruning). It holds at most about 2^18 instructions of tapes (the
+/// pruned ones and those they were pruned from, which it keeps alive) and empties itself
+/// when full. Make one per thread, next to the evaluator that prunes.
 #[derive(Clone, Debug, Default)]
 pub struct PruneCache {
     entries: FxHashMap<(usize, u64), Pruned>,
@@ -68,7 +68,7 @@ impl PruneCache {
         }
         self.misses += 1;
         let pruned = tape.simplify(choices)?;
-        let size = pruned.len();
+        let size = tape.len() + pruned.len();
         if self.held + size > HELD_INSTRS {
             self.entries.clear();
             self.held = 0;
@@ -81,7 +81,7 @@ impl PruneCache {
         };
         if let Some(old) = self.entries.insert(key, entry) {
             // A collision of the hash: the older entry goes.
-            self.held -= old.pruned.len();
+            self.held -= old.parent.len() + old.pruned.len();
         }
         Ok(pruned)
     }
