@@ -627,21 +627,22 @@ impl Search<'_> {
             return Step::Stuck(t.inf());
         }
         // The halves search with the tape pruned to this range where that shortens it.
-        let mut inner = tape.cloned();
-        if let Some(current) = self.g.scope()
-            && current.len() > PRUNE_MIN_LEN
-        {
-            // The ray and tape are still those of the evaluation above (the inclusion test
-            // only evaluates them): its choices, where recorded, prune.
-            self.g.restrict_traced(t);
-            if let Some(pruned) = self.g.scope().filter(|p| !p.ptr_eq(&current)) {
-                inner = Some(pruned);
-            }
-        }
+        // The ray and tape are still those of the evaluation above (the inclusion test
+        // only evaluates them): its choices, where recorded, prune.
+        let inner = self.pruned_to(t).or_else(|| tape.cloned());
         match self.trace_range(beam, near, inner.as_ref(), (spread, budget)) {
             Step::Rejected => self.trace_range(beam, far, inner.as_ref(), (spread, budget)),
             step => step,
         }
+    }
+
+    /// The tape set pruned to `t` on the beam set (by the choices of the evaluation just
+    /// made there, where it recorded them), where the tape is long enough to prune and the
+    /// pruning shortens it; the evaluator then holds it. `None`: the tape set stays.
+    fn pruned_to(&mut self, t: Interval<f64>) -> Option<Tape> {
+        let current = self.g.scope().filter(|tape| tape.len() > PRUNE_MIN_LEN)?;
+        self.g.restrict_traced(t);
+        self.g.scope().filter(|p| !p.ptr_eq(&current))
     }
 
     /// `g` over `t` on the beam and tape set, counted. A long tape is evaluated with its
@@ -779,20 +780,17 @@ impl Search<'_> {
     ) -> bool {
         // The cells inside this one search with `g` pruned to it; where pruning decides
         // nothing, the tape keeps the wider region it holds for.
-        let mut pushed = false;
-        if let Some(tape) = self.g.scope()
-            && tape.len() > PRUNE_MIN_LEN
-        {
-            self.g.restrict_traced(t);
-            if let Some(pruned) = self.g.scope().filter(|p| !p.ptr_eq(&tape)) {
+        let pushed = match self.pruned_to(t) {
+            Some(tape) => {
                 self.chain.push(BeamScope {
-                    tape: pruned,
+                    tape,
                     t,
                     escalated: false,
                 });
-                pushed = true;
+                true
             }
-        }
+            None => false,
+        };
         // Each pixel's cells come in increasing `t` either way: a quadrant's halves one
         // after the other.
         let (near, far) = t.bisect();

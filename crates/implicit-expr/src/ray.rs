@@ -232,9 +232,15 @@ impl<N: Number> RayEvaluator<N> {
             return;
         }
         self.vars[T.index()] = t;
-        if self.g.eval_traced(&self.vars, &mut self.trace).is_ok()
-            && let Ok(p) = self.prunings.simplify(self.g.tape(), &self.trace)
-        {
+        if self.g.eval_traced(&self.vars, &mut self.trace).is_ok() {
+            self.prune_by_trace();
+        }
+    }
+
+    /// Switches `g` to its tape pruned by the choices `trace` holds (from the cache where
+    /// that pruning was made before); unchanged where they do not fit the tape.
+    fn prune_by_trace(&mut self) {
+        if let Ok(p) = self.prunings.simplify(self.g.tape(), &self.trace) {
             self.g.set_tape(&p);
         }
     }
@@ -266,9 +272,7 @@ impl<N: Number> RayEvaluator<N> {
             return;
         }
         self.vars[T.index()] = t;
-        if let Ok(p) = self.prunings.simplify(self.g.tape(), &self.trace) {
-            self.g.set_tape(&p);
-        }
+        self.prune_by_trace();
     }
 
     /// Undoes every [`restrict`](Self::restrict): `g` is evaluated whole again.

@@ -68,18 +68,16 @@ pub(super) type PixelScopes = Vec<Option<BeamScope>>;
 /// (few pixels have them: the silhouette's); empty after the screen box structure.
 pub(super) type PixelTraces = Vec<(u32, Vec<Traced>)>;
 
-/// The traces of pixel `p`'s rays in `traces` (empty where it has none): only an
-/// Undecided pixel's rays are traced, so a Hit or Miss pixel's are known empty without a
-/// look-up.
-fn traces_at(class: Option<BoxPixel>, traces: &PixelTraces, p: usize) -> &[Traced] {
-    match class.map(|c| c.class) {
-        Some(BoxClass::Hit { .. } | BoxClass::Miss) => &[],
-        _ => traces_of(traces, p),
+/// The traces of pixel `p`'s rays in `traces` (empty where it has none). Only an
+/// Undecided pixel's rays are traced, so a Hit or Miss pixel's (`class`) are known empty
+/// without a look-up.
+fn traces_of(class: Option<BoxPixel>, traces: &PixelTraces, p: usize) -> &[Traced] {
+    if matches!(
+        class.map(|c| c.class),
+        Some(BoxClass::Hit { .. } | BoxClass::Miss)
+    ) {
+        return &[];
     }
-}
-
-/// The traces of pixel `p`'s rays in `traces` (empty where it has none).
-fn traces_of(traces: &PixelTraces, p: usize) -> &[Traced] {
     match traces.binary_search_by_key(&p, |&(q, _)| q as usize) {
         Ok(k) => &traces[k].1,
         Err(_) => &[],
@@ -567,7 +565,7 @@ pub(super) fn primary_rays(
                 (&pixel_rays, start, narrow),
                 p,
                 window,
-                (classes[p], &scopes[p], traces_at(classes[p], traced, p)),
+                (classes[p], &scopes[p], traces_of(classes[p], traced, p)),
                 j - first_ray[k],
             )
         };
