@@ -118,6 +118,7 @@ mod deriv;
 mod domain;
 pub mod error;
 pub mod eval;
+pub mod jit;
 pub mod number;
 pub mod op;
 pub mod parse;

@@ -1,9 +1,12 @@
 //! The walk over a register tape, for one point (or box) at a time and for slices.
 
-use interval_core::{Decoration, isa};
+use std::any::Any;
+
+use interval_core::{Decoration, Interval, isa};
 
 use crate::constant::Constant;
 use crate::error::Error;
+use crate::jit::{self, Flags, MAX_VARS};
 use crate::number::{Choice, Number};
 use crate::op::BinaryOp;
 use crate::tape::{Instr, Opcode, Tape};
@@ -14,6 +17,49 @@ use crate::tape::{Instr, Opcode, Tape};
 pub struct Evaluator<N> {
     tape: Tape,
     regs: Vec<N>,
+    /// The choice bytes of compiled traced evaluations.
+    choice_bytes: Vec<u8>,
+}
+
+/// The first output of `tape` at `vars` by its machine code ([`crate::jit`]), where `N` is
+/// `Interval<f64>`, every variable is non-empty and the tape has code (compiled now if it is
+/// due); with the choices in `trace` where given (`bytes` is the buffer). `None` where the
+/// interpreter must evaluate.
+#[inline(always)]
+fn compiled<N: Number>(
+    tape: &Tape,
+    vars: &[N],
+    trace: Option<(&mut Vec<u8>, &mut Vec<Choice>)>,
+) -> Option<(N, Flags)> {
+    if !jit::AVAILABLE
+        || std::any::TypeId::of::<N>() != std::any::TypeId::of::<Interval<f64>>()
+        || tape.var_count() > MAX_VARS
+    {
+        return None;
+    }
+    let code = tape.code(trace.is_some())?;
+    let mut xs = [[0.0f64; 2]; MAX_VARS];
+    for (x, v) in xs.iter_mut().zip(&vars[..tape.var_count()]) {
+        let (lo, hi) = (v as &dyn Any).downcast_ref::<Interval<f64>>()?.bounds()?;
+        *x = [lo, hi];
+    }
+    let (out, flags) = match trace {
+        Some((bytes, trace)) => {
+            bytes.resize(tape.choice_count(), 2);
+            let r = code.run(&xs, bytes)?;
+            if r.1.partial {
+                // As the interpreter: nothing may be pruned where the formula is undefined.
+                trace.clear();
+                trace.resize(tape.choice_count(), Choice::Both);
+            } else {
+                jit::choices_into(bytes, trace);
+            }
+            r
+        }
+        None => code.run(&xs, &mut [])?,
+    };
+    let v = Interval::new_unchecked(out[0], out[1]);
+    Some(((&v as &dyn Any).downcast_ref::<N>().copied()?, flags))
 }
 
 /// Makes `regs` a register file of `width` lanes per register for a tape, and fills lanes
@@ -47,6 +93,7 @@ impl<N: Number> Evaluator<N> {
         Self {
             tape: tape.clone(),
             regs,
+            choice_bytes: Vec::new(),
         }
     }
 
@@ -79,6 +126,9 @@ impl<N: Number> Evaluator<N> {
     /// Returns an error when fewer values than the tape's variable slots are given.
     pub fn eval(&mut self, vars: &[N]) -> Result<N, Error> {
         self.check(vars)?;
+        if let Some((v, _)) = compiled(&self.tape, vars, None) {
+            return Ok(v);
+        }
         run::<N, false, NO_CHECK, NO_SIDE>(
             self.tape.instrs(),
             &mut self.regs,
@@ -133,6 +183,11 @@ impl<N: Number> Evaluator<N> {
     /// Returns an error when fewer values than the tape's variable slots are given.
     pub fn eval_continuous(&mut self, vars: &[N]) -> Result<(N, bool), Error> {
         self.check(vars)?;
+        if let Some((v, flags)) = compiled(&self.tape, vars, None) {
+            // The compiled operations are total and continuous but for the square root,
+            // whose negative arguments it reports.
+            return Ok((v, !flags.partial && v.value_decoration() >= Decoration::Dac));
+        }
         let dec = run::<N, false, CONTINUITY, NO_SIDE>(
             self.tape.instrs(),
             &mut self.regs,
@@ -209,6 +264,9 @@ impl<N: Number> Evaluator<N> {
     /// enclosure holds at every point.
     pub fn eval_traced(&mut self, vars: &[N], trace: &mut Vec<Choice>) -> Result<N, Error> {
         self.check(vars)?;
+        if let Some((v, _)) = compiled(&self.tape, vars, Some((&mut self.choice_bytes, trace))) {
+            return Ok(v);
+        }
         trace.clear();
         run::<N, true, NO_CHECK, NO_SIDE>(self.tape.instrs(), &mut self.regs, vars, trace, &mut 0);
         Ok(self.regs[self.tape.outputs()[0] as usize])

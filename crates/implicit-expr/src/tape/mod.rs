@@ -81,6 +81,8 @@ struct TapeData {
     choice_index: Vec<u32>,
     /// See [`Tape::is_continuous_everywhere`].
     continuous_everywhere: bool,
+    /// The machine code of the tape, compiled once it is evaluated often enough.
+    jit: crate::jit::Slot,
 }
 
 /// A compiled expression with one or more outputs. See the [module documentation](self).
@@ -167,6 +169,7 @@ impl Tape {
             choice_count: c.choice_count,
             choice_index: c.choice_index,
             continuous_everywhere,
+            jit: crate::jit::Slot::default(),
         }))
     }
 
@@ -283,6 +286,13 @@ impl Tape {
     /// Whether two handles share one tape.
     pub fn ptr_eq(&self, other: &Tape) -> bool {
         Arc::ptr_eq(&self.0, &other.0)
+    }
+
+    /// The tape's machine code for `Interval<f64>` evaluation, `traced` or not, where it is
+    /// compiled or due ([`crate::jit`]); counts an evaluation otherwise.
+    #[inline]
+    pub(crate) fn code(&self, traced: bool) -> Option<&crate::jit::Code> {
+        self.0.jit.code(self, traced)
     }
 
     /// The identity of the shared tape (its address): equal for handles that

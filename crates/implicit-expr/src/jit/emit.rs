@@ -1,0 +1,357 @@
+//! A register tape turned into x86-64 code for `Interval<f64>` arguments.
+//!
+//! Every interval is held as `[−lo, hi]` in one SSE register, and the code runs with the
+//! rounding mode set to upward: then `[−lo, hi]` of a sum is one `addpd` (the lower bound
+//! `−RU(−a − b) = RD(a + b)`), a difference adds the second argument's lanes swapped, a
+//! product takes the largest of the four corner products in each lane, all rounded upward,
+//! which is the tight product's bounds. The square root's lower bound is the upward root
+//! stepped down one ulp unless its square is exact. `min` and `max` are lane-wise `max`
+//! and `min` of the negated lower bounds and the upper bounds. So each bound is the one the
+//! interpreter's tight arithmetic computes.
+//!
+//! The function begins by saving `mxcsr` and loading upward rounding with every exception
+//! masked and no flag set; it ends by reading the invalid-operation flag (raised by every
+//! NaN an operation makes or meets: `∞ − ∞`, `0 · ∞`, the root of a negative number, an
+//! empty argument of `min`, `max` or a comparison) and restoring `mxcsr`. A raised flag
+//! tells the caller to evaluate with the interpreter instead, whose rules for empty sets
+//! and the limits at infinity apply there.
+
+use interval_core::Interval;
+
+use super::MAX_VARS;
+use super::x64::{Asm, Cmp, Mem, Sse, Xmm};
+use crate::number::Number;
+use crate::op::{BinaryOp, UnaryOp};
+use crate::tape::{Instr, Opcode, Tape};
+
+/// Working registers a compiled tape keeps on its stack frame at most (the frame stays
+/// within a page, so no stack probe is needed).
+const MAX_SLOTS: usize = 240;
+
+// The pool: masks, `mxcsr`, the choice tables, then the constants.
+const SIGN_LO: u32 = 0;
+const SIGN_BOTH: u32 = 16;
+const ABS: u32 = 32;
+const ZERO: u32 = 48;
+const CSR: u32 = 64;
+const MIN_TABLE: u32 = 68;
+const MAX_TABLE: u32 = 72;
+const CONSTS: u32 = 80;
+
+/// Upward rounding (`RC = 10`), every exception masked, no flag, no flush to zero.
+const MXCSR_UP: u32 = 0x5F80;
+
+/// The choice byte for each `movmskpd` of `[a.hi ≤ b.lo, b.hi ≤ a.lo]`, in the codes of
+/// [`super::choice_of`]: `min` takes `a` (Left, 0) where `a.hi ≤ b.lo` first, then `b`
+/// (Right, 1), else both (2); `max` takes `a` where `b.hi ≤ a.lo` first.
+const MIN_CHOICES: [u8; 4] = [2, 0, 1, 0];
+const MAX_CHOICES: [u8; 4] = [2, 1, 0, 0];
+
+const X0: Xmm = Xmm(0);
+const X1: Xmm = Xmm(1);
+const X2: Xmm = Xmm(2);
+const X3: Xmm = Xmm(3);
+const X4: Xmm = Xmm(4);
+const X5: Xmm = Xmm(5);
+const X6: Xmm = Xmm(6);
+/// The accumulated "some square root's argument reaches below 0" lane mask.
+const PARTIAL: Xmm = Xmm(7);
+
+/// Whether the compiled code handles `ins`.
+fn supported(ins: &Instr) -> bool {
+    match ins.op {
+        Opcode::Var | Opcode::Const | Opcode::Copy => true,
+        Opcode::Unary(op) => matches!(
+            op,
+            UnaryOp::Neg | UnaryOp::Abs | UnaryOp::Sqr | UnaryOp::Sqrt
+        ),
+        Opcode::Binary(op) => matches!(
+            op,
+            BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Min | BinaryOp::Max
+        ),
+        Opcode::Pown => false,
+    }
+}
+
+/// The machine code of `tape`'s first output, writing choice bytes where `traced`; `None`
+/// where the tape uses an operation the code generator lacks, or is too large for its frame.
+pub(super) fn compile(tape: &Tape, traced: bool) -> Option<Vec<u8>> {
+    let nconst = tape.consts().len();
+    let slots = tape.reg_count().saturating_sub(nconst);
+    let output = *tape.outputs().first()? as usize;
+    if tape.var_count() > MAX_VARS
+        || slots > MAX_SLOTS
+        || !tape.instrs().iter().all(supported)
+        || tape
+            .instrs()
+            .iter()
+            .any(|i| (i.out as usize) < nconst || i.out as usize >= tape.reg_count())
+    {
+        return None;
+    }
+    let mut pool = Vec::with_capacity(CONSTS as usize + 16 * nconst);
+    let sign = (-0.0f64).to_bits();
+    for lanes in [[sign, 0], [sign, sign], [!sign, !sign], [0, 0]] {
+        for l in lanes {
+            pool.extend_from_slice(&l.to_le_bytes());
+        }
+    }
+    pool.extend_from_slice(&MXCSR_UP.to_le_bytes());
+    pool.extend_from_slice(&MIN_CHOICES);
+    pool.extend_from_slice(&MAX_CHOICES);
+    pool.resize(CONSTS as usize, 0);
+    for c in tape.consts() {
+        let v = <Interval<f64> as Number>::constant(c);
+        let (lo, hi) = v.bounds()?;
+        pool.extend_from_slice(&(-lo).to_le_bytes());
+        pool.extend_from_slice(&hi.to_le_bytes());
+    }
+
+    let reg = |r: u32| -> Mem {
+        let r = r as usize;
+        if r < nconst {
+            Mem::Pool(CONSTS + 16 * r as u32)
+        } else {
+            Mem::Stack(16 + 16 * (r - nconst) as i32)
+        }
+    };
+    // 16 bytes for `mxcsr`, the slots, and 8 to align `rsp` (8 mod 16 at the call).
+    let frame = 16 + 16 * slots as i32 + 8;
+
+    let mut a = Asm::default();
+    a.sub_rsp(frame);
+    a.stmxcsr(Mem::Stack(0));
+    a.ldmxcsr(Mem::Pool(CSR));
+    a.rr(Sse::XorPd, PARTIAL, PARTIAL);
+    if traced {
+        a.lea_rcx_pool(MIN_TABLE);
+    }
+    let instrs = tape.instrs();
+    let stored = stores_needed(instrs, output);
+    // The register whose value `X0` holds: the previous instruction's output.
+    let mut in_x0 = None;
+    let mut choice = 0i32;
+    for (ins, &store) in instrs.iter().zip(&stored) {
+        let load = |a: &mut Asm, x: Xmm, r: u32| {
+            if in_x0 == Some(r) {
+                if x != X0 {
+                    a.rr(Sse::MovApd, x, X0);
+                }
+            } else {
+                a.rm(Sse::MovUpd, x, reg(r));
+            }
+        };
+        match ins.op {
+            Opcode::Var => {
+                a.rm(Sse::MovUpd, X0, Mem::Vars(16 * ins.a as i32));
+                a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
+            }
+            Opcode::Const | Opcode::Copy => load(&mut a, X0, ins.a),
+            Opcode::Unary(op) => {
+                load(&mut a, X0, ins.a);
+                unary(&mut a, op);
+            }
+            Opcode::Binary(op) => {
+                // `X1` first: it may copy `X0` before `X0` is loaded.
+                load(&mut a, X1, ins.b);
+                load(&mut a, X0, ins.a);
+                if traced && matches!(op, BinaryOp::Min | BinaryOp::Max) {
+                    let table = if op == BinaryOp::Min {
+                        0
+                    } else {
+                        MAX_TABLE - MIN_TABLE
+                    };
+                    record_choice(&mut a, table as i8, choice);
+                    choice += 1;
+                }
+                binary(&mut a, op);
+            }
+            Opcode::Pown => return None,
+        }
+        if store {
+            a.store(reg(ins.out), X0);
+        }
+        in_x0 = Some(ins.out);
+    }
+    if in_x0 != Some(output as u32) {
+        a.rm(Sse::MovUpd, X0, reg(output as u32));
+    }
+    a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
+    a.store(Mem::Out(0), X0);
+    // Flags: bit 0 the invalid operation, bit 1 a partial square root.
+    a.stmxcsr(Mem::Stack(4));
+    a.load_eax_stack(4);
+    a.movmskpd_ecx(PARTIAL);
+    a.merge_flags();
+    a.ldmxcsr(Mem::Stack(0));
+    a.add_rsp(frame);
+    a.ret();
+    Some(a.finish(&pool))
+}
+
+/// Whether each instruction's result must be stored to its register: where it is read
+/// later than by the next instruction (which takes it from `X0`), or is the `output`
+/// register read after the last instruction from memory.
+fn stores_needed(instrs: &[Instr], output: usize) -> Vec<bool> {
+    const NONE: usize = usize::MAX;
+    // The instruction that last wrote each register.
+    let mut def: Vec<usize> = Vec::new();
+    let mut far = vec![false; instrs.len()];
+    let read = |def: &Vec<usize>, far: &mut Vec<bool>, r: u32, at: usize| {
+        let d = def.get(r as usize).copied().unwrap_or(NONE);
+        if d != NONE && d + 1 != at {
+            far[d] = true;
+        }
+    };
+    for (j, ins) in instrs.iter().enumerate() {
+        match ins.op {
+            Opcode::Var | Opcode::Pown => {}
+            Opcode::Const | Opcode::Copy | Opcode::Unary(_) => read(&def, &mut far, ins.a, j),
+            Opcode::Binary(_) => {
+                read(&def, &mut far, ins.a, j);
+                read(&def, &mut far, ins.b, j);
+            }
+        }
+        let o = ins.out as usize;
+        if def.len() <= o {
+            def.resize(o + 1, NONE);
+        }
+        def[o] = j;
+    }
+    read(&def, &mut far, output as u32, instrs.len());
+    far
+}
+
+/// `X0 = op(X0)`; uses `X1` to `X5`.
+fn unary(a: &mut Asm, op: UnaryOp) {
+    match op {
+        // [−(−hi), −lo]: the lanes swapped.
+        UnaryOp::Neg => a.swap(X0),
+        UnaryOp::Abs => {
+            abs(a);
+            a.rr(Sse::MovApd, X0, X2);
+        }
+        UnaryOp::Sqr => {
+            // [−mig, mag] · [mig, mag], rounded upward: [−RD(mig²), RU(mag²)].
+            abs(a);
+            a.rr(Sse::MovApd, X0, X2);
+            a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
+            a.rr(Sse::MulPd, X0, X2);
+        }
+        UnaryOp::Sqrt => sqrt(a),
+        _ => unreachable!("checked by `supported`"),
+    }
+}
+
+/// `X2 = [−mig, mag]` of `X0 = [−lo, hi]` (`|x|`): `−mig = min(−lo, hi, 0)` (the lower
+/// bound when positive, minus the upper when negative, else 0), `mag = max(|lo|, |hi|)`.
+fn abs(a: &mut Asm) {
+    a.rr(Sse::MovApd, X1, X0);
+    a.swap(X1);
+    a.rr(Sse::MovApd, X2, X0);
+    a.rr(Sse::MinSd, X2, X1);
+    a.rm(Sse::MinSd, X2, Mem::Pool(ZERO));
+    a.rr(Sse::MovApd, X3, X0);
+    a.rm(Sse::AndPd, X3, Mem::Pool(ABS));
+    a.rr(Sse::MovApd, X4, X3);
+    a.swap(X4);
+    a.rr(Sse::MaxSd, X3, X4);
+    a.rr(Sse::UnpckLPd, X2, X3);
+}
+
+/// `X0 = √X0` over the argument's non-negative part; flags a negative lower bound in
+/// [`PARTIAL`]. The argument entirely below 0 gives NaN and the invalid flag.
+fn sqrt(a: &mut Asm) {
+    // PARTIAL |= (0 < −lo).
+    a.rm(Sse::MovSd, X1, Mem::Pool(ZERO));
+    a.cmpsd(X1, X0, Cmp::Lt);
+    a.rr(Sse::OrPd, PARTIAL, X1);
+    // X2.lo = max(lo, 0) (as −min(−lo, 0)).
+    a.rr(Sse::MovApd, X2, X0);
+    a.rm(Sse::MinSd, X2, Mem::Pool(ZERO));
+    a.rm(Sse::XorPd, X2, Mem::Pool(SIGN_LO));
+    a.rr(Sse::MovApd, X3, X2);
+    // s = RU(√lo'); stepped down one ulp where RU(s²) ≠ lo' (then √lo' is inexact and s is
+    // its upward rounding, positive and finite): RD(√lo').
+    a.rr(Sse::SqrtSd, X2, X2);
+    a.rr(Sse::MovApd, X4, X2);
+    a.rr(Sse::MulSd, X4, X2);
+    a.cmpsd(X4, X3, Cmp::Neq);
+    a.rr(Sse::PAddQ, X2, X4);
+    a.rm(Sse::XorPd, X2, Mem::Pool(SIGN_LO));
+    // RU(√hi).
+    a.rr(Sse::MovApd, X5, X0);
+    a.rr(Sse::UnpckHPd, X5, X5);
+    a.rr(Sse::SqrtSd, X5, X5);
+    a.rr(Sse::UnpckLPd, X2, X5);
+    a.rr(Sse::MovApd, X0, X2);
+}
+
+/// `X0 = X0 op X1`; uses `X2` to `X6`.
+fn binary(a: &mut Asm, op: BinaryOp) {
+    match op {
+        BinaryOp::Add => a.rr(Sse::AddPd, X0, X1),
+        BinaryOp::Sub => {
+            // [−lo_a + hi_b, hi_a − lo_b].
+            a.swap(X1);
+            a.rr(Sse::AddPd, X0, X1);
+        }
+        BinaryOp::Min => {
+            // [max(−lo_a, −lo_b), min(hi_a, hi_b)].
+            a.rr(Sse::MovApd, X2, X0);
+            a.rr(Sse::MaxPd, X2, X1);
+            a.rr(Sse::MinPd, X0, X1);
+            a.rr(Sse::MovSd, X0, X2);
+        }
+        BinaryOp::Max => {
+            // [min(−lo_a, −lo_b), max(hi_a, hi_b)].
+            a.rr(Sse::MovApd, X2, X0);
+            a.rr(Sse::MinPd, X2, X1);
+            a.rr(Sse::MaxPd, X0, X1);
+            a.rr(Sse::MovSd, X0, X2);
+        }
+        BinaryOp::Mul => mul(a),
+        _ => unreachable!("checked by `supported`"),
+    }
+}
+
+/// `X0 = X0 · X1`: with `A = [−al, ah]`, `B = [−bl, bh]`, the lane-wise maximum of
+/// `A·[bl, bh]`, `A·[bh, bl]`, `[ah, −al]·[−bl, −bl]` and `[ah, −al]·[−bh, −bh]`, rounded
+/// upward: the negated products of the four corners in the low lane, the products in the
+/// high one.
+fn mul(a: &mut Asm) {
+    a.rr(Sse::MovApd, X2, X1);
+    a.rm(Sse::XorPd, X2, Mem::Pool(SIGN_LO)); // [bl, bh]
+    a.rr(Sse::MovApd, X3, X2);
+    a.swap(X3); // [bh, bl]
+    a.rr(Sse::MovApd, X4, X0);
+    a.swap(X4); // [ah, −al]
+    a.rr(Sse::MovApd, X5, X1);
+    a.rr(Sse::UnpckLPd, X5, X5); // [−bl, −bl]
+    a.rr(Sse::MovApd, X6, X1);
+    a.rr(Sse::UnpckHPd, X6, X6);
+    a.rm(Sse::XorPd, X6, Mem::Pool(SIGN_BOTH)); // [−bh, −bh]
+    a.rr(Sse::MulPd, X2, X0);
+    a.rr(Sse::MulPd, X3, X0);
+    a.rr(Sse::MulPd, X5, X4);
+    a.rr(Sse::MulPd, X6, X4);
+    a.rr(Sse::MaxPd, X2, X3);
+    a.rr(Sse::MaxPd, X5, X6);
+    a.rr(Sse::MaxPd, X2, X5);
+    a.rr(Sse::MovApd, X0, X2);
+}
+
+/// Writes choice byte `index` of a `min` (`table` 0) or `max` (`table` 4) of `X0`, `X1`:
+/// the table entry for the mask `[a.hi ≤ b.lo, b.hi ≤ a.lo]`. Uses `X3`, `X4`.
+fn record_choice(a: &mut Asm, table: i8, index: i32) {
+    a.rr(Sse::MovApd, X3, X0);
+    a.rr(Sse::UnpckHPd, X3, X1); // [a.hi, b.hi]
+    a.rr(Sse::MovApd, X4, X0);
+    a.rr(Sse::UnpckLPd, X4, X1); // [−a.lo, −b.lo]
+    a.swap(X4);
+    a.rm(Sse::XorPd, X4, Mem::Pool(SIGN_BOTH)); // [b.lo, a.lo]
+    a.cmppd(X3, X4, Cmp::Le);
+    a.movmskpd_eax(X3);
+    a.load_table_byte(table);
+    a.store_choice(index);
+}

@@ -1,0 +1,171 @@
+//! Tapes compiled to machine code for `Interval<f64>` evaluation (x86-64 on Linux; elsewhere
+//! nothing compiles and the interpreter evaluates every tape).
+//!
+//! An interpreter pays for each instruction of a tape a dispatch (loading the opcode, an
+//! indirect jump, loading the operands) and, for a tight directed-rounded bound, an
+//! error-free transformation with its checks: about 60 machine instructions for an interval
+//! sum. The compiled code of a tape is straight-line SSE2, each interval operation a few
+//! instructions under upward rounding (see `emit` for how each bound is made), with the
+//! same bounds as the interpreter's arithmetic. [`Evaluator`](crate::Evaluator)s use it
+//! for their plain, traced and continuity-checked evaluations of a tape once it has been
+//! evaluated [`COMPILE_AFTER`] times, so that tapes evaluated once or twice (most pruned
+//! tapes of a large scene) do not pay for compiling.
+//!
+//! Where an operation meets an empty set, an infinite limit (`∞ − ∞`, `0 · ∞`) or a square
+//! root of a negative interval, the code says so (the invalid-operation flag) and the
+//! evaluator runs the interpreter instead, so every result is the interpreter's.
+
+#[cfg(all(target_arch = "x86_64", target_os = "linux"))]
+mod emit;
+#[cfg(all(target_arch = "x86_64", target_os = "linux"))]
+mod memory;
+#[cfg(all(target_arch = "x86_64", target_os = "linux"))]
+mod x64;
+
+use std::sync::OnceLock;
+use std::sync::atomic::{AtomicU32, Ordering};
+
+use crate::number::Choice;
+use crate::tape::Tape;
+
+/// Evaluations of a tape (through any evaluator, counted on the tape) after which it is
+/// compiled.
+pub const COMPILE_AFTER: u32 = 8;
+
+/// Variables a compiled tape takes at most.
+pub(crate) const MAX_VARS: usize = 16;
+
+/// Whether this build compiles tapes at all.
+pub const AVAILABLE: bool = cfg!(all(target_arch = "x86_64", target_os = "linux"));
+
+/// The choice a byte of a compiled tape's trace stands for.
+#[inline(always)]
+fn choice_of(b: u8) -> Choice {
+    match b {
+        0 => Choice::Left,
+        1 => Choice::Right,
+        _ => Choice::Both,
+    }
+}
+
+/// What a compiled evaluation found beside its value.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(crate) struct Flags {
+    /// Some square root's argument reached below 0 (the formula is undefined on part of the
+    /// region: no longer continuous there, and not to be pruned).
+    pub(crate) partial: bool,
+}
+
+/// One tape's machine code.
+pub(crate) struct Code {
+    #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
+    mem: memory::ExecMemory,
+    choices: usize,
+}
+
+impl std::fmt::Debug for Code {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("Code")
+            .field("choices", &self.choices)
+            .finish_non_exhaustive()
+    }
+}
+
+/// The signature of a compiled tape: the variables as `[lo, hi]` pairs, the choice bytes
+/// (written only by traced code), the output as `[lo, hi]`; returns the flags (bit 0:
+/// invalid operation, bit 1: partial square root).
+#[cfg(all(target_arch = "x86_64", target_os = "linux"))]
+type Entry = unsafe extern "sysv64" fn(*const [f64; 2], *mut u8, *mut [f64; 2]) -> u32;
+
+impl Code {
+    /// The code of `tape`'s first output, recording choices where `traced`; `None` where
+    /// the tape uses an operation the compiler lacks or the platform has none.
+    pub(crate) fn compile(tape: &Tape, traced: bool) -> Option<Self> {
+        #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
+        {
+            let bytes = emit::compile(tape, traced)?;
+            Some(Self {
+                mem: memory::ExecMemory::new(&bytes)?,
+                choices: if traced { tape.choice_count() } else { 0 },
+            })
+        }
+        #[cfg(not(all(target_arch = "x86_64", target_os = "linux")))]
+        {
+            let _ = (tape, traced);
+            None
+        }
+    }
+
+    /// The first output at `vars` (`[lo, hi]` of each slot, the unused ones anything), with the choices of every
+    /// `min`/`max` in `trace` for traced code (which must hold one byte per choice), and the
+    /// flags; `None` where the interpreter must evaluate instead (an empty set, an infinite
+    /// limit or a root of a negative interval met).
+    #[inline]
+    pub(crate) fn run(
+        &self,
+        vars: &[[f64; 2]; MAX_VARS],
+        trace: &mut [u8],
+    ) -> Option<([f64; 2], Flags)> {
+        #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
+        {
+            assert!(trace.len() >= self.choices, "trace buffer too short");
+            let mut out = [0.0f64; 2];
+            // SAFETY: the code was made by `emit::compile` for a tape of at most `MAX_VARS`
+            // variables, reads only `vars`, writes at most `self.choices` bytes of `trace`
+            // and the 16 bytes of `out`, and restores `mxcsr`.
+            let flags = unsafe {
+                let entry: Entry = std::mem::transmute(self.mem.as_ptr());
+                entry(vars.as_ptr(), trace.as_mut_ptr(), &mut out)
+            };
+            (flags & 1 == 0).then_some((
+                out,
+                Flags {
+                    partial: flags & 2 != 0,
+                },
+            ))
+        }
+        #[cfg(not(all(target_arch = "x86_64", target_os = "linux")))]
+        {
+            let _ = (vars, trace);
+            None
+        }
+    }
+}
+
+/// A tape's compiled code, made on demand: the evaluations counted until
+/// [`COMPILE_AFTER`], then the code of each kind compiled once.
+#[derive(Debug, Default)]
+pub(crate) struct Slot {
+    evals: AtomicU32,
+    plain: OnceLock<Option<Code>>,
+    traced: OnceLock<Option<Code>>,
+}
+
+impl Slot {
+    /// The code of `tape` (whose slot this is), `traced` or not, where it is compiled or now
+    /// due; counts an evaluation otherwise.
+    #[inline]
+    pub(crate) fn code(&self, tape: &Tape, traced: bool) -> Option<&Code> {
+        if !AVAILABLE {
+            return None;
+        }
+        let cell = if traced { &self.traced } else { &self.plain };
+        if let Some(c) = cell.get() {
+            return c.as_ref();
+        }
+        if self.evals.load(Ordering::Relaxed) < COMPILE_AFTER {
+            self.evals.fetch_add(1, Ordering::Relaxed);
+            return None;
+        }
+        cell.get_or_init(|| Code::compile(tape, traced)).as_ref()
+    }
+}
+
+/// Choice bytes as choices, into `trace` (cleared first).
+pub(crate) fn choices_into(bytes: &[u8], trace: &mut Vec<Choice>) {
+    trace.clear();
+    trace.extend(bytes.iter().map(|&b| choice_of(b)));
+}
+
+#[cfg(all(test, target_arch = "x86_64", unix))]
+mod tests;

@@ -1,0 +1,328 @@
+//! The few x86-64 instructions the compiled tapes use, encoded into a byte buffer: SSE2
+//! on `xmm0`–`xmm7` (no REX prefix needed), loads and stores at `rsp`, `rdi`, `rsi`, `rdx`
+//! plus a displacement or at a label of the constant pool (RIP-relative, patched when the
+//! pool is placed), and the handful of integer instructions of the prologue, the epilogue
+//! and the choice bytes.
+
+/// An SSE register, `xmm0` to `xmm7`.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+pub(super) struct Xmm(pub(super) u8);
+
+/// A memory operand.
+#[derive(Copy, Clone, Debug)]
+pub(super) enum Mem {
+    /// `[rsp + disp]`.
+    Stack(i32),
+    /// `[rdi + disp]`: the variables.
+    Vars(i32),
+    /// `[rdx + disp]`: the output.
+    Out(i32),
+    /// `[rip + …]`: byte `offset` of the constant pool.
+    Pool(u32),
+}
+
+/// A packed (`66`) or scalar double (`F2`) SSE operation.
+#[derive(Copy, Clone, Debug)]
+pub(super) enum Sse {
+    /// `movupd` (load form).
+    MovUpd,
+    /// `movapd` (register form).
+    MovApd,
+    /// `movsd`: from memory, the low lane with the high one cleared; between registers, the
+    /// low lane only.
+    MovSd,
+    /// `addpd`.
+    AddPd,
+    /// `mulpd`.
+    MulPd,
+    /// `minpd`.
+    MinPd,
+    /// `maxpd`.
+    MaxPd,
+    /// `andpd`.
+    AndPd,
+    /// `orpd`.
+    OrPd,
+    /// `xorpd`.
+    XorPd,
+    /// `unpcklpd`.
+    UnpckLPd,
+    /// `unpckhpd`.
+    UnpckHPd,
+    /// `paddq`.
+    PAddQ,
+    /// `mulsd`.
+    MulSd,
+    /// `sqrtsd`.
+    SqrtSd,
+    /// `minsd`.
+    MinSd,
+    /// `maxsd`.
+    MaxSd,
+}
+
+impl Sse {
+    fn encoding(self) -> (u8, u8) {
+        match self {
+            Sse::MovUpd => (0x66, 0x10),
+            Sse::MovApd => (0x66, 0x28),
+            Sse::MovSd => (0xF2, 0x10),
+            Sse::AddPd => (0x66, 0x58),
+            Sse::MulPd => (0x66, 0x59),
+            Sse::MinPd => (0x66, 0x5D),
+            Sse::MaxPd => (0x66, 0x5F),
+            Sse::AndPd => (0x66, 0x54),
+            Sse::OrPd => (0x66, 0x56),
+            Sse::XorPd => (0x66, 0x57),
+            Sse::UnpckLPd => (0x66, 0x14),
+            Sse::UnpckHPd => (0x66, 0x15),
+            Sse::PAddQ => (0x66, 0xD4),
+            Sse::MulSd => (0xF2, 0x59),
+            Sse::SqrtSd => (0xF2, 0x51),
+            Sse::MinSd => (0xF2, 0x5D),
+            Sse::MaxSd => (0xF2, 0x5F),
+        }
+    }
+}
+
+/// Comparison predicates of `cmppd` / `cmpsd` (the signalling ones: a NaN operand raises
+/// the invalid flag).
+#[derive(Copy, Clone, Debug)]
+pub(super) enum Cmp {
+    /// `a < b`.
+    Lt = 1,
+    /// `a ≤ b`.
+    Le = 2,
+    /// `a ≠ b`.
+    Neq = 4,
+}
+
+/// A RIP-relative displacement to patch: where it is, where its instruction ends, and the
+/// pool byte it addresses.
+struct Fixup {
+    at: usize,
+    end: usize,
+    pool: u32,
+}
+
+/// The code being assembled.
+#[derive(Default)]
+pub(super) struct Asm {
+    code: Vec<u8>,
+    fixups: Vec<Fixup>,
+}
+
+const RSP: u8 = 4;
+const RDI: u8 = 7;
+const RDX: u8 = 2;
+
+impl Asm {
+    fn bytes(&mut self, b: &[u8]) {
+        self.code.extend_from_slice(b);
+    }
+
+    fn disp32(&mut self, d: i32) {
+        self.bytes(&d.to_le_bytes());
+    }
+
+    /// ModRM (and SIB, displacement) for register field `reg` and memory operand `m`;
+    /// `imm` is the number of immediate bytes that follow (for RIP-relative ends).
+    fn modrm_mem(&mut self, reg: u8, m: Mem, imm: usize) {
+        let reg = (reg & 7) << 3;
+        // `[base + disp8]` (mod 01) where the displacement fits, else `[base + disp32]`.
+        let based = |asm: &mut Self, base: u8, d: i32| {
+            let sib: &[u8] = if base == RSP { &[0x24] } else { &[] };
+            match i8::try_from(d) {
+                Ok(d8) => {
+                    asm.bytes(&[0x40 | reg | base]);
+                    asm.bytes(sib);
+                    asm.bytes(&[d8 as u8]);
+                }
+                Err(_) => {
+                    asm.bytes(&[0x80 | reg | base]);
+                    asm.bytes(sib);
+                    asm.disp32(d);
+                }
+            }
+        };
+        match m {
+            Mem::Stack(d) => based(self, RSP, d),
+            Mem::Vars(d) => based(self, RDI, d),
+            Mem::Out(d) => based(self, RDX, d),
+            Mem::Pool(p) => {
+                self.bytes(&[reg | 0x05]);
+                let at = self.code.len();
+                self.disp32(0);
+                self.fixups.push(Fixup {
+                    at,
+                    end: at + 4 + imm,
+                    pool: p,
+                });
+            }
+        }
+    }
+
+    /// `op dst, src` between registers.
+    pub(super) fn rr(&mut self, op: Sse, dst: Xmm, src: Xmm) {
+        let (p, o) = op.encoding();
+        self.bytes(&[p, 0x0F, o, 0xC0 | (dst.0 << 3) | src.0]);
+    }
+
+    /// `op dst, [m]`.
+    pub(super) fn rm(&mut self, op: Sse, dst: Xmm, m: Mem) {
+        let (p, o) = op.encoding();
+        self.bytes(&[p, 0x0F, o]);
+        self.modrm_mem(dst.0, m, 0);
+    }
+
+    /// `movupd [m], src`.
+    pub(super) fn store(&mut self, m: Mem, src: Xmm) {
+        self.bytes(&[0x66, 0x0F, 0x11]);
+        self.modrm_mem(src.0, m, 0);
+    }
+
+    /// `shufpd x, x, 1`: the two lanes swapped.
+    pub(super) fn swap(&mut self, x: Xmm) {
+        self.bytes(&[0x66, 0x0F, 0xC6, 0xC0 | (x.0 << 3) | x.0, 1]);
+    }
+
+    /// `cmppd dst, src, pred` (both lanes).
+    pub(super) fn cmppd(&mut self, dst: Xmm, src: Xmm, pred: Cmp) {
+        self.bytes(&[0x66, 0x0F, 0xC2, 0xC0 | (dst.0 << 3) | src.0, pred as u8]);
+    }
+
+    /// `cmpsd dst, src, pred` (low lane).
+    pub(super) fn cmpsd(&mut self, dst: Xmm, src: Xmm, pred: Cmp) {
+        self.bytes(&[0xF2, 0x0F, 0xC2, 0xC0 | (dst.0 << 3) | src.0, pred as u8]);
+    }
+
+    /// `movmskpd eax, x`.
+    pub(super) fn movmskpd_eax(&mut self, x: Xmm) {
+        self.bytes(&[0x66, 0x0F, 0x50, 0xC0 | x.0]);
+    }
+
+    /// `movmskpd ecx, x`.
+    pub(super) fn movmskpd_ecx(&mut self, x: Xmm) {
+        self.bytes(&[0x66, 0x0F, 0x50, 0xC8 | x.0]);
+    }
+
+    /// `movzx eax, byte [rcx + rax + disp]`: a byte of the table `rcx` points at.
+    pub(super) fn load_table_byte(&mut self, disp: i8) {
+        self.bytes(&[0x0F, 0xB6, 0x44, 0x01, disp as u8]);
+    }
+
+    /// `mov byte [rsi + disp], al`: a choice byte.
+    pub(super) fn store_choice(&mut self, disp: i32) {
+        self.bytes(&[0x88, 0x86]);
+        self.disp32(disp);
+    }
+
+    /// `lea rcx, [rip + …]`: `rcx` at pool byte `pool`.
+    pub(super) fn lea_rcx_pool(&mut self, pool: u32) {
+        self.bytes(&[0x48, 0x8D]);
+        self.modrm_mem(1, Mem::Pool(pool), 0);
+    }
+
+    /// `sub rsp, n`.
+    pub(super) fn sub_rsp(&mut self, n: i32) {
+        self.bytes(&[0x48, 0x81, 0xEC]);
+        self.disp32(n);
+    }
+
+    /// `add rsp, n`.
+    pub(super) fn add_rsp(&mut self, n: i32) {
+        self.bytes(&[0x48, 0x81, 0xC4]);
+        self.disp32(n);
+    }
+
+    /// `ldmxcsr [m]`.
+    pub(super) fn ldmxcsr(&mut self, m: Mem) {
+        self.bytes(&[0x0F, 0xAE]);
+        self.modrm_mem(2, m, 0);
+    }
+
+    /// `stmxcsr [m]`.
+    pub(super) fn stmxcsr(&mut self, m: Mem) {
+        self.bytes(&[0x0F, 0xAE]);
+        self.modrm_mem(3, m, 0);
+    }
+
+    /// `mov eax, [rsp + disp]`.
+    pub(super) fn load_eax_stack(&mut self, disp: i32) {
+        self.bytes(&[0x8B]);
+        self.modrm_mem(0, Mem::Stack(disp), 0);
+    }
+
+    /// `eax = (eax & 1) | ((ecx & 1) << 1)`.
+    pub(super) fn merge_flags(&mut self) {
+        // and eax, 1; and ecx, 1; shl ecx, 1; or eax, ecx
+        self.bytes(&[0x83, 0xE0, 0x01, 0x83, 0xE1, 0x01, 0xD1, 0xE1, 0x09, 0xC8]);
+    }
+
+    /// `ret`.
+    pub(super) fn ret(&mut self) {
+        self.bytes(&[0xC3]);
+    }
+
+    /// The code followed by the pool (at a 16-byte aligned offset), with every
+    /// RIP-relative displacement patched.
+    pub(super) fn finish(mut self, pool: &[u8]) -> Vec<u8> {
+        while !self.code.len().is_multiple_of(16) {
+            // int3: never reached.
+            self.code.push(0xCC);
+        }
+        let base = self.code.len();
+        for f in &self.fixups {
+            let target = base + f.pool as usize;
+            let d = target as i64 - f.end as i64;
+            let d = i32::try_from(d).expect("code and pool within 2 GiB");
+            self.code[f.at..f.at + 4].copy_from_slice(&d.to_le_bytes());
+        }
+        self.code.extend_from_slice(pool);
+        self.code
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn encodings_match_the_manual() {
+        let mut a = Asm::default();
+        a.rr(Sse::AddPd, Xmm(0), Xmm(1)); // addpd xmm0, xmm1
+        a.rm(Sse::MovUpd, Xmm(2), Mem::Stack(0x20)); // movupd xmm2, [rsp+0x20]
+        a.store(Mem::Out(0), Xmm(3)); // movupd [rdx+0], xmm3
+        a.rm(Sse::MovUpd, Xmm(1), Mem::Vars(16)); // movupd xmm1, [rdi+16]
+        a.swap(Xmm(5)); // shufpd xmm5, xmm5, 1
+        a.cmppd(Xmm(3), Xmm(4), Cmp::Le); // cmplepd xmm3, xmm4
+        a.movmskpd_eax(Xmm(3));
+        a.load_table_byte(4);
+        a.store_choice(7);
+        a.rm(Sse::MovUpd, Xmm(0), Mem::Stack(0x200)); // movupd xmm0, [rsp+0x200]
+        let code = a.finish(&[]);
+        let want: &[u8] = &[
+            0x66, 0x0F, 0x58, 0xC1, //
+            0x66, 0x0F, 0x10, 0x54, 0x24, 0x20, //
+            0x66, 0x0F, 0x11, 0x5A, 0, //
+            0x66, 0x0F, 0x10, 0x4F, 16, //
+            0x66, 0x0F, 0xC6, 0xED, 1, //
+            0x66, 0x0F, 0xC2, 0xDC, 2, //
+            0x66, 0x0F, 0x50, 0xC3, //
+            0x0F, 0xB6, 0x44, 0x01, 4, //
+            0x88, 0x86, 7, 0, 0, 0, //
+            0x66, 0x0F, 0x10, 0x84, 0x24, 0, 2, 0, 0,
+        ];
+        assert_eq!(&code[..want.len()], want);
+    }
+
+    #[test]
+    fn rip_relative_displacements_point_at_the_pool() {
+        let mut a = Asm::default();
+        a.rm(Sse::XorPd, Xmm(0), Mem::Pool(16)); // 8 bytes: 66 0F 57 05 d32
+        let code = a.finish(&[0; 32]);
+        let d = i32::from_le_bytes(code[4..8].try_into().unwrap());
+        // The pool starts at 16 (the code padded); the instruction ends at 8.
+        assert_eq!(8 + d as usize, 16 + 16);
+    }
+}
