@@ -42,7 +42,8 @@ impl Chunk {
                 return None;
             }
             let map = |prot| {
-                let p = libc::mmap(std::ptr::null_mut(), len, prot, libc::MAP_SHARED, fd, 0);
+                let flags = libc::MAP_SHARED | libc::MAP_POPULATE;
+                let p = libc::mmap(std::ptr::null_mut(), len, prot, flags, fd, 0);
                 (p != libc::MAP_FAILED).then_some(p)
             };
             let made = if libc::ftruncate(fd, len as libc::off_t) == 0 {
