@@ -82,10 +82,7 @@ pub(super) fn compile(tape: &Tape, traced: bool) -> Option<Vec<u8>> {
     if tape.var_count() > MAX_VARS
         || slots > MAX_SLOTS
         || !tape.instrs().iter().all(supported)
-        || tape
-            .instrs()
-            .iter()
-            .any(|i| (i.out as usize) < nconst || i.out as usize >= tape.reg_count())
+        || !well_formed(tape)
     {
         return None;
     }
@@ -187,6 +184,31 @@ pub(super) fn compile(tape: &Tape, traced: bool) -> Option<Vec<u8>> {
     a.add_rsp(frame);
     a.ret();
     Some(a.finish(&pool))
+}
+
+/// Whether every register the tape reads is a constant or written before, every output
+/// register a working one, and every variable slot one of the tape's: what the frame and
+/// the variables buffer hold (the register allocator makes no other tapes).
+fn well_formed(tape: &Tape) -> bool {
+    let (nconst, nregs) = (tape.consts().len(), tape.reg_count());
+    let mut written = vec![false; nregs];
+    let readable = |w: &[bool], r: u32| (r as usize) < nconst || w.get(r as usize) == Some(&true);
+    for ins in tape.instrs() {
+        let ok = match ins.op {
+            Opcode::Var => (ins.a as usize) < tape.var_count(),
+            Opcode::Const | Opcode::Copy | Opcode::Unary(_) => readable(&written, ins.a),
+            Opcode::Binary(_) => readable(&written, ins.a) && readable(&written, ins.b),
+            Opcode::Pown => false,
+        };
+        let out = ins.out as usize;
+        if !ok || out < nconst || out >= nregs {
+            return false;
+        }
+        written[out] = true;
+    }
+    tape.outputs()
+        .first()
+        .is_some_and(|&o| readable(&written, o))
 }
 
 /// Whether each instruction's result must be stored to its register: where it is read

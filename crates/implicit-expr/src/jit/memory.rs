@@ -5,8 +5,16 @@
 //! last code in a chunk is dropped, the chunk is kept for reuse (its pages already mapped:
 //! a render compiles thousands of short-lived pruned tapes) up to [`SPARE`] of them, and
 //! unmapped beyond.
+//!
+//! The mappings are shared, so a forked child sees the same pages as its parent: each side
+//! counts the fork (an epoch), and no chunk of an earlier epoch is written again, by either
+//! side (its codes run on, in both, as they were).
+//!
+//! Tools that translate machine code as it runs must be told that code is rewritten: a
+//! reused chunk is written through the other mapping (valgrind: `--smc-check=all`).
 
-use std::sync::{Arc, Mutex};
+use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::{Arc, Mutex, Once};
 
 /// The size of a chunk (a larger code gets a chunk of its own).
 const CHUNK: usize = 1 << 18;
@@ -17,11 +25,28 @@ const SPARE: usize = 64;
 /// Code start alignment (the constant pools inside are 16-byte aligned from the start).
 const ALIGN: usize = 16;
 
-/// One memory file mapped writable at `rw` and executable at `rx`.
+/// Forks this process has been through, as parent or child.
+static EPOCH: AtomicU64 = AtomicU64::new(0);
+
+/// Registers the fork handlers once.
+static AT_FORK: Once = Once::new();
+
+/// Counts a fork (run by the C library in the parent and in the child).
+extern "C" fn forked() {
+    EPOCH.fetch_add(1, Ordering::SeqCst);
+}
+
+/// The current epoch.
+fn epoch() -> u64 {
+    EPOCH.load(Ordering::SeqCst)
+}
+
+/// One memory file mapped writable at `rw` and executable at `rx`, in fork epoch `epoch`.
 struct Chunk {
     rw: *mut u8,
     rx: *const u8,
     len: usize,
+    epoch: u64,
 }
 
 // SAFETY: the views are plain memory; writes go only to bytes no code handed out covers,
@@ -34,6 +59,17 @@ impl Chunk {
     /// A chunk of `len` bytes (a multiple of the page size), `None` where the system
     /// refuses.
     fn new(len: usize) -> Option<Self> {
+        AT_FORK.call_once(|| {
+            // SAFETY: registers a handler that only increments an atomic counter.
+            let ok = unsafe { libc::pthread_atfork(None, Some(forked), Some(forked)) } == 0;
+            if !ok {
+                // Without the handlers a child could not tell: no chunk is ever reused.
+                EPOCH.store(u64::MAX, Ordering::SeqCst);
+            }
+        });
+        if epoch() == u64::MAX {
+            return None;
+        }
         // SAFETY: plain system calls on a descriptor this function owns; every result is
         // checked, and what was made is undone on failure.
         unsafe {
@@ -54,6 +90,7 @@ impl Chunk {
                         rw: rw.cast(),
                         rx: rx.cast(),
                         len,
+                        epoch: epoch(),
                     }),
                     (rw, rx) => {
                         for p in [rw, rx].into_iter().flatten() {
@@ -92,7 +129,7 @@ impl Drop for InUse {
     fn drop(&mut self) {
         let Some(chunk) = self.0.take() else { return };
         let mut spares = SPARES.lock().unwrap_or_else(|e| e.into_inner());
-        if chunk.len == CHUNK && spares.len() < SPARE {
+        if chunk.len == CHUNK && chunk.epoch == epoch() && spares.len() < SPARE {
             spares.push(chunk);
         } else {
             drop(spares);
@@ -118,12 +155,19 @@ impl ExecMemory {
     pub(super) fn new(bytes: &[u8]) -> Option<Self> {
         let need = bytes.len().div_ceil(ALIGN) * ALIGN;
         let mut current = CURRENT.lock().unwrap_or_else(|e| e.into_inner());
-        let fits = current
-            .as_ref()
-            .is_some_and(|(c, used)| c.0.as_ref().is_some_and(|c| used + need <= c.len));
+        let now = epoch();
+        let fits = current.as_ref().is_some_and(|(c, used)| {
+            c.0.as_ref()
+                .is_some_and(|c| c.epoch == now && used + need <= c.len)
+        });
         if !fits {
             let spare = if need <= CHUNK {
-                SPARES.lock().unwrap_or_else(|e| e.into_inner()).pop()
+                let mut spares = SPARES.lock().unwrap_or_else(|e| e.into_inner());
+                // Chunks from before a fork are shared with the other process: unmapped.
+                while let Some(old) = spares.pop_if(|c| c.epoch != now) {
+                    old.unmap();
+                }
+                spares.pop()
             } else {
                 None
             };

@@ -22,8 +22,11 @@ mod memory;
 #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
 mod x64;
 
-use std::sync::OnceLock;
+use std::collections::HashMap;
 use std::sync::atomic::{AtomicU32, Ordering};
+use std::sync::{Arc, Mutex, OnceLock};
+
+use rustc_hash::FxBuildHasher;
 
 use crate::number::Choice;
 use crate::tape::Tape;
@@ -96,10 +99,11 @@ impl Code {
         }
     }
 
-    /// The first output at `vars` (`[lo, hi]` of each slot, the unused ones anything), with the choices of every
-    /// `min`/`max` in `trace` for traced code (which must hold one byte per choice), and the
-    /// flags; `None` where the interpreter must evaluate instead (an empty set, an infinite
-    /// limit or a root of a negative interval met).
+    /// The first output at `vars` (`[lo, hi]` of each slot, the unused ones anything: the
+    /// variables must be nonempty, the caller checks), with the choices of every `min`/`max`
+    /// in `trace` for traced code (which must hold one byte per choice), and the flags;
+    /// `None` where the interpreter must evaluate instead (an infinite limit or a root of a
+    /// negative interval met).
     #[inline]
     pub(crate) fn run(
         &self,
@@ -132,13 +136,48 @@ impl Code {
     }
 }
 
+/// Codes kept by tape content at most ([`SHARED`]); the table is emptied when full (the
+/// codes live on in the tapes that hold them).
+const SHARED_MAX: usize = 4096;
+
+/// The codes by the content of their tape and kind: a formula that the pruning of many
+/// regions arrives at from different parent tapes (three in four of the tapes the 3D octree
+/// compiles on the CSG models) is compiled once.
+static SHARED: Mutex<Option<CodeTable>> = Mutex::new(None);
+
+/// Codes by tape content and kind (traced or not).
+type CodeTable = HashMap<(Tape, bool), Arc<Code>, FxBuildHasher>;
+
+/// The code of `tape` from [`SHARED`], compiled and kept there if it is not yet.
+fn shared_code(tape: &Tape, traced: bool) -> Option<Arc<Code>> {
+    let key = (tape.clone(), traced);
+    if let Some(c) = SHARED
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .get_or_insert_with(HashMap::default)
+        .get(&key)
+    {
+        return Some(c.clone());
+    }
+    // Compiled outside the lock: another thread may compile the same formula meanwhile,
+    // and one of the two codes is kept.
+    let code = Arc::new(Code::compile(tape, traced)?);
+    let mut shared = SHARED.lock().unwrap_or_else(|e| e.into_inner());
+    let map = shared.get_or_insert_with(HashMap::default);
+    if map.len() >= SHARED_MAX {
+        map.clear();
+    }
+    Some(map.entry(key).or_insert(code).clone())
+}
+
 /// A tape's compiled code, made on demand: the evaluations counted until
-/// [`COMPILE_AFTER`], then the code of each kind compiled once.
+/// [`COMPILE_AFTER`], then the code of each kind compiled once (or found compiled for an
+/// equal tape).
 #[derive(Debug, Default)]
 pub(crate) struct Slot {
     evals: AtomicU32,
-    plain: OnceLock<Option<Code>>,
-    traced: OnceLock<Option<Code>>,
+    plain: OnceLock<Option<Arc<Code>>>,
+    traced: OnceLock<Option<Arc<Code>>>,
 }
 
 impl Slot {
@@ -151,13 +190,13 @@ impl Slot {
         }
         let cell = if traced { &self.traced } else { &self.plain };
         if let Some(c) = cell.get() {
-            return c.as_ref();
+            return c.as_deref();
         }
         if self.evals.load(Ordering::Relaxed) < COMPILE_AFTER {
             self.evals.fetch_add(1, Ordering::Relaxed);
             return None;
         }
-        cell.get_or_init(|| Code::compile(tape, traced)).as_ref()
+        cell.get_or_init(|| shared_code(tape, traced)).as_deref()
     }
 }
 

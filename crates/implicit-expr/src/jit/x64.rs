@@ -85,8 +85,8 @@ impl Sse {
     }
 }
 
-/// Comparison predicates of `cmppd` / `cmpsd` (the signalling ones: a NaN operand raises
-/// the invalid flag).
+/// Comparison predicates of `cmppd` / `cmpsd`: `Lt` and `Le` signal (a NaN operand raises
+/// the invalid flag), `Neq` does not.
 #[derive(Copy, Clone, Debug)]
 pub(super) enum Cmp {
     /// `a < b`.

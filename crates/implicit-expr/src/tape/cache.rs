@@ -5,7 +5,7 @@
 
 use std::hash::{Hash, Hasher};
 
-use rustc_hash::{FxHashMap, FxHasher};
+use rustc_hash::{FxHashMap, FxHashSet, FxHasher};
 
 use super::Tape;
 use crate::error::Error;
@@ -30,12 +30,19 @@ struct Pruned {
 /// not reload their constants), bit for bit what `simplify` makes.
 ///
 /// Keyed by the tape's identity and the choices (compared in full on a hit, so a hash
-/// collision only costs a pruning). It holds at most about 2^18 instructions of tapes (the
-/// pruned ones and those they were pruned from, which it keeps alive) and empties itself
-/// when full. Make one per thread, next to the evaluator that prunes.
+/// collision only costs a pruning). The pruned tapes are also interned by content: a
+/// pruning that arrives at a formula made before (from another tape: on the CSG models
+/// three prunings in four do) returns the tape made then, so that what is keyed or counted
+/// by tape identity downstream (this cache's own entries for the prunings of that tape,
+/// the evaluations after which a tape is compiled, [`crate::jit`]) is shared. It holds
+/// at most about 2^18 instructions of tapes (the pruned ones and those they were pruned
+/// from, which it keeps alive) and empties itself when full. Make one per thread, next to
+/// the evaluator that prunes.
 #[derive(Clone, Debug, Default)]
 pub struct PruneCache {
     entries: FxHashMap<(usize, u64), Pruned>,
+    /// The pruned tapes made, by content.
+    interned: FxHashSet<Tape>,
     held: usize,
     hits: u64,
     misses: u64,
@@ -70,10 +77,16 @@ impl PruneCache {
         let pruned = tape.simplify(choices)?;
         let size = tape.len() + pruned.len();
         if self.held + size > HELD_INSTRS {
-            self.entries.clear();
-            self.held = 0;
+            self.clear();
         }
         self.held += size;
+        let pruned = match self.interned.get(&pruned) {
+            Some(same) => same.clone(),
+            None => {
+                self.interned.insert(pruned.clone());
+                pruned
+            }
+        };
         let entry = Pruned {
             parent: tape.clone(),
             choices: choices.into(),
@@ -99,6 +112,7 @@ impl PruneCache {
     /// Forgets every pruning kept (and the tapes they hold).
     pub fn clear(&mut self) {
         self.entries.clear();
+        self.interned.clear();
         self.held = 0;
     }
 }
@@ -118,8 +132,8 @@ mod tests {
     }
 
     /// Over boxes that decide some choices, the cache returns what `simplify` makes, the
-    /// same tape object on a repeat, and nothing stale for another tape with equal
-    /// choices.
+    /// same tape object on a repeat, and for another tape with equal choices a pruning made
+    /// afresh, interned as the equal formula made before.
     #[test]
     fn cached_prunings_equal_fresh_ones() {
         let t = tape();
@@ -144,18 +158,28 @@ mod tests {
             seen.push(cached);
         }
         assert!(seen[0].ptr_eq(&seen[2]), "a repeat is the same tape");
-        assert!(!seen[0].ptr_eq(&seen[1]));
+        // Other choices, the same formula (`y + z`): a miss, interned as the first.
+        assert!(seen[0].ptr_eq(&seen[1]));
+        assert!(!seen[0].ptr_eq(&seen[3]));
         assert_eq!(cache.hits(), 1);
         // Another tape with the same number of choices, pruned by the same choices, is
-        // pruned afresh.
+        // pruned afresh (a miss), to the formula made before: the same tape object.
         let other = tape();
         ev.set_tape(&other);
         ev.eval_traced(&boxes[0], &mut trace).expect("three slots");
+        let misses = cache.misses();
         let p = cache
             .simplify(&other, &trace)
             .expect("one entry per choice");
-        assert!(!p.ptr_eq(&seen[0]));
-        assert_eq!(cache.hits(), 1);
+        assert_eq!((cache.hits(), cache.misses()), (1, misses + 1));
+        assert!(p.ptr_eq(&seen[0]), "interned");
+        // A formula not made before is its own tape.
+        let other_box = [iv(10.0, 11.0), iv(-3.0, -2.0), iv(-5.0, -4.0)];
+        ev.eval_traced(&other_box, &mut trace).expect("three slots");
+        let q = cache
+            .simplify(&other, &trace)
+            .expect("one entry per choice");
+        assert_eq!(q.ssa(), other.simplify(&trace).expect("pruned").ssa());
         // A wrong number of choices is the same error as simplify's.
         assert!(cache.simplify(&t, &trace[1..]).is_err());
     }

@@ -71,11 +71,25 @@ impl PartialEq for Tape {
 impl Eq for Tape {}
 
 impl Hash for Tape {
+    /// The content's hash ([`Tape::content_hash`], made once per tape): interning pruned
+    /// tapes and finding their compiled code hash each one more than once.
     fn hash<H: Hasher>(&self, state: &mut H) {
-        self.var_count().hash(state);
-        self.ssa_outputs().hash(state);
-        self.ssa().hash(state);
-        self.consts().hash(state);
+        state.write_u64(self.content_hash());
+    }
+}
+
+impl Tape {
+    /// A hash of what [`PartialEq`] compares (variable count, outputs, operations,
+    /// constants), computed on first use and kept.
+    pub(crate) fn content_hash(&self) -> u64 {
+        *self.0.content_hash.get_or_init(|| {
+            let mut h = rustc_hash::FxHasher::default();
+            self.var_count().hash(&mut h);
+            self.ssa_outputs().hash(&mut h);
+            self.ssa().hash(&mut h);
+            self.consts().hash(&mut h);
+            h.finish()
+        })
     }
 }
 

@@ -83,6 +83,8 @@ struct TapeData {
     continuous_everywhere: bool,
     /// The machine code of the tape, compiled once it is evaluated often enough.
     jit: crate::jit::Slot,
+    /// See [`Tape::content_hash`].
+    content_hash: std::sync::OnceLock<u64>,
 }
 
 /// A compiled expression with one or more outputs. See the [module documentation](self).
@@ -170,6 +172,7 @@ impl Tape {
             choice_index: c.choice_index,
             continuous_everywhere,
             jit: crate::jit::Slot::default(),
+            content_hash: std::sync::OnceLock::new(),
         }))
     }
 
