@@ -845,7 +845,8 @@ fn check_interval_f64_contains_real_and_point_values(
 
 /// Decorations: the plain evaluator's decoration (`eval_decorated`) is the decorated
 /// evaluator's, with bit-identical interval parts, in `f64` and `f32`; `eval_continuous`
-/// says "at least `dac`" exactly when the decoration does; a decoration of `def` or better
+/// says "at least `dac`" exactly when the decoration does, `eval_traced_defined` "at least
+/// `def`" exactly when it does (with the choices of `eval_traced`); a decoration of `def` or better
 /// comes with a nonempty value. (The rules of each operation are tested in interval-core,
 /// `tests/decorated_rules.rs`.)
 fn check_decorations(b: &[(f64, f64); SLOTS], r: &Recipe) -> Result<(), TestCaseError> {
@@ -868,6 +869,14 @@ fn check_decorations(b: &[(f64, f64); SLOTS], r: &Recipe) -> Result<(), TestCase
         .unwrap();
     prop_assert!(same_interval(fx, fc));
     prop_assert_eq!(continuous, dec >= Decoration::Dac, "decoration {}", dec);
+    let mut trace = Vec::new();
+    let mut traced = Evaluator::<Interval<f64>>::new(&tape);
+    let (ft, defined) = traced.eval_traced_defined(&x, &mut trace).unwrap();
+    prop_assert!(same_interval(fx, ft));
+    prop_assert_eq!(defined, dec >= Decoration::Def, "decoration {}", dec);
+    let mut plain_trace = Vec::new();
+    traced.eval_traced(&x, &mut plain_trace).unwrap();
+    prop_assert_eq!(&trace, &plain_trace);
     let x32: Vec<Interval<f32>> = x.iter().map(|&x| x.cast()).collect();
     let (f32x, dec32) = Evaluator::<Interval<f32>>::new(&tape)
         .eval_decorated(&x32)

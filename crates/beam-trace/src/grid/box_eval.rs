@@ -2,7 +2,7 @@
 //! and blocks, and the pruning of a tape to a box with it.
 
 use implicit_expr::{Choice, Evaluator, Tape};
-use interval_core::{Decoration, Interval};
+use interval_core::Interval;
 
 use crate::ibox::IBox;
 
@@ -49,24 +49,18 @@ impl BoxEval {
 
     /// The enclosure of `tape` over `b`, and whether `tape` is proven defined at every point
     /// of `b` (decorated at least `def`: a jump, such as the boundary of a partial domain
-    /// inside `b`, keeps the sign of the enclosure at every point). A tape defined
-    /// everywhere by its form ([`Tape::is_continuous_everywhere`]) needs no decorations: its
-    /// evaluation records the `min`/`max` choices instead, for a [`pruned`](Self::pruned)
-    /// of the same box that follows.
+    /// inside `b`, keeps the sign of the enclosure at every point). The evaluation records
+    /// the `min`/`max` choices too, for a [`pruned`](Self::pruned) of the same box that
+    /// follows.
     pub(super) fn defined_on(&mut self, tape: &Tape, b: &IBox) -> (Interval<f64>, bool) {
-        self.traced = None;
-        if tape.is_continuous_everywhere() {
-            let mut trace = std::mem::take(&mut self.trace);
-            let f = self
-                .on(tape)
-                .eval_traced(b, &mut trace)
-                .expect("tape in x y z");
-            self.trace = trace;
-            self.traced = Some((tape.clone(), *b));
-            return (f, true);
-        }
-        let (f, dec) = self.on(tape).eval_decorated(b).expect("tape in x y z");
-        (f, dec >= Decoration::Def)
+        let mut trace = std::mem::take(&mut self.trace);
+        let r = self
+            .on(tape)
+            .eval_traced_defined(b, &mut trace)
+            .expect("tape in x y z");
+        self.trace = trace;
+        self.traced = Some((tape.clone(), *b));
+        r
     }
 }
 

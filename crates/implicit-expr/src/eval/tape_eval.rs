@@ -272,6 +272,42 @@ impl<N: Number> Evaluator<N> {
         Ok(self.regs[self.tape.outputs()[0] as usize])
     }
 
+    /// Like [`eval_traced`](Self::eval_traced), also telling whether the formula is proven
+    /// defined at every point of the region: whether
+    /// [`eval_decorated`](Self::eval_decorated) would give at least [`Decoration::Def`],
+    /// found by the traced evaluation itself (it checks the partial operations to decide
+    /// whether choices may be kept). One evaluation where a classification of the region
+    /// and its pruning would take two.
+    ///
+    /// Returns an error when fewer values than the tape's variable slots are given.
+    pub fn eval_traced_defined(
+        &mut self,
+        vars: &[N],
+        trace: &mut Vec<Choice>,
+    ) -> Result<(N, bool), Error> {
+        self.check(vars)?;
+        if let Some((v, flags)) = compiled(&self.tape, vars, Some((&mut self.choice_bytes, trace)))
+        {
+            // The compiled operations are total but for the square root, whose negative
+            // arguments it reports; an empty result would have sent it to the interpreter.
+            return Ok((v, !flags.partial));
+        }
+        trace.clear();
+        let dec = run::<N, true, NO_CHECK, NO_SIDE>(
+            self.tape.instrs(),
+            &mut self.regs,
+            vars,
+            trace,
+            &mut 0,
+        );
+        let v = self.regs[self.tape.outputs()[0] as usize];
+        let consts = self.tape.consts().len();
+        let dec = self.regs[..consts]
+            .iter()
+            .fold(dec, |d, c| d.min(c.value_decoration()));
+        Ok((v, dec.min(v.value_decoration()) >= Decoration::Def))
+    }
+
     /// The tape pruned to the region `vars`: an [`eval_traced`](Self::eval_traced) there,
     /// then [`Tape::simplify`] by its trace (`trace` is the buffer). Equal to the tape at
     /// every point of the region, with the same enclosure over every part of it; the tape
