@@ -73,9 +73,28 @@ fn supported(ins: &Instr) -> bool {
     }
 }
 
-/// The machine code of `tape`'s first output, writing choice bytes where `traced`; `None`
-/// where the tape uses an operation the code generator lacks, or is too large for its frame.
-pub(super) fn compile(tape: &Tape, traced: bool) -> Option<Vec<u8>> {
+thread_local! {
+    /// Each thread's assembler, its buffers kept from one code to the next.
+    static ASM: std::cell::RefCell<Asm> = std::cell::RefCell::new(Asm::default());
+}
+
+/// The machine code of `tape`'s first output, writing choice bytes where `traced`, handed
+/// to `place` (which copies it where it will run); `None` where the tape uses an operation
+/// the code generator lacks, or is too large for its frame.
+pub(super) fn compile<R>(
+    tape: &Tape,
+    traced: bool,
+    place: impl FnOnce(&[u8]) -> Option<R>,
+) -> Option<R> {
+    ASM.with_borrow_mut(|a| {
+        a.clear();
+        let pool = assemble(a, tape, traced)?;
+        place(a.finish(&pool))
+    })
+}
+
+/// Assembles the code of `tape` into `a`; returns the constant pool.
+fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
     let nconst = tape.consts().len();
     let slots = tape.reg_count().saturating_sub(nconst);
     let output = *tape.outputs().first()? as usize;
@@ -115,7 +134,6 @@ pub(super) fn compile(tape: &Tape, traced: bool) -> Option<Vec<u8>> {
     // 16 bytes for `mxcsr`, the slots, and 8 to align `rsp` (8 mod 16 at the call).
     let frame = 16 + 16 * slots as i32 + 8;
 
-    let mut a = Asm::default();
     a.sub_rsp(frame);
     a.stmxcsr(Mem::Stack(0));
     a.ldmxcsr(Mem::Pool(CSR));
@@ -143,25 +161,25 @@ pub(super) fn compile(tape: &Tape, traced: bool) -> Option<Vec<u8>> {
                 a.rm(Sse::MovUpd, X0, Mem::Vars(16 * ins.a as i32));
                 a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
             }
-            Opcode::Const | Opcode::Copy => load(&mut a, X0, ins.a),
+            Opcode::Const | Opcode::Copy => load(a, X0, ins.a),
             Opcode::Unary(op) => {
-                load(&mut a, X0, ins.a);
-                unary(&mut a, op);
+                load(a, X0, ins.a);
+                unary(a, op);
             }
             Opcode::Binary(op) => {
                 // `X1` first: it may copy `X0` before `X0` is loaded.
-                load(&mut a, X1, ins.b);
-                load(&mut a, X0, ins.a);
+                load(a, X1, ins.b);
+                load(a, X0, ins.a);
                 if traced && matches!(op, BinaryOp::Min | BinaryOp::Max) {
                     let table = if op == BinaryOp::Min {
                         0
                     } else {
                         MAX_TABLE - MIN_TABLE
                     };
-                    record_choice(&mut a, table as i8, choice);
+                    record_choice(a, table as i8, choice);
                     choice += 1;
                 }
-                binary(&mut a, op);
+                binary(a, op);
             }
             Opcode::Pown => return None,
         }
@@ -183,7 +201,7 @@ pub(super) fn compile(tape: &Tape, traced: bool) -> Option<Vec<u8>> {
     a.ldmxcsr(Mem::Stack(0));
     a.add_rsp(frame);
     a.ret();
-    Some(a.finish(&pool))
+    Some(pool)
 }
 
 /// Whether every register the tape reads is a constant or written before, every output

@@ -86,9 +86,8 @@ impl Code {
     pub(crate) fn compile(tape: &Tape, traced: bool) -> Option<Self> {
         #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
         {
-            let bytes = emit::compile(tape, traced)?;
             Some(Self {
-                mem: memory::ExecMemory::new(&bytes)?,
+                mem: emit::compile(tape, traced, memory::ExecMemory::new)?,
                 choices: if traced { tape.choice_count() } else { 0 },
             })
         }

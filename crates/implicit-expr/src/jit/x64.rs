@@ -264,9 +264,15 @@ impl Asm {
         self.bytes(&[0xC3]);
     }
 
+    /// Empties the buffers (keeping their memory) for the next code.
+    pub(super) fn clear(&mut self) {
+        self.code.clear();
+        self.fixups.clear();
+    }
+
     /// The code followed by the pool (at a 16-byte aligned offset), with every
     /// RIP-relative displacement patched.
-    pub(super) fn finish(mut self, pool: &[u8]) -> Vec<u8> {
+    pub(super) fn finish(&mut self, pool: &[u8]) -> &[u8] {
         while !self.code.len().is_multiple_of(16) {
             // int3: never reached.
             self.code.push(0xCC);
@@ -279,7 +285,7 @@ impl Asm {
             self.code[f.at..f.at + 4].copy_from_slice(&d.to_le_bytes());
         }
         self.code.extend_from_slice(pool);
-        self.code
+        &self.code
     }
 }
 
@@ -300,7 +306,7 @@ mod tests {
         a.load_table_byte(4);
         a.store_choice(7);
         a.rm(Sse::MovUpd, Xmm(0), Mem::Stack(0x200)); // movupd xmm0, [rsp+0x200]
-        let code = a.finish(&[]);
+        let code = a.finish(&[]).to_vec();
         let want: &[u8] = &[
             0x66, 0x0F, 0x58, 0xC1, //
             0x66, 0x0F, 0x10, 0x54, 0x24, 0x20, //
@@ -320,7 +326,7 @@ mod tests {
     fn rip_relative_displacements_point_at_the_pool() {
         let mut a = Asm::default();
         a.rm(Sse::XorPd, Xmm(0), Mem::Pool(16)); // 8 bytes: 66 0F 57 05 d32
-        let code = a.finish(&[0; 32]);
+        let code = a.finish(&[0; 32]).to_vec();
         let d = i32::from_le_bytes(code[4..8].try_into().unwrap());
         // The pool starts at 16 (the code padded); the instruction ends at 8.
         assert_eq!(8 + d as usize, 16 + 16);
