@@ -6,7 +6,7 @@ use interval_core::{Decoration, Interval, isa};
 
 use crate::constant::Constant;
 use crate::error::Error;
-use crate::jit::{self, Flags, MAX_VARS};
+use crate::jit::{self, Flags, MAX_OUTPUTS, MAX_VARS};
 use crate::number::{Choice, Number};
 use crate::op::BinaryOp;
 use crate::tape::{Instr, Opcode, Tape};
@@ -21,16 +21,17 @@ pub struct Evaluator<N> {
     choice_bytes: Vec<u8>,
 }
 
-/// The first output of `tape` at `vars` by its machine code ([`crate::jit`]), where `N` is
-/// `Interval<f64>`, every variable is non-empty and the tape has code (compiled now if it is
-/// due); with the choices in `trace` where given (`bytes` is the buffer). `None` where the
-/// interpreter must evaluate.
+/// The outputs of `tape` at `vars` by its machine code ([`crate::jit`]) into `out`, where
+/// `N` is `Interval<f64>`, every variable is non-empty and the tape has code (compiled now
+/// if it is due); with the choices in `trace` where given (`bytes` is the buffer). `None`
+/// where the interpreter must evaluate.
 #[inline(always)]
 fn compiled<N: Number>(
     tape: &Tape,
     vars: &[N],
     trace: Option<(&mut Vec<u8>, &mut Vec<Choice>)>,
-) -> Option<(N, Flags)> {
+    out: &mut [[f64; 2]; MAX_OUTPUTS],
+) -> Option<Flags> {
     if !jit::AVAILABLE
         || std::any::TypeId::of::<N>() != std::any::TypeId::of::<Interval<f64>>()
         || tape.var_count() > MAX_VARS
@@ -43,23 +44,40 @@ fn compiled<N: Number>(
         let (lo, hi) = (v as &dyn Any).downcast_ref::<Interval<f64>>()?.bounds()?;
         *x = [lo, hi];
     }
-    let (out, flags) = match trace {
+    match trace {
         Some((bytes, trace)) => {
             bytes.resize(tape.choice_count(), 2);
-            let r = code.run(&xs, bytes)?;
-            if r.1.partial {
+            let flags = code.run(&xs, bytes, out)?;
+            if flags.partial {
                 // As the interpreter: nothing may be pruned where the formula is undefined.
                 trace.clear();
                 trace.resize(tape.choice_count(), Choice::Both);
             } else {
                 jit::choices_into(bytes, trace);
             }
-            r
+            Some(flags)
         }
-        None => code.run(&xs, &mut [])?,
-    };
-    let v = Interval::new_unchecked(out[0], out[1]);
-    Some(((&v as &dyn Any).downcast_ref::<N>().copied()?, flags))
+        None => code.run(&xs, &mut [], out),
+    }
+}
+
+/// `[lo, hi]` as `N`, where `N` is `Interval<f64>` (as in [`compiled`]).
+#[inline(always)]
+fn number<N: Number>(b: [f64; 2]) -> Option<N> {
+    let v = Interval::new_unchecked(b[0], b[1]);
+    (&v as &dyn Any).downcast_ref::<N>().copied()
+}
+
+/// The first output by [`compiled`].
+#[inline(always)]
+fn compiled_first<N: Number>(
+    tape: &Tape,
+    vars: &[N],
+    trace: Option<(&mut Vec<u8>, &mut Vec<Choice>)>,
+) -> Option<(N, Flags)> {
+    let mut out = [[0.0f64; 2]; MAX_OUTPUTS];
+    let flags = compiled(tape, vars, trace, &mut out)?;
+    Some((number(out[0])?, flags))
 }
 
 /// Makes `regs` a register file of `width` lanes per register for a tape, and fills lanes
@@ -126,7 +144,7 @@ impl<N: Number> Evaluator<N> {
     /// Returns an error when fewer values than the tape's variable slots are given.
     pub fn eval(&mut self, vars: &[N]) -> Result<N, Error> {
         self.check(vars)?;
-        if let Some((v, _)) = compiled(&self.tape, vars, None) {
+        if let Some((v, _)) = compiled_first(&self.tape, vars, None) {
             return Ok(v);
         }
         run::<N, false, NO_CHECK, NO_SIDE>(
@@ -183,7 +201,7 @@ impl<N: Number> Evaluator<N> {
     /// Returns an error when fewer values than the tape's variable slots are given.
     pub fn eval_continuous(&mut self, vars: &[N]) -> Result<(N, bool), Error> {
         self.check(vars)?;
-        if let Some((v, flags)) = compiled(&self.tape, vars, None) {
+        if let Some((v, flags)) = compiled_first(&self.tape, vars, None) {
             // The compiled operations are total and continuous but for the square root,
             // whose negative arguments it reports.
             return Ok((v, !flags.partial && v.value_decoration() >= Decoration::Dac));
@@ -239,6 +257,22 @@ impl<N: Number> Evaluator<N> {
                 self.tape.outputs().len()
             )));
         }
+        let mut buf = [[0.0f64; 2]; MAX_OUTPUTS];
+        if compiled(&self.tape, vars, None, &mut buf).is_some() {
+            // `N` is `Interval<f64>` here, so every output converts (else the interpreter
+            // writes them all again).
+            let n = self.tape.outputs().len();
+            let mut all = true;
+            for (o, &b) in out.iter_mut().zip(&buf[..n]) {
+                match number(b) {
+                    Some(v) => *o = v,
+                    None => all = false,
+                }
+            }
+            if all {
+                return Ok(());
+            }
+        }
         run::<N, false, NO_CHECK, NO_SIDE>(
             self.tape.instrs(),
             &mut self.regs,
@@ -264,7 +298,7 @@ impl<N: Number> Evaluator<N> {
     /// enclosure holds at every point.
     pub fn eval_traced(&mut self, vars: &[N], trace: &mut Vec<Choice>) -> Result<N, Error> {
         self.check(vars)?;
-        if let Some((v, _)) = compiled(&self.tape, vars, Some((&mut self.choice_bytes, trace))) {
+        if let Some((v, _)) = compiled_first(&self.tape, vars, Some((&mut self.choice_bytes, trace))) {
             return Ok(v);
         }
         trace.clear();
@@ -286,7 +320,8 @@ impl<N: Number> Evaluator<N> {
         trace: &mut Vec<Choice>,
     ) -> Result<(N, bool), Error> {
         self.check(vars)?;
-        if let Some((v, flags)) = compiled(&self.tape, vars, Some((&mut self.choice_bytes, trace)))
+        if let Some((v, flags)) =
+            compiled_first(&self.tape, vars, Some((&mut self.choice_bytes, trace)))
         {
             // The compiled operations are total but for the square root, whose negative
             // arguments it reports; an empty result would have sent it to the interpreter.

@@ -18,7 +18,7 @@
 
 use interval_core::Interval;
 
-use super::MAX_VARS;
+use super::{MAX_OUTPUTS, MAX_VARS};
 use super::x64::{Asm, Cmp, Mem, Sse, Xmm};
 use crate::number::Number;
 use crate::op::{BinaryOp, UnaryOp};
@@ -78,7 +78,7 @@ thread_local! {
     static ASM: std::cell::RefCell<Asm> = std::cell::RefCell::new(Asm::default());
 }
 
-/// The machine code of `tape`'s first output, writing choice bytes where `traced`, handed
+/// The machine code of `tape`'s outputs, writing choice bytes where `traced`, handed
 /// to `place` (which copies it where it will run); `None` where the tape uses an operation
 /// the code generator lacks, or is too large for its frame.
 pub(super) fn compile<R>(
@@ -97,8 +97,10 @@ pub(super) fn compile<R>(
 fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
     let nconst = tape.consts().len();
     let slots = tape.reg_count().saturating_sub(nconst);
-    let output = *tape.outputs().first()? as usize;
-    if tape.var_count() > MAX_VARS
+    let outputs = tape.outputs();
+    if outputs.is_empty()
+        || outputs.len() > MAX_OUTPUTS
+        || tape.var_count() > MAX_VARS
         || slots > MAX_SLOTS
         || !tape.instrs().iter().all(supported)
         || !well_formed(tape)
@@ -142,7 +144,7 @@ fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
         a.lea_rcx_pool(MIN_TABLE);
     }
     let instrs = tape.instrs();
-    let stored = stores_needed(instrs, output);
+    let stored = stores_needed(instrs, outputs);
     // The register whose value `X0` holds: the previous instruction's output.
     let mut in_x0 = None;
     let mut choice = 0i32;
@@ -188,11 +190,14 @@ fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
         }
         in_x0 = Some(ins.out);
     }
-    if in_x0 != Some(output as u32) {
-        a.rm(Sse::MovUpd, X0, reg(output as u32));
+    // Every output as `[lo, hi]`: the first may still be in `X0`, the others are stored.
+    for (i, &o) in outputs.iter().enumerate() {
+        if i > 0 || in_x0 != Some(o) {
+            a.rm(Sse::MovUpd, X0, reg(o));
+        }
+        a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
+        a.store(Mem::Out(16 * i as i32), X0);
     }
-    a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
-    a.store(Mem::Out(0), X0);
     // Flags: bit 0 the invalid operation, bit 1 a partial square root.
     a.stmxcsr(Mem::Stack(4));
     a.load_eax_stack(4);
@@ -224,15 +229,14 @@ fn well_formed(tape: &Tape) -> bool {
         }
         written[out] = true;
     }
-    tape.outputs()
-        .first()
-        .is_some_and(|&o| readable(&written, o))
+    tape.outputs().iter().all(|&o| readable(&written, o))
 }
 
 /// Whether each instruction's result must be stored to its register: where it is read
-/// later than by the next instruction (which takes it from `X0`), or is the `output`
-/// register read after the last instruction from memory.
-fn stores_needed(instrs: &[Instr], output: usize) -> Vec<bool> {
+/// later than by the next instruction (which takes it from `X0`), or is an output read
+/// after the last instruction from memory (all but the first output: `X0` is used for
+/// the first).
+fn stores_needed(instrs: &[Instr], outputs: &[u32]) -> Vec<bool> {
     const NONE: usize = usize::MAX;
     // The instruction that last wrote each register.
     let mut def: Vec<usize> = Vec::new();
@@ -258,7 +262,9 @@ fn stores_needed(instrs: &[Instr], output: usize) -> Vec<bool> {
         }
         def[o] = j;
     }
-    read(&def, &mut far, output as u32, instrs.len());
+    for (i, &o) in outputs.iter().enumerate() {
+        read(&def, &mut far, o, instrs.len() + i);
+    }
     far
 }
 

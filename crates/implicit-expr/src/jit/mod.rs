@@ -38,6 +38,9 @@ pub const COMPILE_AFTER: u32 = 8;
 /// Variables a compiled tape takes at most.
 pub(crate) const MAX_VARS: usize = 16;
 
+/// Outputs a compiled tape has at most (a value and its gradient, a few formulas).
+pub(crate) const MAX_OUTPUTS: usize = 8;
+
 /// Whether this build compiles tapes at all.
 pub const AVAILABLE: bool = cfg!(all(target_arch = "x86_64", target_os = "linux"));
 
@@ -75,13 +78,13 @@ impl std::fmt::Debug for Code {
 }
 
 /// The signature of a compiled tape: the variables as `[lo, hi]` pairs, the choice bytes
-/// (written only by traced code), the output as `[lo, hi]`; returns the flags (bit 0:
-/// invalid operation, bit 1: partial square root).
+/// (written only by traced code), the outputs as `[lo, hi]` pairs; returns the flags (bit
+/// 0: invalid operation, bit 1: partial square root).
 #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
 type Entry = unsafe extern "sysv64" fn(*const [f64; 2], *mut u8, *mut [f64; 2]) -> u32;
 
 impl Code {
-    /// The code of `tape`'s first output, recording choices where `traced`; `None` where
+    /// The code of `tape`'s outputs, recording choices where `traced`; `None` where
     /// the tape uses an operation the compiler lacks or the platform has none.
     pub(crate) fn compile(tape: &Tape, traced: bool) -> Option<Self> {
         #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
@@ -98,38 +101,36 @@ impl Code {
         }
     }
 
-    /// The first output at `vars` (`[lo, hi]` of each slot, the unused ones anything: the
-    /// variables must be nonempty, the caller checks), with the choices of every `min`/`max`
-    /// in `trace` for traced code (which must hold one byte per choice), and the flags;
-    /// `None` where the interpreter must evaluate instead (an infinite limit or a root of a
-    /// negative interval met).
+    /// The outputs at `vars` (`[lo, hi]` of each slot, the unused ones anything: the
+    /// variables must be nonempty, the caller checks) into `out` (`[lo, hi]` of each output,
+    /// in order), with the choices of every `min`/`max` in `trace` for traced code (which
+    /// must hold one byte per choice); returns the flags, or `None` where the interpreter
+    /// must evaluate instead (an infinite limit or a root of a negative interval met).
     #[inline]
     pub(crate) fn run(
         &self,
         vars: &[[f64; 2]; MAX_VARS],
         trace: &mut [u8],
-    ) -> Option<([f64; 2], Flags)> {
+        out: &mut [[f64; 2]; MAX_OUTPUTS],
+    ) -> Option<Flags> {
         #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
         {
             assert!(trace.len() >= self.choices, "trace buffer too short");
-            let mut out = [0.0f64; 2];
             // SAFETY: the code was made by `emit::compile` for a tape of at most `MAX_VARS`
-            // variables, reads only `vars`, writes at most `self.choices` bytes of `trace`
-            // and the 16 bytes of `out`, and restores `mxcsr`.
+            // variables and `MAX_OUTPUTS` outputs, reads only `vars`, writes at most
+            // `self.choices` bytes of `trace` and one pair of `out` per output, and restores
+            // `mxcsr`.
             let flags = unsafe {
                 let entry: Entry = std::mem::transmute(self.mem.as_ptr());
-                entry(vars.as_ptr(), trace.as_mut_ptr(), &mut out)
+                entry(vars.as_ptr(), trace.as_mut_ptr(), out.as_mut_ptr())
             };
-            (flags & 1 == 0).then_some((
-                out,
-                Flags {
-                    partial: flags & 2 != 0,
-                },
-            ))
+            (flags & 1 == 0).then_some(Flags {
+                partial: flags & 2 != 0,
+            })
         }
         #[cfg(not(all(target_arch = "x86_64", target_os = "linux")))]
         {
-            let _ = (vars, trace);
+            let _ = (vars, trace, out);
             None
         }
     }

@@ -7,7 +7,7 @@ use interval_core::{Decoration, Interval};
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 
-use super::{Code, MAX_VARS};
+use super::{Code, MAX_OUTPUTS, MAX_VARS};
 use crate::constant::Constant;
 use crate::context::{Context, NodeId, Var};
 use crate::eval::Evaluator;
@@ -125,12 +125,14 @@ fn check(tape: &Tape, vars: &[Interval<f64>]) -> Result<bool, TestCaseError> {
     let traced = Code::compile(tape, true).expect("supported operations compile");
     let xs = pairs(vars);
     let mut bytes = vec![9u8; tape.choice_count()];
-    let a = plain.run(&xs, &mut []);
-    let b = traced.run(&xs, &mut bytes);
+    let (mut v, mut w) = ([[0.0; 2]; MAX_OUTPUTS], [[0.0; 2]; MAX_OUTPUTS]);
+    let a = plain.run(&xs, &mut [], &mut v);
+    let b = traced.run(&xs, &mut bytes, &mut w);
     prop_assert_eq!(a.is_some(), b.is_some());
-    let (Some((v, flags)), Some((w, _))) = (a, b) else {
+    let (Some(flags), Some(_)) = (a, b) else {
         return Ok(false);
     };
+    let (v, w) = (v[0], w[0]);
     prop_assert!(same(want, v), "interpreter {want:?}, compiled {v:?}");
     prop_assert!(same(want, w), "interpreter {want:?}, compiled traced {w:?}");
     let value = Interval::new_unchecked(v[0], v[1]);
@@ -208,8 +210,9 @@ fn iv(lo: f64, hi: f64) -> Interval<f64> {
 fn run(formula: &str, vars: &[Interval<f64>]) -> Option<(Interval<f64>, bool)> {
     let tape = tape_of(formula);
     let code = Code::compile(&tape, false).unwrap();
-    let (v, flags) = code.run(&pairs(vars), &mut [])?;
-    Some((Interval::new_unchecked(v[0], v[1]), flags.partial))
+    let mut out = [[0.0; 2]; MAX_OUTPUTS];
+    let flags = code.run(&pairs(vars), &mut [], &mut out)?;
+    Some((Interval::new_unchecked(out[0][0], out[0][1]), flags.partial))
 }
 
 #[test]
@@ -254,7 +257,8 @@ fn choices_are_recorded() {
     let code = Code::compile(&tape, true).unwrap();
     let vars = [iv(0.0, 1.0), iv(2.0, 3.0), iv(5.0, 6.0)];
     let mut bytes = vec![9; tape.choice_count()];
-    code.run(&pairs(&vars), &mut bytes).unwrap();
+    code.run(&pairs(&vars), &mut bytes, &mut [[0.0; 2]; MAX_OUTPUTS])
+        .unwrap();
     let mut trace = Vec::new();
     super::choices_into(&bytes, &mut trace);
     assert_eq!(trace, [Choice::Left, Choice::Right]);
@@ -264,8 +268,12 @@ fn choices_are_recorded() {
 fn rounding_mode_is_restored() {
     let tape = tape_of("x + y");
     let code = Code::compile(&tape, false).unwrap();
-    code.run(&pairs(&[iv(0.1, 0.2), iv(0.3, 0.4), iv(0.0, 0.0)]), &mut [])
-        .unwrap();
+    code.run(
+        &pairs(&[iv(0.1, 0.2), iv(0.3, 0.4), iv(0.0, 0.0)]),
+        &mut [],
+        &mut [[0.0; 2]; MAX_OUTPUTS],
+    )
+    .unwrap();
     // Under upward rounding the sum would be the next double above 1.
     let one = std::hint::black_box(1.0f64);
     assert_eq!(one + std::hint::black_box(1e-17), 1.0);
@@ -286,6 +294,35 @@ fn evaluators_switch_to_the_code_with_the_same_results() {
         assert_eq!(trace, first_trace);
     }
     assert!(tape.code(false).is_some() && tape.code(true).is_some());
+}
+
+/// A tape of several outputs (a formula and its gradient): every output compiled, each
+/// the interpreter's, through `eval_outputs` once the tape is compiled.
+#[test]
+fn every_output_is_compiled() {
+    let mut ctx = Context::new();
+    let f = crate::parse::parse(&mut ctx, "x*y - z*sqr(x) + sqr(y) * (x - 1)", &[])
+        .unwrap();
+    let [fx, fy, fz] = ctx.gradient(f);
+    let tape = Tape::new(&ctx, &[f, fx, fy, fz]).unwrap();
+    let vars = [iv(0.5, 0.75), iv(-0.25, 0.5), iv(0.1, 0.2)];
+    let mut ev = Evaluator::<Interval<f64>>::new(&tape);
+    let mut first = [Interval::EMPTY; 4];
+    ev.eval_outputs(&vars, &mut first).unwrap();
+    let code = Code::compile(&tape, false).expect("supported operations");
+    let mut out = [[0.0; 2]; MAX_OUTPUTS];
+    code.run(&pairs(&vars), &mut [], &mut out).unwrap();
+    for (want, got) in first.iter().zip(out) {
+        assert!(same(*want, got), "{want:?} against {got:?}");
+    }
+    for _ in 0..3 * super::COMPILE_AFTER {
+        let mut again = [Interval::EMPTY; 4];
+        ev.eval_outputs(&vars, &mut again).unwrap();
+        for (a, b) in again.iter().zip(&first) {
+            assert!(a.inf() == b.inf() && a.sup() == b.sup());
+        }
+    }
+    assert!(tape.code(false).is_some());
 }
 
 #[test]
