@@ -203,8 +203,10 @@ impl<N: Number> Evaluator<N> {
         self.check(vars)?;
         if let Some((v, flags)) = compiled_first(&self.tape, vars, None) {
             // The compiled operations are total and continuous but for the square root,
-            // whose negative arguments it reports.
-            return Ok((v, !flags.partial && v.value_decoration() >= Decoration::Dac));
+            // whose negative arguments it reports, and `not`, whose possible jumps it
+            // reports.
+            let continuous = !flags.partial && !flags.jump;
+            return Ok((v, continuous && v.value_decoration() >= Decoration::Dac));
         }
         let dec = run::<N, false, CONTINUITY, NO_SIDE>(
             self.tape.instrs(),
@@ -298,7 +300,9 @@ impl<N: Number> Evaluator<N> {
     /// enclosure holds at every point.
     pub fn eval_traced(&mut self, vars: &[N], trace: &mut Vec<Choice>) -> Result<N, Error> {
         self.check(vars)?;
-        if let Some((v, _)) = compiled_first(&self.tape, vars, Some((&mut self.choice_bytes, trace))) {
+        if let Some((v, _)) =
+            compiled_first(&self.tape, vars, Some((&mut self.choice_bytes, trace)))
+        {
             return Ok(v);
         }
         trace.clear();

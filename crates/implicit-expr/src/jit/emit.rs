@@ -18,8 +18,8 @@
 
 use interval_core::Interval;
 
-use super::{MAX_OUTPUTS, MAX_VARS};
 use super::x64::{Asm, Cmp, Mem, Sse, Xmm};
+use super::{MAX_OUTPUTS, MAX_VARS};
 use crate::number::Number;
 use crate::op::{BinaryOp, UnaryOp};
 use crate::tape::{Instr, Opcode, Tape};
@@ -36,7 +36,10 @@ const ZERO: u32 = 48;
 const CSR: u32 = 64;
 const MIN_TABLE: u32 = 68;
 const MAX_TABLE: u32 = 72;
-const CONSTS: u32 = 80;
+const ONE_HI: u32 = 80;
+const MINUS_ONE_LO: u32 = 96;
+const HI_LANE: u32 = 112;
+const CONSTS: u32 = 128;
 
 /// Upward rounding (`RC = 10`), every exception masked, no flag, no flush to zero.
 const MXCSR_UP: u32 = 0x5F80;
@@ -54,7 +57,8 @@ const X3: Xmm = Xmm(3);
 const X4: Xmm = Xmm(4);
 const X5: Xmm = Xmm(5);
 const X6: Xmm = Xmm(6);
-/// The accumulated "some square root's argument reaches below 0" lane mask.
+/// The accumulated flags: in the low lane "some square root's argument reaches below 0",
+/// in the high lane "some step (`not`) may jump".
 const PARTIAL: Xmm = Xmm(7);
 
 /// Whether the compiled code handles `ins`.
@@ -63,7 +67,7 @@ fn supported(ins: &Instr) -> bool {
         Opcode::Var | Opcode::Const | Opcode::Copy => true,
         Opcode::Unary(op) => matches!(
             op,
-            UnaryOp::Neg | UnaryOp::Abs | UnaryOp::Sqr | UnaryOp::Sqrt
+            UnaryOp::Neg | UnaryOp::Abs | UnaryOp::Sqr | UnaryOp::Sqrt | UnaryOp::Not
         ),
         Opcode::Binary(op) => matches!(
             op,
@@ -117,7 +121,14 @@ fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
     pool.extend_from_slice(&MXCSR_UP.to_le_bytes());
     pool.extend_from_slice(&MIN_CHOICES);
     pool.extend_from_slice(&MAX_CHOICES);
-    pool.resize(CONSTS as usize, 0);
+    pool.resize(ONE_HI as usize, 0);
+    let (one, minus_one) = (1.0f64.to_bits(), (-1.0f64).to_bits());
+    for lanes in [[0, one], [minus_one, 0], [0, u64::MAX]] {
+        for l in lanes {
+            pool.extend_from_slice(&l.to_le_bytes());
+        }
+    }
+    debug_assert_eq!(pool.len(), CONSTS as usize);
     for c in tape.consts() {
         let v = <Interval<f64> as Number>::constant(c);
         let (lo, hi) = v.bounds()?;
@@ -285,6 +296,7 @@ fn unary(a: &mut Asm, op: UnaryOp) {
             a.rr(Sse::MulPd, X0, X2);
         }
         UnaryOp::Sqrt => sqrt(a),
+        UnaryOp::Not => not(a),
         _ => unreachable!("checked by `supported`"),
     }
 }
@@ -330,6 +342,34 @@ fn sqrt(a: &mut Asm) {
     a.rr(Sse::UnpckHPd, X5, X5);
     a.rr(Sse::SqrtSd, X5, X5);
     a.rr(Sse::UnpckLPd, X2, X5);
+    a.rr(Sse::MovApd, X0, X2);
+}
+
+/// `X0 = not(X0)`: `[1, 1]` on `[0, 0]`, `[0, 1]` on an interval holding 0, else
+/// `[0, 0]`; flags a possible jump (0 inside, not the point 0) in [`PARTIAL`]'s high lane.
+/// Uses `X1` to `X4`.
+fn not(a: &mut Asm) {
+    // X1 = [lo ≤ 0, hi ≥ 0] (signalling on NaN); X2 = both: 0 inside.
+    a.rm(Sse::MovUpd, X1, Mem::Pool(ZERO));
+    a.cmppd(X1, X0, Cmp::Le);
+    a.rr(Sse::MovApd, X2, X1);
+    a.swap(X2);
+    a.rr(Sse::AndPd, X2, X1);
+    // X3 = [−lo = 0, hi = 0]; X4 = both: the point 0.
+    a.rr(Sse::MovApd, X3, X0);
+    a.rm(Sse::CmpEqPd, X3, Mem::Pool(ZERO));
+    a.rr(Sse::MovApd, X4, X3);
+    a.swap(X4);
+    a.rr(Sse::AndPd, X4, X3);
+    // A jump is possible where 0 is inside and the interval is not the point 0.
+    a.rr(Sse::MovApd, X1, X4);
+    a.rr(Sse::AndNPd, X1, X2);
+    a.rm(Sse::AndPd, X1, Mem::Pool(HI_LANE));
+    a.rr(Sse::OrPd, PARTIAL, X1);
+    // [−res_lo, res_hi] = [point ? −1 : 0, inside ? 1 : 0].
+    a.rm(Sse::AndPd, X2, Mem::Pool(ONE_HI));
+    a.rm(Sse::AndPd, X4, Mem::Pool(MINUS_ONE_LO));
+    a.rr(Sse::OrPd, X2, X4);
     a.rr(Sse::MovApd, X0, X2);
 }
 

@@ -60,6 +60,8 @@ pub(crate) struct Flags {
     /// Some square root's argument reached below 0 (the formula is undefined on part of the
     /// region: no longer continuous there, and not to be pruned).
     pub(crate) partial: bool,
+    /// Some step (`not`) may jump in the region (defined, not continuous).
+    pub(crate) jump: bool,
 }
 
 /// One tape's machine code.
@@ -79,7 +81,7 @@ impl std::fmt::Debug for Code {
 
 /// The signature of a compiled tape: the variables as `[lo, hi]` pairs, the choice bytes
 /// (written only by traced code), the outputs as `[lo, hi]` pairs; returns the flags (bit
-/// 0: invalid operation, bit 1: partial square root).
+/// 0: invalid operation, bit 1: partial square root, bit 2: a step that may jump).
 #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
 type Entry = unsafe extern "sysv64" fn(*const [f64; 2], *mut u8, *mut [f64; 2]) -> u32;
 
@@ -126,6 +128,7 @@ impl Code {
             };
             (flags & 1 == 0).then_some(Flags {
                 partial: flags & 2 != 0,
+                jump: flags & 4 != 0,
             })
         }
         #[cfg(not(all(target_arch = "x86_64", target_os = "linux")))]

@@ -16,7 +16,13 @@ use crate::op::{BinaryOp, UnaryOp};
 use crate::tape::Tape;
 use crate::testing::check_value_in;
 
-const UNARY: [UnaryOp; 4] = [UnaryOp::Neg, UnaryOp::Abs, UnaryOp::Sqr, UnaryOp::Sqrt];
+const UNARY: [UnaryOp; 5] = [
+    UnaryOp::Neg,
+    UnaryOp::Abs,
+    UnaryOp::Sqr,
+    UnaryOp::Sqrt,
+    UnaryOp::Not,
+];
 const BINARY: [BinaryOp; 5] = [
     BinaryOp::Add,
     BinaryOp::Sub,
@@ -46,7 +52,7 @@ fn build(leaves: &[(bool, usize)], steps: &[Step]) -> (Context, NodeId) {
     for s in steps {
         let k = nodes.len();
         let n = match *s {
-            Step::Unary(op, a) => ctx.unary(UNARY[op % 4], nodes[k - 1 - a % k.min(3)]),
+            Step::Unary(op, a) => ctx.unary(UNARY[op % 5], nodes[k - 1 - a % k.min(3)]),
             Step::Binary(op, a, b) => ctx.binary(
                 BINARY[op % 5],
                 nodes[k - 1 - a % k.min(3)],
@@ -61,7 +67,7 @@ fn build(leaves: &[(bool, usize)], steps: &[Step]) -> (Context, NodeId) {
 
 fn expression() -> impl Strategy<Value = (Context, NodeId)> {
     let step = prop_oneof![
-        2 => (0..4usize, 0..3usize).prop_map(|(op, a)| Step::Unary(op, a)),
+        2 => (0..5usize, 0..3usize).prop_map(|(op, a)| Step::Unary(op, a)),
         3 => (0..5usize, 0..3usize, 0..64usize).prop_map(|(op, a, b)| Step::Binary(op, a, b)),
     ];
     (
@@ -138,7 +144,9 @@ fn check(tape: &Tape, vars: &[Interval<f64>]) -> Result<bool, TestCaseError> {
     let value = Interval::new_unchecked(v[0], v[1]);
     prop_assert_eq!(
         continuous,
-        !flags.partial && crate::number::Number::value_decoration(value) >= Decoration::Dac
+        !flags.partial
+            && !flags.jump
+            && crate::number::Number::value_decoration(value) >= Decoration::Dac
     );
     if !flags.partial {
         let mut trace = Vec::new();
@@ -246,6 +254,17 @@ fn fixed_cases() {
     assert_eq!(run("x - y", &xy).unwrap().0, iv(-6.0, 8.0));
     assert_eq!(run("min(x, y)", &xy).unwrap().0, iv(-5.0, 3.0));
     assert_eq!(run("max(x, y)", &xy).unwrap().0, iv(-2.0, 4.0));
+    // `not`: 1 at 0 only; a jump where 0 is inside.
+    assert_eq!(run("not(x)", &x(0.0, 0.0)).unwrap().0, iv(1.0, 1.0));
+    assert_eq!(run("not(x)", &x(-1.0, 2.0)).unwrap().0, iv(0.0, 1.0));
+    assert_eq!(run("not(x)", &x(1.0, 2.0)).unwrap().0, iv(0.0, 0.0));
+    let jump = tape_of("not(x)");
+    let code = Code::compile(&jump, false).unwrap();
+    let mut out = [[0.0; 2]; MAX_OUTPUTS];
+    let flags = code.run(&pairs(&x(-1.0, 2.0)), &mut [], &mut out).unwrap();
+    assert!(flags.jump && !flags.partial);
+    let flags = code.run(&pairs(&x(0.0, 0.0)), &mut [], &mut out).unwrap();
+    assert!(!flags.jump);
     // Overflow rounds outward.
     let (v, _) = run("x + x", &x(f64::MAX, f64::MAX)).unwrap();
     assert_eq!(v, Interval::new_unchecked(f64::MAX, f64::INFINITY));
@@ -301,8 +320,7 @@ fn evaluators_switch_to_the_code_with_the_same_results() {
 #[test]
 fn every_output_is_compiled() {
     let mut ctx = Context::new();
-    let f = crate::parse::parse(&mut ctx, "x*y - z*sqr(x) + sqr(y) * (x - 1)", &[])
-        .unwrap();
+    let f = crate::parse::parse(&mut ctx, "max(x*y - z, sqr(x) + sqr(y) - 1)", &[]).unwrap();
     let [fx, fy, fz] = ctx.gradient(f);
     let tape = Tape::new(&ctx, &[f, fx, fy, fz]).unwrap();
     let vars = [iv(0.5, 0.75), iv(-0.25, 0.5), iv(0.1, 0.2)];

@@ -41,6 +41,10 @@ pub(super) enum Sse {
     MaxPd,
     /// `andpd`.
     AndPd,
+    /// `andnpd` (`dst = !dst & src`).
+    AndNPd,
+    /// `cmpeqpd` (`cmppd` with the quiet equality predicate).
+    CmpEqPd,
     /// `orpd`.
     OrPd,
     /// `xorpd`.
@@ -62,6 +66,11 @@ pub(super) enum Sse {
 }
 
 impl Sse {
+    /// The immediate byte that follows the operands, for the comparisons.
+    fn imm(self) -> Option<u8> {
+        matches!(self, Sse::CmpEqPd).then_some(0)
+    }
+
     fn encoding(self) -> (u8, u8) {
         match self {
             Sse::MovUpd => (0x66, 0x10),
@@ -72,6 +81,8 @@ impl Sse {
             Sse::MinPd => (0x66, 0x5D),
             Sse::MaxPd => (0x66, 0x5F),
             Sse::AndPd => (0x66, 0x54),
+            Sse::AndNPd => (0x66, 0x55),
+            Sse::CmpEqPd => (0x66, 0xC2),
             Sse::OrPd => (0x66, 0x56),
             Sse::XorPd => (0x66, 0x57),
             Sse::UnpckLPd => (0x66, 0x14),
@@ -166,13 +177,20 @@ impl Asm {
     pub(super) fn rr(&mut self, op: Sse, dst: Xmm, src: Xmm) {
         let (p, o) = op.encoding();
         self.bytes(&[p, 0x0F, o, 0xC0 | (dst.0 << 3) | src.0]);
+        if let Some(i) = op.imm() {
+            self.bytes(&[i]);
+        }
     }
 
     /// `op dst, [m]`.
     pub(super) fn rm(&mut self, op: Sse, dst: Xmm, m: Mem) {
         let (p, o) = op.encoding();
         self.bytes(&[p, 0x0F, o]);
-        self.modrm_mem(dst.0, m, 0);
+        let imm = op.imm();
+        self.modrm_mem(dst.0, m, usize::from(imm.is_some()));
+        if let Some(i) = imm {
+            self.bytes(&[i]);
+        }
     }
 
     /// `movupd [m], src`.
@@ -253,10 +271,10 @@ impl Asm {
         self.modrm_mem(0, Mem::Stack(disp), 0);
     }
 
-    /// `eax = (eax & 1) | ((ecx & 1) << 1)`.
+    /// `eax = (eax & 1) | ((ecx & 3) << 1)`.
     pub(super) fn merge_flags(&mut self) {
-        // and eax, 1; and ecx, 1; shl ecx, 1; or eax, ecx
-        self.bytes(&[0x83, 0xE0, 0x01, 0x83, 0xE1, 0x01, 0xD1, 0xE1, 0x09, 0xC8]);
+        // and eax, 1; and ecx, 3; shl ecx, 1; or eax, ecx
+        self.bytes(&[0x83, 0xE0, 0x01, 0x83, 0xE1, 0x03, 0xD1, 0xE1, 0x09, 0xC8]);
     }
 
     /// `ret`.
@@ -326,9 +344,15 @@ mod tests {
     fn rip_relative_displacements_point_at_the_pool() {
         let mut a = Asm::default();
         a.rm(Sse::XorPd, Xmm(0), Mem::Pool(16)); // 8 bytes: 66 0F 57 05 d32
+        a.rm(Sse::CmpEqPd, Xmm(1), Mem::Pool(0)); // 9 bytes: 66 0F C2 0D d32 00
         let code = a.finish(&[0; 32]).to_vec();
         let d = i32::from_le_bytes(code[4..8].try_into().unwrap());
-        // The pool starts at 16 (the code padded); the instruction ends at 8.
-        assert_eq!(8 + d as usize, 16 + 16);
+        // The pool starts at 32 (the code padded); the first instruction ends at 8.
+        assert_eq!(8 + d as usize, 32 + 16);
+        assert_eq!(&code[8..12], &[0x66, 0x0F, 0xC2, 0x0D]);
+        let d = i32::from_le_bytes(code[12..16].try_into().unwrap());
+        // The second ends after its immediate, at 17.
+        assert_eq!((17 + d) as usize, 32);
+        assert_eq!(code[16], 0);
     }
 }
