@@ -14,6 +14,10 @@
 //! Where an operation meets an empty set, an infinite limit (`∞ − ∞`, `0 · ∞`) or a square
 //! root of a negative interval, the code says so (the invalid-operation flag) and the
 //! evaluator runs the interpreter instead, so every result is the interpreter's.
+//!
+//! Before the first tape is compiled, a compiled sum checks that the machine honours the
+//! rounding mode; where it does not (valgrind's emulation of SSE rounds to nearest
+//! whatever `mxcsr` says) nothing is compiled and the interpreter evaluates every tape.
 
 #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
 mod emit;
@@ -151,8 +155,35 @@ static SHARED: Mutex<Option<CodeTable>> = Mutex::new(None);
 /// Codes by tape content and kind (traced or not).
 type CodeTable = HashMap<(Tape, bool), Arc<Code>, FxBuildHasher>;
 
+/// Whether the machine rounds as the code sets it to, found once by running a compiled
+/// sum whose upper bound rounds upward: a machine that ignores the rounding mode (an
+/// emulator, such as valgrind's) would make every code unsound, so none is used there.
+fn rounding_honoured() -> bool {
+    static HONOURED: OnceLock<bool> = OnceLock::new();
+    *HONOURED.get_or_init(|| {
+        let mut ctx = crate::context::Context::new();
+        let (x, y) = (ctx.x(), ctx.y());
+        let sum = ctx.add(x, y);
+        let Ok(tape) = Tape::new(&ctx, &[sum]) else {
+            return false;
+        };
+        let Some(code) = Code::compile(&tape, false) else {
+            return false;
+        };
+        let tiny = 2f64.powi(-60);
+        let mut vars = [[0.0; 2]; MAX_VARS];
+        vars[0] = [1.0, 1.0];
+        vars[1] = [tiny, tiny];
+        let mut out = [[0.0; 2]; MAX_OUTPUTS];
+        code.run(&vars, &mut [], &mut out).is_some() && out[0] == [1.0, 1.0f64.next_up()]
+    })
+}
+
 /// The code of `tape` from [`SHARED`], compiled and kept there if it is not yet.
 fn shared_code(tape: &Tape, traced: bool) -> Option<Arc<Code>> {
+    if !rounding_honoured() {
+        return None;
+    }
     let key = (tape.clone(), traced);
     if let Some(c) = SHARED
         .lock()

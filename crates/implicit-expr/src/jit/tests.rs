@@ -348,3 +348,8 @@ fn unsupported_operations_are_not_compiled() {
     assert!(Code::compile(&tape_of("sin(x)"), false).is_none());
     assert!(Code::compile(&tape_of("x / y"), true).is_none());
 }
+
+#[test]
+fn this_machine_honours_the_rounding_mode() {
+    assert!(super::rounding_honoured());
+}
