@@ -7,9 +7,11 @@
 //! sum. The compiled code of a tape is straight-line SSE2, each interval operation a few
 //! instructions under upward rounding (see `emit` for how each bound is made), with the
 //! same bounds as the interpreter's arithmetic. [`Evaluator`](crate::Evaluator)s use it
-//! for their plain, traced and continuity-checked evaluations of a tape once it has been
-//! evaluated [`COMPILE_AFTER`] times, so that tapes evaluated once or twice (most pruned
-//! tapes of a large scene) do not pay for compiling.
+//! for their plain, traced, definedness- and continuity-checked and all-outputs
+//! evaluations of a tape once it has been evaluated [`COMPILE_AFTER`] times, so that tapes
+//! evaluated once or twice (most pruned tapes of a large scene) do not pay for compiling.
+//! The compiled operations: `+ − ×`, negation, `abs`, square, square root, `min`, `max`
+//! and `not`; a tape with any other is left to the interpreter.
 //!
 //! Where an operation meets an empty set, an infinite limit (`∞ − ∞`, `0 · ∞`) or a square
 //! root of a negative interval, the code says so (the invalid-operation flag) and the
