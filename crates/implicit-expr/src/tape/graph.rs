@@ -71,7 +71,7 @@ impl PartialEq for Tape {
 impl Eq for Tape {}
 
 impl Hash for Tape {
-    /// The content's hash ([`Tape::content_hash`], made once per tape): interning pruned
+    /// The content's hash (made once per tape and kept): interning pruned
     /// tapes and finding their compiled code hash each one more than once.
     fn hash<H: Hasher>(&self, state: &mut H) {
         state.write_u64(self.content_hash());
