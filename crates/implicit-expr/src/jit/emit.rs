@@ -304,17 +304,20 @@ fn unary(a: &mut Asm, op: UnaryOp) {
 /// `X2 = [−mig, mag]` of `X0 = [−lo, hi]` (`|x|`): `−mig = min(−lo, hi, 0)` (the lower
 /// bound when positive, minus the upper when negative, else 0), `mag = max(|lo|, |hi|)`.
 fn abs(a: &mut Asm) {
-    a.rr(Sse::MovApd, X1, X0);
-    a.swap(X1);
-    a.rr(Sse::MovApd, X2, X0);
-    a.rr(Sse::MinSd, X2, X1);
+    across(a, Sse::MinSd, X2, X0);
     a.rm(Sse::MinSd, X2, Mem::Pool(ZERO));
     a.rr(Sse::MovApd, X3, X0);
     a.rm(Sse::AndPd, X3, Mem::Pool(ABS));
-    a.rr(Sse::MovApd, X4, X3);
-    a.swap(X4);
-    a.rr(Sse::MaxSd, X3, X4);
-    a.rr(Sse::UnpckLPd, X2, X3);
+    across(a, Sse::MaxSd, X4, X3);
+    a.rr(Sse::UnpckLPd, X2, X4);
+}
+
+/// `dst = op(src with its lanes swapped, src)`: for a scalar `op` the low lane combines
+/// both lanes of `src`, for a packed one both lanes do.
+fn across(a: &mut Asm, op: Sse, dst: Xmm, src: Xmm) {
+    a.rr(Sse::MovApd, dst, src);
+    a.swap(dst);
+    a.rr(op, dst, src);
 }
 
 /// `X0 = √X0` over the argument's non-negative part; flags a negative lower bound in
@@ -352,15 +355,11 @@ fn not(a: &mut Asm) {
     // X1 = [lo ≤ 0, hi ≥ 0] (signalling on NaN); X2 = both: 0 inside.
     a.rm(Sse::MovUpd, X1, Mem::Pool(ZERO));
     a.cmppd(X1, X0, Cmp::Le);
-    a.rr(Sse::MovApd, X2, X1);
-    a.swap(X2);
-    a.rr(Sse::AndPd, X2, X1);
+    across(a, Sse::AndPd, X2, X1);
     // X3 = [−lo = 0, hi = 0]; X4 = both: the point 0.
     a.rr(Sse::MovApd, X3, X0);
     a.rm(Sse::CmpEqPd, X3, Mem::Pool(ZERO));
-    a.rr(Sse::MovApd, X4, X3);
-    a.swap(X4);
-    a.rr(Sse::AndPd, X4, X3);
+    across(a, Sse::AndPd, X4, X3);
     // A jump is possible where 0 is inside and the interval is not the point 0.
     a.rr(Sse::MovApd, X1, X4);
     a.rr(Sse::AndNPd, X1, X2);
