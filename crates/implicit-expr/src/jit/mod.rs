@@ -70,7 +70,11 @@ pub(crate) struct Flags {
     pub(crate) jump: bool,
 }
 
-/// One tape's machine code.
+/// One tape's machine code (never made where this build compiles nothing).
+#[cfg_attr(
+    not(all(target_arch = "x86_64", target_os = "linux")),
+    allow(dead_code)
+)]
 pub(crate) struct Code {
     #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
     mem: memory::ExecMemory,
