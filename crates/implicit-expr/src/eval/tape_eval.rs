@@ -32,8 +32,7 @@ fn compiled<N: Number>(
     trace: Option<(&mut Vec<u8>, &mut Vec<Choice>)>,
     out: &mut [[f64; 2]; MAX_OUTPUTS],
 ) -> Option<Flags> {
-    if !jit::AVAILABLE
-        || std::any::TypeId::of::<N>() != std::any::TypeId::of::<Interval<f64>>()
+    if std::any::TypeId::of::<N>() != std::any::TypeId::of::<Interval<f64>>()
         || tape.var_count() > MAX_VARS
     {
         return None;
@@ -48,7 +47,7 @@ fn compiled<N: Number>(
         Some((bytes, trace)) => {
             bytes.resize(tape.choice_count(), 2);
             let flags = code.run(&xs, bytes, out)?;
-            if flags.partial {
+            if !flags.defined() {
                 // As the interpreter: nothing may be pruned where the formula is undefined.
                 trace.clear();
                 trace.resize(tape.choice_count(), Choice::Both);
@@ -184,13 +183,10 @@ impl<N: Number> Evaluator<N> {
             &mut Vec::new(),
             &mut 0,
         );
-        // The constants live in the first registers, loaded with the tape (an enclosure of
-        // a literal beyond the format's range is unbounded).
-        let consts = self.tape.consts().len();
-        let dec = self.regs[..consts]
-            .iter()
-            .fold(dec, |d, c| d.min(c.value_decoration()));
-        Ok((self.regs[self.tape.outputs()[0] as usize], dec))
+        Ok((
+            self.regs[self.tape.outputs()[0] as usize],
+            self.with_constants(dec),
+        ))
     }
 
     /// Like [`eval`](Self::eval), also telling whether the formula is proven defined and
@@ -202,11 +198,10 @@ impl<N: Number> Evaluator<N> {
     pub fn eval_continuous(&mut self, vars: &[N]) -> Result<(N, bool), Error> {
         self.check(vars)?;
         if let Some((v, flags)) = compiled_first(&self.tape, vars, None) {
-            // The compiled operations are total and continuous but for the square root,
-            // whose negative arguments it reports, and `not`, whose possible jumps it
-            // reports.
-            let continuous = !flags.partial && !flags.jump;
-            return Ok((v, continuous && v.value_decoration() >= Decoration::Dac));
+            return Ok((
+                v,
+                flags.continuous() && v.value_decoration() >= Decoration::Dac,
+            ));
         }
         let dec = run::<N, false, CONTINUITY, NO_SIDE>(
             self.tape.instrs(),
@@ -260,20 +255,15 @@ impl<N: Number> Evaluator<N> {
             )));
         }
         let mut buf = [[0.0f64; 2]; MAX_OUTPUTS];
-        if compiled(&self.tape, vars, None, &mut buf).is_some() {
-            // `N` is `Interval<f64>` here, so every output converts (else the interpreter
-            // writes them all again).
-            let n = self.tape.outputs().len();
-            let mut all = true;
-            for (o, &b) in out.iter_mut().zip(&buf[..n]) {
-                match number(b) {
-                    Some(v) => *o = v,
-                    None => all = false,
-                }
-            }
-            if all {
-                return Ok(());
-            }
+        // `N` is `Interval<f64>` where the code ran, so every output converts.
+        let n = self.tape.outputs().len();
+        if compiled(&self.tape, vars, None, &mut buf).is_some()
+            && out
+                .iter_mut()
+                .zip(&buf[..n])
+                .all(|(o, &b)| number(b).map(|v| *o = v).is_some())
+        {
+            return Ok(());
         }
         run::<N, false, NO_CHECK, NO_SIDE>(
             self.tape.instrs(),
@@ -327,9 +317,8 @@ impl<N: Number> Evaluator<N> {
         if let Some((v, flags)) =
             compiled_first(&self.tape, vars, Some((&mut self.choice_bytes, trace)))
         {
-            // The compiled operations are total but for the square root, whose negative
-            // arguments it reports; an empty result would have sent it to the interpreter.
-            return Ok((v, !flags.partial));
+            // An empty result would have sent it to the interpreter.
+            return Ok((v, flags.defined()));
         }
         trace.clear();
         let dec = run::<N, true, NO_CHECK, NO_SIDE>(
@@ -340,11 +329,18 @@ impl<N: Number> Evaluator<N> {
             &mut 0,
         );
         let v = self.regs[self.tape.outputs()[0] as usize];
-        let consts = self.tape.consts().len();
-        let dec = self.regs[..consts]
-            .iter()
-            .fold(dec, |d, c| d.min(c.value_decoration()));
+        let dec = self.with_constants(dec);
         Ok((v, dec.min(v.value_decoration()) >= Decoration::Def))
+    }
+
+    /// `dec` lowered to the least decoration of the constants: they live in the first
+    /// registers, loaded with the tape (an enclosure of a literal beyond the format's range
+    /// is unbounded).
+    fn with_constants(&self, dec: Decoration) -> Decoration {
+        let consts = self.tape.consts().len();
+        self.regs[..consts]
+            .iter()
+            .fold(dec, |d, c| d.min(c.value_decoration()))
     }
 
     /// The tape pruned to the region `vars`: an [`eval_traced`](Self::eval_traced) there,

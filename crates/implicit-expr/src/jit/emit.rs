@@ -112,28 +112,26 @@ fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
         return None;
     }
     let mut pool = Vec::with_capacity(CONSTS as usize + 16 * nconst);
-    let sign = (-0.0f64).to_bits();
-    for lanes in [[sign, 0], [sign, sign], [!sign, !sign], [0, 0]] {
+    let pair = |pool: &mut Vec<u8>, lanes: [u64; 2]| {
         for l in lanes {
             pool.extend_from_slice(&l.to_le_bytes());
         }
+    };
+    let (sign, one, minus_one) = ((-0.0f64).to_bits(), 1.0f64.to_bits(), (-1.0f64).to_bits());
+    for lanes in [[sign, 0], [sign, sign], [!sign, !sign], [0, 0]] {
+        pair(&mut pool, lanes);
     }
     pool.extend_from_slice(&MXCSR_UP.to_le_bytes());
     pool.extend_from_slice(&MIN_CHOICES);
     pool.extend_from_slice(&MAX_CHOICES);
     pool.resize(ONE_HI as usize, 0);
-    let (one, minus_one) = (1.0f64.to_bits(), (-1.0f64).to_bits());
     for lanes in [[0, one], [minus_one, 0], [0, u64::MAX]] {
-        for l in lanes {
-            pool.extend_from_slice(&l.to_le_bytes());
-        }
+        pair(&mut pool, lanes);
     }
     debug_assert_eq!(pool.len(), CONSTS as usize);
     for c in tape.consts() {
-        let v = <Interval<f64> as Number>::constant(c);
-        let (lo, hi) = v.bounds()?;
-        pool.extend_from_slice(&(-lo).to_le_bytes());
-        pool.extend_from_slice(&hi.to_le_bytes());
+        let (lo, hi) = <Interval<f64> as Number>::constant(c).bounds()?;
+        pair(&mut pool, [(-lo).to_bits(), hi.to_bits()]);
     }
 
     let reg = |r: u32| -> Mem {
@@ -194,7 +192,7 @@ fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
                 }
                 binary(a, op);
             }
-            Opcode::Pown => return None,
+            Opcode::Pown => unreachable!("checked by `supported`"),
         }
         if store {
             a.store(reg(ins.out), X0);
@@ -209,7 +207,7 @@ fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
         a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
         a.store(Mem::Out(16 * i as i32), X0);
     }
-    // Flags: bit 0 the invalid operation, bit 1 a partial square root.
+    // Flags: bit 0 the invalid operation, bit 1 a partial square root, bit 2 a jump.
     a.stmxcsr(Mem::Stack(4));
     a.load_eax_stack(4);
     a.movmskpd_ecx(PARTIAL);

@@ -70,6 +70,20 @@ pub(crate) struct Flags {
     pub(crate) jump: bool,
 }
 
+impl Flags {
+    /// The formula is defined on the whole region: the compiled operations are total but
+    /// for the square root.
+    pub(crate) fn defined(self) -> bool {
+        !self.partial
+    }
+
+    /// The formula is defined and continuous on the whole region: the compiled operations
+    /// are continuous but for `not`.
+    pub(crate) fn continuous(self) -> bool {
+        self.defined() && !self.jump
+    }
+}
+
 /// One tape's machine code (never made where this build compiles nothing).
 #[cfg_attr(
     not(all(target_arch = "x86_64", target_os = "linux")),
@@ -156,7 +170,7 @@ const SHARED_MAX: usize = 4096;
 /// The codes by the content of their tape and kind: a formula that the pruning of many
 /// regions arrives at from different parent tapes (three in four of the tapes the 3D octree
 /// compiles on the CSG models) is compiled once.
-static SHARED: Mutex<Option<CodeTable>> = Mutex::new(None);
+static SHARED: Mutex<CodeTable> = Mutex::new(HashMap::with_hasher(FxBuildHasher));
 
 /// Codes by tape content and kind (traced or not).
 type CodeTable = HashMap<(Tape, bool), Arc<Code>, FxBuildHasher>;
@@ -190,20 +204,15 @@ fn shared_code(tape: &Tape, traced: bool) -> Option<Arc<Code>> {
     if !rounding_honoured() {
         return None;
     }
+    let shared = || SHARED.lock().unwrap_or_else(|e| e.into_inner());
     let key = (tape.clone(), traced);
-    if let Some(c) = SHARED
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .get_or_insert_with(HashMap::default)
-        .get(&key)
-    {
+    if let Some(c) = shared().get(&key) {
         return Some(c.clone());
     }
     // Compiled outside the lock: another thread may compile the same formula meanwhile,
     // and one of the two codes is kept.
     let code = Arc::new(Code::compile(tape, traced)?);
-    let mut shared = SHARED.lock().unwrap_or_else(|e| e.into_inner());
-    let map = shared.get_or_insert_with(HashMap::default);
+    let mut map = shared();
     if map.len() >= SHARED_MAX {
         map.clear();
     }
@@ -246,5 +255,5 @@ pub(crate) fn choices_into(bytes: &[u8], trace: &mut Vec<Choice>) {
     trace.extend(bytes.iter().map(|&b| choice_of(b)));
 }
 
-#[cfg(all(test, target_arch = "x86_64", unix))]
+#[cfg(all(test, target_arch = "x86_64", target_os = "linux"))]
 mod tests;
