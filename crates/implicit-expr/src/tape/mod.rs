@@ -79,8 +79,9 @@ struct TapeData {
     /// Each SSA operation's index in a choice trace ([`regalloc::NO_CHOICE`] when it is not
     /// a `min` or `max`).
     choice_index: Vec<u32>,
-    /// See [`Tape::is_continuous_everywhere`].
-    continuous_everywhere: bool,
+    /// See [`Tape::is_continuous_everywhere`]: found when first asked (most pruned tapes
+    /// never are).
+    continuous_everywhere: std::sync::OnceLock<bool>,
     /// The machine code of the tape, compiled once it is evaluated often enough.
     jit: crate::jit::Slot,
     /// See [`Tape::content_hash`].
@@ -159,7 +160,6 @@ impl Tape {
         choice: impl Fn(usize) -> Choice,
     ) -> Self {
         let c = regalloc::compile(ssa, consts, outputs, choice);
-        let continuous_everywhere = continuous_everywhere(&c.ssa, &c.consts);
         Tape(Arc::new(TapeData {
             ssa: c.ssa,
             ssa_outputs: c.ssa_outputs,
@@ -170,7 +170,7 @@ impl Tape {
             var_count,
             choice_count: c.choice_count,
             choice_index: c.choice_index,
-            continuous_everywhere,
+            continuous_everywhere: std::sync::OnceLock::new(),
             jit: crate::jit::Slot::default(),
             content_hash: std::sync::OnceLock::new(),
         }))
@@ -260,9 +260,12 @@ impl Tape {
     /// exponential, an even power, a non-negative constant, the product of a value with
     /// itself, and sums, products, `min`s of such; a `max` with one of them), as in the
     /// distance `sqrt(x² + y² + z²)`. A sign change between two points then proves a root
-    /// between them without a decorated evaluation. Computed once, when the tape is built.
+    /// between them without a decorated evaluation. Computed once, when first asked.
     pub fn is_continuous_everywhere(&self) -> bool {
-        self.0.continuous_everywhere
+        *self
+            .0
+            .continuous_everywhere
+            .get_or_init(|| continuous_everywhere(&self.0.ssa, &self.0.consts))
     }
 
     /// Number of `min`/`max` operations: the length of a choice trace.
