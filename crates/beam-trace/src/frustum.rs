@@ -5,10 +5,14 @@
 //! A cell is a rectangle of pixels `R` and a range `T` of the ray parameter; its enclosure is
 //! `g` over every ray of `R`'s beam for `t ∈ T`. Cells are searched depth first, the nearer
 //! half of `T` first, so that along every pixel's column of cells they come in increasing
-//! `t`; a cell whose pixels all have their first cell already is skipped. A cell is
+//! `t`; a cell whose pixels all have their first cell already is skipped, and one some of
+//! whose pixels have theirs is evaluated over the beam of the smallest rectangle holding
+//! the others (its *open* pixels: what is proven below is proven for their rays; the rays
+//! of a filled pixel, inside or past the surface, would keep the enclosure from ever being
+//! positive behind a step in depth). A cell is
 //!
 //! * **rejected** where its enclosure is positive (or empty: `g` undefined there): no ray
-//!   of `R` meets the surface in `T`;
+//!   of `R`'s open pixels meets the surface in `T`;
 //! * **first** for the pixels of `R` that have no first cell yet where its enclosure is
 //!   negative (every ray is inside: the surface lies at its near face, which only a jump or
 //!   a hole in `g`'s domain allows after positive cells), or where it may vanish and it is a
@@ -388,6 +392,52 @@ impl Filled {
         }
     }
 
+    /// The smallest rectangle holding every pixel of `r` (node `node` of the quadtree, not
+    /// [`complete`](Self::complete)) that is not marked: `r` itself where none is.
+    fn open(&self, r: PixelRect, node: usize) -> PixelRect {
+        if self.untouched(r, node) {
+            return r;
+        }
+        let (c0, c1) = (
+            (r.x0 - self.tile.x0) as usize,
+            (r.x1 - self.tile.x0) as usize,
+        );
+        let (mut lo, mut hi) = (usize::MAX, 0);
+        let (mut top, mut bottom) = (u32::MAX, 0);
+        for y in r.y0..r.y1 {
+            let row = &self.bits[(y - self.tile.y0) as usize * self.words..][..self.words];
+            let mut c = c0;
+            while c < c1 {
+                let (word, bit) = (c / 64, c % 64);
+                let n = (c1 - c).min(64 - bit);
+                let mask = if n == 64 {
+                    u64::MAX
+                } else {
+                    ((1u64 << n) - 1) << bit
+                };
+                let open = !row[word] & mask;
+                if open != 0 {
+                    let base = word * 64;
+                    lo = lo.min(base + open.trailing_zeros() as usize);
+                    hi = hi.max(base + 63 - open.leading_zeros() as usize);
+                    top = top.min(y);
+                    bottom = bottom.max(y);
+                }
+                c += n;
+            }
+        }
+        if top == u32::MAX {
+            // Every pixel marked (not asked): the rectangle as it is.
+            return r;
+        }
+        PixelRect {
+            x0: self.tile.x0 + lo as u32,
+            y0: top,
+            x1: self.tile.x0 + hi as u32 + 1,
+            y1: bottom + 1,
+        }
+    }
+
     /// Marks pixel `(x, y)`.
     fn set(&mut self, x: u32, y: u32) {
         let (row, col) = ((y - self.tile.y0) as usize, (x - self.tile.x0) as usize);
@@ -672,9 +722,10 @@ impl Search<'_> {
     }
 
     /// Searches the cell `column × t` with the innermost restriction of the chain, where
-    /// `near_positive` says that `g > 0` at `inf t` on every ray of the cell's beam (a cell
-    /// before it in each of its pixels' columns was rejected as positive). Returns whether
-    /// that is proven at `sup t`.
+    /// `near_positive` says that `g > 0` at `inf t` on every ray of the cell's pixels that
+    /// have no first cell yet (a cell before it in each of their columns was rejected as
+    /// positive). Returns whether that is proven at `sup t` (for the pixels still without
+    /// one).
     fn visit(&mut self, column: &Column, t: Interval<f64>, near_positive: bool) -> bool {
         let Column {
             r,
@@ -685,6 +736,18 @@ impl Search<'_> {
         if self.filled.complete(r, column.node) {
             return false;
         }
+        // Only the pixels without a first cell are searched on: where some have one, the
+        // cell is evaluated over the beam of the smallest rectangle holding the others
+        // (the rays of the filled pixels, inside or past the surface there, would keep the
+        // enclosure from being positive all the way to their own surface behind).
+        let open = self.filled.open(r, column.node);
+        let shrunk;
+        let beam = if open == r {
+            beam
+        } else {
+            shrunk = self.beams.beam(open);
+            &shrunk
+        };
         self.g
             .set_interval_beam(beam, self.chain.last().map(|s| &s.tape));
         let gt = self.enclosure(t);
@@ -760,7 +823,8 @@ impl Search<'_> {
 
     /// Searches each quadrant of `column` over `ranges` in turn (consecutive, nearest
     /// first), where `near_positive` says that `g > 0` at the near end of the first for every
-    /// ray of the column. Returns whether that is proven at the far end of the last.
+    /// ray of the column's pixels without a first cell. Returns whether that is proven at
+    /// the far end of the last.
     fn quadrants(
         &mut self,
         column: &Column,
@@ -787,7 +851,7 @@ impl Search<'_> {
     /// Searches the cells inside the cell `column × t` (see [`Search::visit`]), with `g`
     /// pruned to it: `t` in two where it is longer than the cross-section of the column's
     /// beam, else (`shallow`) the rectangle in four and `t` in two. Returns whether `g > 0`
-    /// is proven at `sup t` for every ray of the column.
+    /// is proven at `sup t` for every ray of the column's pixels without a first cell.
     fn split(
         &mut self,
         column: &Column,
@@ -828,7 +892,8 @@ mod tests {
     use super::*;
 
     /// The bitmap agrees with a plain set of pixels on every rectangle of a tile wider than
-    /// one word, after marking a scattered set.
+    /// one word (whether it is filled whole, has no pixel filled, the rectangle of those not
+    /// filled), after marking a scattered set.
     #[test]
     fn filled_pixels_agree_with_a_plain_set() {
         let tile = PixelRect {
@@ -860,6 +925,22 @@ mod tests {
                         let r = PixelRect { x0, y0, x1, y1 };
                         let expected = r.pixels().all(|p| plain.contains(&p));
                         assert_eq!(filled.all(r), expected, "{r:?}");
+                        let open: Vec<_> = r.pixels().filter(|p| !plain.contains(p)).collect();
+                        assert_eq!(filled.untouched(r, 0), open.len() as u64 == r.area());
+                        if let (Some(x0), Some(x1), Some(y0), Some(y1)) = (
+                            open.iter().map(|p| p.0).min(),
+                            open.iter().map(|p| p.0).max(),
+                            open.iter().map(|p| p.1).min(),
+                            open.iter().map(|p| p.1).max(),
+                        ) {
+                            let bound = PixelRect {
+                                x0,
+                                y0,
+                                x1: x1 + 1,
+                                y1: y1 + 1,
+                            };
+                            assert_eq!(filled.open(r, 0), bound, "{r:?}");
+                        }
                     }
                 }
             }
@@ -867,7 +948,7 @@ mod tests {
     }
 
     /// The per-node counts agree with the bitmap (whether a node is filled whole, whether
-    /// it has no pixel filled) on every node that the search may still ask about (no node
+    /// it has no pixel filled, the rectangle of those not filled) on every node that the search may still ask about (no node
     /// holding it filled whole), after fills of nodes in a scattered
     /// order, on a tile whose sides split unevenly.
     #[test]
@@ -913,6 +994,23 @@ mod tests {
                 assert_eq!(filled.complete(*r, *id), filled.all(*r), "{r:?}");
                 let none = r.pixels().all(|(x, y)| !filled.get(x, y));
                 assert_eq!(filled.untouched(*r, *id), none, "{r:?}");
+                // The bounding rectangle of the pixels not marked.
+                let open: Vec<(u32, u32)> =
+                    r.pixels().filter(|&(x, y)| !filled.get(x, y)).collect();
+                if let (Some(x0), Some(x1), Some(y0), Some(y1)) = (
+                    open.iter().map(|p| p.0).min(),
+                    open.iter().map(|p| p.0).max(),
+                    open.iter().map(|p| p.1).min(),
+                    open.iter().map(|p| p.1).max(),
+                ) {
+                    let expected = PixelRect {
+                        x0,
+                        y0,
+                        x1: x1 + 1,
+                        y1: y1 + 1,
+                    };
+                    assert_eq!(filled.open(*r, *id), expected, "{r:?}");
+                }
             }
         }
         assert!(whole.len() > 20, "{} fills", whole.len());

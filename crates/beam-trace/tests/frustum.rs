@@ -8,43 +8,37 @@ use beam_trace::backend::{Backend, CellQuery, QueryKind};
 use beam_trace::beam::BoxClass;
 use beam_trace::frustum::{FirstCell, Traced};
 use beam_trace::screen::{PixelRect, stratified_offsets};
-use beam_trace::{Cpu, NoProgress, Plan, render};
+use beam_trace::{Cpu, NoProgress, Plan, Scene, render};
+use glam::DVec3;
 
-/// For every pixel, a 5 x 5 grid of its rays: none meets the ball before the pixel's first
-/// cell, a pixel without one has no ray meeting the ball, and where the first cell is a
-/// proven hit every ray meets the ball inside it. Where the first cell is undecided, the
-/// rays traced on from there (2 x 2 of them) meet the ball where the traces say: nowhere, or first
-/// in the range it proved.
-#[test]
-fn no_ray_meets_the_surface_before_its_first_cell() {
-    let ball = Ball {
-        centre: [0.2, -0.1, 0.3],
-        r: 0.8,
-        eye: [1.0, 2.0, 5.0],
-        size: 48,
-        fov: 35.0,
-    };
-    let scene = ball.scene("[render]\nprimary = \"octree\"");
-    let plan = Plan::for_scene(&scene);
+/// What [`check_first_cells`] counted: pixels with a first cell, traced rays that missed,
+/// that found their first root, that were left to the root finder, and proven hits.
+#[derive(Debug, Default)]
+struct Checked {
+    covered: usize,
+    traced_miss: usize,
+    traced_hit: usize,
+    stuck: usize,
+    hits: usize,
+}
+
+/// The first cells of `tiles` of `scene` (octree, 2 x 2 traced rays), checked on a 5 x 5
+/// grid of every pixel's rays against `exact` (a ray's exact first intersection
+/// parameter): none meets the surface before the pixel's first cell, a pixel without one
+/// has no ray meeting it, and where the first cell is a proven hit every ray meets it
+/// inside. Where the first cell is undecided, the rays traced on from there meet the
+/// surface where the traces say: nowhere, or first in the range it proved.
+fn check_first_cells(
+    scene: &Scene,
+    tiles: &[PixelRect],
+    exact: impl Fn(DVec3, DVec3) -> Option<f64>,
+) -> Checked {
+    let plan = Plan::for_scene(scene);
     let prepared = Cpu
-        .prepare(&scene, &plan, &[QueryKind::Cells])
+        .prepare(scene, &plan, &[QueryKind::Cells])
         .unwrap_or_else(|e| panic!("{e}"));
     let cam = &scene.camera;
     let offsets = stratified_offsets(4);
-    let tiles = [
-        PixelRect {
-            x0: 0,
-            y0: 0,
-            x1: 48,
-            y1: 48,
-        },
-        PixelRect {
-            x0: 7,
-            y0: 13,
-            x1: 30,
-            y1: 21,
-        },
-    ];
     let queries: Vec<CellQuery> = tiles
         .iter()
         .map(|&tile| CellQuery {
@@ -56,7 +50,8 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
         .queries
         .first_cells(&queries)
         .unwrap_or_else(|e| panic!("{e}"));
-    let (mut covered, mut traced_miss, mut traced_hit, mut stuck) = (0, 0, 0, 0);
+    assert!(answers.search.g_evals > 0);
+    let mut n = Checked::default();
     for (tile, cells) in tiles.iter().zip(&answers.values) {
         // One record per pixel: its first cell where it has one.
         let mut firsts: Vec<Option<&FirstCell>> = vec![None; tile.area() as usize];
@@ -71,7 +66,7 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
             for k in 0..25 {
                 let (fx, fy) = (f64::from(k % 5) / 4.0, f64::from(k / 5) / 4.0);
                 let ray = cam.ray(f64::from(x) + fx, f64::from(y) + fy);
-                let hit = ball.exact_t(ray.origin, ray.dir);
+                let hit = exact(ray.origin, ray.dir);
                 match (first, hit) {
                     (Some(f), Some(t)) => {
                         assert!(
@@ -94,7 +89,8 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
                     (None, None) => {}
                 }
             }
-            covered += usize::from(first.is_some());
+            n.covered += usize::from(first.is_some());
+            n.hits += usize::from(first.is_some_and(|f| f.hit));
             let traced = first.as_ref().map_or(&[][..], |f| &f.traced[..]);
             assert!(
                 traced.is_empty() || traced.len() == offsets.len(),
@@ -103,21 +99,21 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
             );
             for (traced, &(ox, oy)) in traced.iter().zip(&offsets) {
                 let ray = cam.ray(f64::from(x) + ox, f64::from(y) + oy);
-                match (traced, ball.exact_t(ray.origin, ray.dir)) {
+                match (traced, exact(ray.origin, ray.dir)) {
                     (&Traced::Clear { until }, exact) => {
                         assert!(
                             exact.is_none_or(|t| t >= until * (1.0 - 1e-12)),
                             "pixel ({x}, {y}) at ({ox}, {oy}): the root at {exact:?}, clear until {until}"
                         );
-                        stuck += 1;
+                        n.stuck += 1;
                     }
-                    (Traced::NoRoot, None) => traced_miss += 1,
+                    (Traced::NoRoot, None) => n.traced_miss += 1,
                     (Traced::First { t: range, .. }, Some(t)) => {
                         assert!(
                             range.inf() * (1.0 - 1e-12) <= t && t <= range.sup() * (1.0 + 1e-12),
                             "pixel ({x}, {y}) at ({ox}, {oy}): the root at {t}, traced in {range:?}"
                         );
-                        traced_hit += 1;
+                        n.traced_hit += 1;
                     }
                     (traced, exact) => {
                         panic!(
@@ -128,29 +124,97 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
             }
         }
     }
+    n
+}
+
+/// [`check_first_cells`] on a ball, over a whole view and a tile that is not square.
+#[test]
+fn no_ray_meets_the_surface_before_its_first_cell() {
+    let ball = Ball {
+        centre: [0.2, -0.1, 0.3],
+        r: 0.8,
+        eye: [1.0, 2.0, 5.0],
+        size: 48,
+        fov: 35.0,
+    };
+    let scene = ball.scene("[render]\nprimary = \"octree\"");
+    let tiles = [
+        PixelRect {
+            x0: 0,
+            y0: 0,
+            x1: 48,
+            y1: 48,
+        },
+        PixelRect {
+            x0: 7,
+            y0: 13,
+            x1: 30,
+            y1: 21,
+        },
+    ];
+    let n = check_first_cells(&scene, &tiles, |o, d| ball.exact_t(o, d));
     assert!(
-        traced_miss > 0 && traced_hit > 0,
-        "the silhouette's undecided pixels trace both ways: {traced_miss} misses, {traced_hit} hits"
+        n.traced_miss > 0 && n.traced_hit > 0,
+        "the silhouette's undecided pixels trace both ways: {n:?}"
     );
     // The rest are left to the root finder past the part proven clear (a graze, or the
     // budget of evaluations spent).
     assert!(
-        stuck * 3 <= traced_miss + traced_hit,
-        "most rays are decided: {stuck} of {} left to the root finder",
-        stuck + traced_miss + traced_hit
+        n.stuck * 3 <= n.traced_miss + n.traced_hit,
+        "most rays are decided: {n:?}"
     );
-    assert!(covered > 500, "the ball covers much of the view: {covered}");
-    let hits: usize = answers
-        .values
-        .iter()
-        .flat_map(|cells| cells.iter())
-        .filter(|(_, f)| f.hit)
-        .count();
+    assert!(n.covered > 500, "the ball covers much of the view: {n:?}");
     assert!(
-        hits > 100,
-        "most of the ball's pixels are proven hits: {hits}"
+        n.hits > 100,
+        "most of the ball's pixels are proven hits: {n:?}"
     );
-    assert!(answers.search.g_evals > 0);
+}
+
+/// [`check_first_cells`] where the depth steps: a small ball in front of a large one, so
+/// that many cells hold pixels that found the near ball and pixels whose rays go on to
+/// the far one (the search goes on over the beam of the pixels left).
+#[test]
+fn first_cells_hold_behind_a_step_in_depth() {
+    let near = Ball {
+        centre: [0.3, 0.2, 1.2],
+        r: 0.45,
+        eye: [0.0, 0.0, 6.0],
+        size: 64,
+        fov: 40.0,
+    };
+    let far = Ball {
+        centre: [-0.2, -0.1, -1.0],
+        r: 1.2,
+        ..near
+    };
+    let ball = |b: &Ball| {
+        let [cx, cy, cz] = b.centre;
+        format!(
+            "(x - {cx:?})^2 + (y - {cy:?})^2 + (z - {cz:?})^2 - {:?}",
+            b.r * b.r
+        )
+    };
+    let text = format!(
+        "[camera]\neye = [0.0, 0.0, 6.0]\nlook_at = [0.0, 0.0, 0.0]\nfov = 40.0\n\
+         width = 64\nheight = 64\n\n[[surfaces]]\nformula = \"min({}, {})\"\n\
+         bounds = [[-2.5, -2.5, -2.5], [2.5, 2.5, 2.5]]\n\n[render]\nprimary = \"octree\"\n",
+        ball(&near),
+        ball(&far)
+    );
+    let scene = Scene::from_toml(&text, "step.toml", None).unwrap_or_else(|e| panic!("{e}"));
+    let tiles = [PixelRect {
+        x0: 0,
+        y0: 0,
+        x1: 64,
+        y1: 64,
+    }];
+    let exact = |o, d| match (near.exact_t(o, d), far.exact_t(o, d)) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    };
+    let n = check_first_cells(&scene, &tiles, exact);
+    assert!(n.covered > 700, "the balls cover much of the view: {n:?}");
+    assert!(n.hits > 400, "most of their pixels are proven hits: {n:?}");
 }
 
 /// The octree with one ray per covered pixel draws what the screen box structure with one
