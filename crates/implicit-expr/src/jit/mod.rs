@@ -9,7 +9,9 @@
 //! same bounds as the interpreter's arithmetic. [`Evaluator`](crate::Evaluator)s use it
 //! for their plain, traced, definedness- and continuity-checked and all-outputs
 //! evaluations of a tape once it has been evaluated [`COMPILE_AFTER`] times, so that tapes
-//! evaluated once or twice (most pruned tapes of a large scene) do not pay for compiling.
+//! evaluated once or twice (most pruned tapes of a large scene) do not pay for compiling;
+//! a tape equal to one compiled before (in another thread, or in an earlier render of the
+//! same scene) takes its code from its first evaluation on.
 //! The compiled operations: `+ − ×`, negation, `abs`, square, square root, `min`, `max`
 //! and `not`; a tape with any other is left to the interpreter.
 //!
@@ -199,16 +201,27 @@ fn rounding_honoured() -> bool {
     })
 }
 
+/// The code of `tape` from [`SHARED`] where an equal tape's is kept there (only where the
+/// machine honours the rounding mode: [`shared_code`] checks it before it keeps a code).
+fn shared_only(tape: &Tape, traced: bool) -> Option<Arc<Code>> {
+    let key = (tape.clone(), traced);
+    SHARED
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .get(&key)
+        .cloned()
+}
+
 /// The code of `tape` from [`SHARED`], compiled and kept there if it is not yet.
 fn shared_code(tape: &Tape, traced: bool) -> Option<Arc<Code>> {
     if !rounding_honoured() {
         return None;
     }
+    if let Some(c) = shared_only(tape, traced) {
+        return Some(c);
+    }
     let shared = || SHARED.lock().unwrap_or_else(|e| e.into_inner());
     let key = (tape.clone(), traced);
-    if let Some(c) = shared().get(&key) {
-        return Some(c.clone());
-    }
     // Compiled outside the lock: another thread may compile the same formula meanwhile,
     // and one of the two codes is kept.
     let code = Arc::new(Code::compile(tape, traced)?);
@@ -219,9 +232,9 @@ fn shared_code(tape: &Tape, traced: bool) -> Option<Arc<Code>> {
     Some(map.entry(key).or_insert(code).clone())
 }
 
-/// A tape's compiled code, made on demand: the evaluations counted until
-/// [`COMPILE_AFTER`], then the code of each kind compiled once (or found compiled for an
-/// equal tape).
+/// A tape's compiled code, made on demand: an equal tape's code where [`SHARED`] holds
+/// one at the first evaluation, else the evaluations counted until [`COMPILE_AFTER`], then
+/// the code of each kind compiled once (or found compiled for an equal tape meanwhile).
 #[derive(Debug, Default)]
 pub(crate) struct Slot {
     evals: AtomicU32,
@@ -241,8 +254,16 @@ impl Slot {
         if let Some(c) = cell.get() {
             return c.as_deref();
         }
-        if self.evals.load(Ordering::Relaxed) < COMPILE_AFTER {
+        let evals = self.evals.load(Ordering::Relaxed);
+        if evals < COMPILE_AFTER {
             self.evals.fetch_add(1, Ordering::Relaxed);
+            if evals == 0 {
+                // An equal tape's code, compiled before (by another thread, or for a tape
+                // since dropped), serves from the first evaluation on.
+                if let Some(code) = shared_only(tape, traced) {
+                    return cell.get_or_init(|| Some(code)).as_deref();
+                }
+            }
             return None;
         }
         cell.get_or_init(|| shared_code(tape, traced)).as_deref()

@@ -315,6 +315,43 @@ fn evaluators_switch_to_the_code_with_the_same_results() {
     assert!(tape.code(false).is_some() && tape.code(true).is_some());
 }
 
+/// A tape equal to one compiled before, made on its own (another `Arc`), takes the shared
+/// code at its first evaluation, with the interpreter's results; a tape of another formula
+/// does not.
+#[test]
+fn an_equal_tape_takes_the_shared_code_at_once() {
+    let text = "min(sqrt(sqr(x - 0.25) + sqr(y)) - 0.75, z + 0.125) * 0.5";
+    let vars = [iv(-0.5, 0.25), iv(0.5, 0.625), iv(-0.25, 0.5)];
+    let first = tape_of(text);
+    let mut ev = Evaluator::<Interval<f64>>::new(&first);
+    for _ in 0..=super::COMPILE_AFTER {
+        ev.eval(&vars).unwrap();
+    }
+    assert!(
+        first.code(false).is_some(),
+        "compiled after its evaluations"
+    );
+    let again = tape_of(text);
+    assert!(!again.ptr_eq(&first) && again == first);
+    // (Asking for the code counts an evaluation: it is asked after the first one.)
+    let mut ev = Evaluator::<Interval<f64>>::new(&again);
+    let value = ev.eval(&vars).unwrap();
+    assert!(
+        again.code(false).is_some(),
+        "the shared code at the first evaluation"
+    );
+    assert_eq!(
+        value,
+        Evaluator::<Interval<f64>>::new(&first).eval(&vars).unwrap()
+    );
+    let other = tape_of("min(sqrt(sqr(x - 0.25) + sqr(y)) - 0.75, z + 0.25) * 0.5");
+    Evaluator::<Interval<f64>>::new(&other).eval(&vars).unwrap();
+    assert!(
+        other.code(false).is_none(),
+        "another formula is counted as before"
+    );
+}
+
 /// A tape of several outputs (a formula and its gradient): every output compiled, each
 /// the interpreter's, through `eval_outputs` once the tape is compiled.
 #[test]
