@@ -633,7 +633,7 @@ fn arbitrary_text_never_panics() {
 }
 
 #[test]
-fn the_grid_resolution_grows_with_the_scene_function_unless_set() {
+fn the_grid_resolution_follows_the_scene_function_and_the_passes_unless_set() {
     use beam_trace::Plan;
     use beam_trace::scene::auto_grid_resolution;
     assert_eq!(auto_grid_resolution(16, 100), 16);
@@ -668,4 +668,14 @@ fn the_grid_resolution_grows_with_the_scene_function_unless_set() {
     assert!(Plan::for_scene(&auto).grid > Some(16));
     let set = Scene::from_toml(&text("[render]\ngrid = 16\n"), "set.toml", None).unwrap();
     assert_eq!(Plan::for_scene(&set).grid, Some(16));
+    // Where the grid serves only the octree of an unlit scene: coarse, unless set.
+    let plan = |render: &str| {
+        let scene = Scene::from_toml(&text(render), "octree.toml", None).unwrap();
+        Plan::for_scene(&scene).grid
+    };
+    let octree = "[render]\nprimary = \"octree\"\n";
+    assert_eq!(plan(octree), Some(8));
+    assert_eq!(plan(&format!("{octree}grid = 24\n")), Some(24));
+    let lit = format!("{octree}[[lights]]\ntype = \"point\"\nposition = [3.0, 4.0, 6.0]\n");
+    assert_eq!(plan(&lit), Some(auto_grid_resolution(16, instrs)));
 }

@@ -261,7 +261,8 @@ pub struct RenderSettings {
     /// Cells of the regular grid along the longest side of the scene bounds (0: no grid).
     pub grid_resolution: u32,
     /// Whether the grid may be finer than `grid_resolution` for a long scene function
-    /// ([`auto_grid_resolution`]): on unless the scene file or the caller set the
+    /// ([`auto_grid_resolution`]), or coarser (8 cells a side) where it serves only the
+    /// frustum octree of an unlit scene: on unless the scene file or the caller set the
     /// resolution.
     pub grid_auto: bool,
     /// Whether lights cast shadows.
