@@ -386,16 +386,14 @@ impl PixelRays {
 }
 
 /// One ray of a pixel (each of a pixel's rays weighs the same in its colour): the query,
-/// the window searched (with the whole function) when the query's search ends without a
-/// root (the whole ray after a Hit box's `T_final`, where a root is known to exist, so a
-/// limit was reached; the rest of the ray after a first cell of the frustum octree), and
-/// the answer where the box proved it and the plan asks no more (see
-/// [`Plan::narrow_hits`](crate::plan::Plan)): then it is not searched.
+/// and the window searched (with the whole function) when the query's search ends without
+/// a root (the whole ray after a Hit box's `T_final`, where a root is known to exist, so a
+/// limit was reached; the rest of the ray after a first cell of the frustum octree). A ray
+/// whose answer is known ([`known_root`]) is not searched.
 #[derive(Clone)]
 struct PixelRay {
     query: RayQuery,
     fallback: Option<Interval<f64>>,
-    known: Option<RootResult>,
 }
 
 /// Where the rays of an Undecided pixel start.
@@ -444,7 +442,7 @@ fn pixel_ray(
     r: usize,
 ) -> PixelRay {
     let (x, y) = window.pixel(i);
-    if let (Some(traced), true) = (traced.get(r), traced.len() == rays.count()) {
+    if let Some(traced) = octree_trace(traced, rays.count(), r) {
         // The octree's ray `r` is this one: at the same stratified position.
         let ray = rays.stratified(x, y, r);
         return match traced {
@@ -455,7 +453,6 @@ fn pixel_ray(
                     scope: None,
                 },
                 fallback: None,
-                known: Some(RootResult::NoRoot),
             },
             Traced::First { t, scope } => PixelRay {
                 query: RayQuery {
@@ -464,7 +461,6 @@ fn pixel_ray(
                     scope: scope.clone(),
                 },
                 fallback: Some(Interval::new_unchecked(t.inf(), f64::INFINITY)),
-                known: (!narrow).then_some(RootResult::included(*t)),
             },
             // The rest of the ray, with the whole function.
             &Traced::Clear { until } => PixelRay {
@@ -474,7 +470,6 @@ fn pixel_ray(
                     scope: None,
                 },
                 fallback: None,
-                known: None,
             },
         };
     }
@@ -487,7 +482,6 @@ fn pixel_ray(
                 scope: if narrow { scope.clone() } else { None },
             },
             fallback: Some(forward()),
-            known: (!narrow).then_some(RootResult::included(t_final)),
         },
         class => {
             let (window, scope, fallback) = match (start, class) {
@@ -514,9 +508,29 @@ fn pixel_ray(
                     scope,
                 },
                 fallback,
-                known: None,
             }
         }
+    }
+}
+
+/// The octree's trace of a pixel's ray `r` among its `traced` rays, where they are the
+/// pixel's `count` stratified rays.
+fn octree_trace(traced: &[Traced], count: usize, r: usize) -> Option<&Traced> {
+    traced.get(r).filter(|_| traced.len() == count)
+}
+
+/// The first root of a pixel's ray known without a search, as [`pixel_ray`] gives it (and
+/// without making the ray): none for a ray the octree traced to no root; where the plan
+/// does not narrow hits, the range the octree's trace or the Hit box proved; else `None`.
+fn known_root(narrow: bool, class: Option<BoxPixel>, trace: Option<&Traced>) -> Option<RootResult> {
+    match trace {
+        Some(Traced::NoRoot) => Some(RootResult::NoRoot),
+        Some(Traced::First { t, .. }) => (!narrow).then_some(RootResult::included(*t)),
+        Some(Traced::Clear { .. }) => None,
+        None => match class.map(|c| c.class) {
+            Some(BoxClass::Hit { t_final }) => (!narrow).then_some(RootResult::included(t_final)),
+            _ => None,
+        },
     }
 }
 
@@ -571,7 +585,13 @@ pub(super) fn primary_rays(
         };
         let known: Vec<Option<RootResult>> = (0..ray_pixel.len())
             .into_par_iter()
-            .map(|j| ray_of(j).known)
+            .map(|j| {
+                let k = ray_pixel[j] as usize;
+                let p = first + k;
+                let traced = traces_of(classes[p], traced, p);
+                let trace = octree_trace(traced, pixel_rays.count(), j - first_ray[k]);
+                known_root(narrow, classes[p], trace)
+            })
             .collect();
         let searched: Vec<usize> = (0..known.len()).filter(|&j| known[j].is_none()).collect();
         let queries: Vec<RayQuery> = searched.par_iter().map(|&j| ray_of(j).query).collect();
