@@ -409,24 +409,11 @@ impl Filled {
         if self.untouched(r, node) {
             return r;
         }
-        let (c0, c1) = (
-            (r.x0 - self.tile.x0) as usize,
-            (r.x1 - self.tile.x0) as usize,
-        );
         let (mut lo, mut hi) = (usize::MAX, 0);
         let (mut top, mut bottom) = (u32::MAX, 0);
         for y in r.y0..r.y1 {
-            let row = &self.bits[(y - self.tile.y0) as usize * self.words..][..self.words];
-            let mut c = c0;
-            while c < c1 {
-                let (word, bit) = (c / 64, c % 64);
-                let n = (c1 - c).min(64 - bit);
-                let mask = if n == 64 {
-                    u64::MAX
-                } else {
-                    ((1u64 << n) - 1) << bit
-                };
-                let open = !row[word] & mask;
+            for (word, bits, mask) in self.row_words(r, y) {
+                let open = !bits & mask;
                 if open != 0 {
                     let base = word * 64;
                     lo = lo.min(base + open.trailing_zeros() as usize);
@@ -434,7 +421,6 @@ impl Filled {
                     top = top.min(y);
                     bottom = bottom.max(y);
                 }
-                c += n;
             }
         }
         if top == u32::MAX {
@@ -467,27 +453,32 @@ impl Filled {
         if r.is_pixel() {
             return self.get(r.x0, r.y0);
         }
+        (r.y0..r.y1).all(|y| {
+            self.row_words(r, y)
+                .all(|(_, bits, mask)| bits & mask == mask)
+        })
+    }
+
+    /// The words of row `y` that hold `r`'s columns: each word's index in the row, its
+    /// bits, and the mask of `r`'s columns in it.
+    fn row_words(&self, r: PixelRect, y: u32) -> impl Iterator<Item = (usize, u64, u64)> + '_ {
         let (c0, c1) = (
             (r.x0 - self.tile.x0) as usize,
             (r.x1 - self.tile.x0) as usize,
         );
-        (r.y0..r.y1).all(|y| {
-            let row = &self.bits[(y - self.tile.y0) as usize * self.words..][..self.words];
-            let mut c = c0;
-            while c < c1 {
-                let (word, bit) = (c / 64, c % 64);
-                let n = (c1 - c).min(64 - bit);
-                let mask = if n == 64 {
-                    u64::MAX
-                } else {
-                    ((1u64 << n) - 1) << bit
-                };
-                if row[word] & mask != mask {
-                    return false;
-                }
-                c += n;
-            }
-            true
+        let row = &self.bits[(y - self.tile.y0) as usize * self.words..][..self.words];
+        // No word for an empty rectangle.
+        let words = (c0 / 64)..c1.div_ceil(64).max(c0 / 64);
+        words.map(move |word| {
+            // Columns `from..to` of the word.
+            let from = c0.max(word * 64) - word * 64;
+            let to = c1.min(word * 64 + 64) - word * 64;
+            let mask = if to - from == 64 {
+                u64::MAX
+            } else {
+                ((1u64 << (to - from)) - 1) << from
+            };
+            (word, row[word], mask)
         })
     }
 }
@@ -912,6 +903,16 @@ impl Search<'_> {
 mod tests {
     use super::*;
 
+    /// The smallest rectangle holding `pixels` (`None` for none).
+    fn bounding(pixels: &[(u32, u32)]) -> Option<PixelRect> {
+        Some(PixelRect {
+            x0: pixels.iter().map(|p| p.0).min()?,
+            y0: pixels.iter().map(|p| p.1).min()?,
+            x1: pixels.iter().map(|p| p.0).max()? + 1,
+            y1: pixels.iter().map(|p| p.1).max()? + 1,
+        })
+    }
+
     /// The bitmap agrees with a plain set of pixels on every rectangle of a tile wider than
     /// one word (whether it is filled whole, has no pixel filled, the rectangle of those not
     /// filled), after marking a scattered set.
@@ -948,18 +949,7 @@ mod tests {
                         assert_eq!(filled.all(r), expected, "{r:?}");
                         let open: Vec<_> = r.pixels().filter(|p| !plain.contains(p)).collect();
                         assert_eq!(filled.untouched(r, 0), open.len() as u64 == r.area());
-                        if let (Some(x0), Some(x1), Some(y0), Some(y1)) = (
-                            open.iter().map(|p| p.0).min(),
-                            open.iter().map(|p| p.0).max(),
-                            open.iter().map(|p| p.1).min(),
-                            open.iter().map(|p| p.1).max(),
-                        ) {
-                            let bound = PixelRect {
-                                x0,
-                                y0,
-                                x1: x1 + 1,
-                                y1: y1 + 1,
-                            };
+                        if let Some(bound) = bounding(&open) {
                             assert_eq!(filled.open(r, 0), bound, "{r:?}");
                         }
                     }
@@ -969,9 +959,9 @@ mod tests {
     }
 
     /// The per-node counts agree with the bitmap (whether a node is filled whole, whether
-    /// it has no pixel filled, the rectangle of those not filled) on every node that the search may still ask about (no node
-    /// holding it filled whole), after fills of nodes in a scattered
-    /// order, on a tile whose sides split unevenly.
+    /// it has no pixel filled, the rectangle of those not filled) on every node that the
+    /// search may still ask about (no node holding it filled whole), after fills of nodes
+    /// in a scattered order, on a tile whose sides split unevenly.
     #[test]
     fn node_counts_agree_with_the_bitmap() {
         let tile = PixelRect {
@@ -1015,22 +1005,10 @@ mod tests {
                 assert_eq!(filled.complete(*r, *id), filled.all(*r), "{r:?}");
                 let none = r.pixels().all(|(x, y)| !filled.get(x, y));
                 assert_eq!(filled.untouched(*r, *id), none, "{r:?}");
-                // The bounding rectangle of the pixels not marked.
                 let open: Vec<(u32, u32)> =
                     r.pixels().filter(|&(x, y)| !filled.get(x, y)).collect();
-                if let (Some(x0), Some(x1), Some(y0), Some(y1)) = (
-                    open.iter().map(|p| p.0).min(),
-                    open.iter().map(|p| p.0).max(),
-                    open.iter().map(|p| p.1).min(),
-                    open.iter().map(|p| p.1).max(),
-                ) {
-                    let expected = PixelRect {
-                        x0,
-                        y0,
-                        x1: x1 + 1,
-                        y1: y1 + 1,
-                    };
-                    assert_eq!(filled.open(*r, *id), expected, "{r:?}");
+                if let Some(bound) = bounding(&open) {
+                    assert_eq!(filled.open(*r, *id), bound, "{r:?}");
                 }
             }
         }
