@@ -40,9 +40,9 @@
 //! [`BoxClass::Miss`].
 //! Each cell that is split prunes `g` to the beam it was evaluated over (its open pixels')
 //! and `T` ([`RayFn::restrict`]) for the cells inside it (whose open pixels are among its
-//! own: pixels are only ever filled), so the deep cells evaluate a few instructions of a long formula; the
-//! restrictions of the cells holding a leaf are kept, and a probe past the region of the
-//! leaf's own is evaluated with the next one out.
+//! own: pixels are only ever filled), so the deep cells evaluate a few instructions of a
+//! long formula; the restrictions of the cells holding a leaf are kept, and a probe past
+//! the region of the leaf's own is evaluated with the next one out.
 //!
 //! A pixel whose first cell is undecided (its beam straddles the silhouette, or the
 //! inclusion test cannot place every ray's root) may have its rays traced on the spot
@@ -399,16 +399,15 @@ impl Filled {
     fn untouched(&self, r: PixelRect, node: usize) -> bool {
         match self.counts.get(node) {
             Some(&n) => n == 0,
-            None => r.pixels().all(|(x, y)| !self.get(x, y)),
+            None => {
+                (r.y0..r.y1).all(|y| self.row_words(r, y).all(|(_, bits, mask)| bits & mask == 0))
+            }
         }
     }
 
-    /// The smallest rectangle holding every pixel of `r` (node `node` of the quadtree, not
-    /// [`complete`](Self::complete)) that is not marked: `r` itself where none is.
-    fn open(&self, r: PixelRect, node: usize) -> PixelRect {
-        if self.untouched(r, node) {
-            return r;
-        }
+    /// The smallest rectangle holding every pixel of `r` (inside the tile, not every one
+    /// marked) that is not marked: `r` itself where none is.
+    fn open(&self, r: PixelRect) -> PixelRect {
         let (mut lo, mut hi) = (usize::MAX, 0);
         let (mut top, mut bottom) = (u32::MAX, 0);
         for y in r.y0..r.y1 {
@@ -521,9 +520,10 @@ impl Search<'_> {
     }
 
     /// Where every ray of the leaf's beam (set on `g` with the innermost restriction: the
-    /// beam of its open pixels, which are the ones a result is for) has its first root, given none before `t`, and the restriction that holds there: `[inf
-    /// t, p]` for the first `p` of `sup t` and `sup t + w·2^k` (`k ≤` [`LOOK_AHEAD`], `w`
-    /// the length of `t`) where the sign has changed for every ray since `inf t` (known
+    /// beam of its open pixels, which are the ones a result is for) has its first root,
+    /// given none before `t`, and the restriction that holds there: `[inf t, p]` for the
+    /// first `p` of `sup t` and `sup t + w·2^k` (`k ≤` [`LOOK_AHEAD`], `w` the length of
+    /// `t`) where the sign has changed for every ray since `inf t` (known
     /// positive there where `near_positive`), with `g` continuous up to `p` and both ends
     /// inside the scene bounds. Each probe is made with the innermost restriction whose
     /// region holds it (the whole `g` only without any), so the probes reach as far as the
@@ -750,7 +750,8 @@ impl Search<'_> {
         // cell is evaluated over the beam of the smallest rectangle holding the others
         // (the rays of the filled pixels, inside or past the surface there, would keep the
         // enclosure from being positive all the way to their own surface behind).
-        let open = self.filled.open(r, column.node);
+        let untouched = self.filled.untouched(r, column.node);
+        let open = if untouched { r } else { self.filled.open(r) };
         let shrunk;
         let beam = if open == r {
             beam
@@ -785,7 +786,7 @@ impl Search<'_> {
             // (on the CSG models, for 98 % of such blocks); where none does, testing the
             // open pixels as a block gains nothing (csg3d-2k: 3 % more evaluations). Its
             // quadrants are searched without the test.
-            let whole = r.is_pixel() || gt.sup() < 0.0 || self.filled.untouched(r, column.node);
+            let whole = r.is_pixel() || gt.sup() < 0.0 || untouched;
             let included = if block && whole && gt.inf() < 0.0 && extent.holds(t.inf()) {
                 self.included(beam, t, &extent, near_positive)
             } else {
@@ -950,7 +951,7 @@ mod tests {
                         let open: Vec<_> = r.pixels().filter(|p| !plain.contains(p)).collect();
                         assert_eq!(filled.untouched(r, 0), open.len() as u64 == r.area());
                         if let Some(bound) = bounding(&open) {
-                            assert_eq!(filled.open(r, 0), bound, "{r:?}");
+                            assert_eq!(filled.open(r), bound, "{r:?}");
                         }
                     }
                 }
@@ -1008,7 +1009,7 @@ mod tests {
                 let open: Vec<(u32, u32)> =
                     r.pixels().filter(|&(x, y)| !filled.get(x, y)).collect();
                 if let Some(bound) = bounding(&open) {
-                    assert_eq!(filled.open(*r, *id), bound, "{r:?}");
+                    assert_eq!(filled.open(*r), bound, "{r:?}");
                 }
             }
         }

@@ -846,8 +846,8 @@ fn check_interval_f64_contains_real_and_point_values(
 /// Decorations: the plain evaluator's decoration (`eval_decorated`) is the decorated
 /// evaluator's, with bit-identical interval parts, in `f64` and `f32`; `eval_continuous`
 /// says "at least `dac`" exactly when the decoration does, `eval_traced_defined` "at least
-/// `def`" exactly when it does (with the choices of `eval_traced`); a decoration of `def` or better
-/// comes with a nonempty value. (The rules of each operation are tested in interval-core,
+/// `def`" exactly when it does (with the choices of `eval_traced`); a decoration of `def`
+/// or better comes with a nonempty value. (The rules of each operation are tested in interval-core,
 /// `tests/decorated_rules.rs`.)
 fn check_decorations(b: &[(f64, f64); SLOTS], r: &Recipe) -> Result<(), TestCaseError> {
     let (ctx, root) = r.build();

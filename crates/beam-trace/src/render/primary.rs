@@ -569,28 +569,34 @@ pub(super) fn primary_rays(
                 .map(|class| ray_count(*class, pixel_rays.count())),
         );
         let ray_pixel = owners(&first_ray);
+        // Ray `j`'s pixel (in the image) and its index among the pixel's rays.
+        let pixel_of = |j: usize| {
+            let k = ray_pixel[j] as usize;
+            (first + k, j - first_ray[k])
+        };
         // Ray `j` of the batch, made again where it is needed rather than kept: most rays
         // are known (a Hit box's), and a record of every ray would be most of the pass's
         // memory.
         let ray_of = |j: usize| {
-            let k = ray_pixel[j] as usize;
-            let p = first + k;
+            let (p, r) = pixel_of(j);
             pixel_ray(
                 (&pixel_rays, start, narrow),
                 p,
                 window,
                 (classes[p], &scopes[p], traces_of(classes[p], traced, p)),
-                j - first_ray[k],
+                r,
             )
         };
         let known: Vec<Option<RootResult>> = (0..ray_pixel.len())
             .into_par_iter()
             .map(|j| {
-                let k = ray_pixel[j] as usize;
-                let p = first + k;
+                let (p, r) = pixel_of(j);
                 let traced = traces_of(classes[p], traced, p);
-                let trace = octree_trace(traced, pixel_rays.count(), j - first_ray[k]);
-                known_root(narrow, classes[p], trace)
+                known_root(
+                    narrow,
+                    classes[p],
+                    octree_trace(traced, pixel_rays.count(), r),
+                )
             })
             .collect();
         let searched: Vec<usize> = (0..known.len()).filter(|&j| known[j].is_none()).collect();

@@ -220,16 +220,14 @@ fn shared_code(tape: &Tape, traced: bool) -> Option<Arc<Code>> {
     if let Some(c) = shared_only(tape, traced) {
         return Some(c);
     }
-    let shared = || SHARED.lock().unwrap_or_else(|e| e.into_inner());
-    let key = (tape.clone(), traced);
     // Compiled outside the lock: another thread may compile the same formula meanwhile,
     // and one of the two codes is kept.
     let code = Arc::new(Code::compile(tape, traced)?);
-    let mut map = shared();
+    let mut map = SHARED.lock().unwrap_or_else(|e| e.into_inner());
     if map.len() >= SHARED_MAX {
         map.clear();
     }
-    Some(map.entry(key).or_insert(code).clone())
+    Some(map.entry((tape.clone(), traced)).or_insert(code).clone())
 }
 
 /// A tape's compiled code, made on demand: an equal tape's code where [`SHARED`] holds
