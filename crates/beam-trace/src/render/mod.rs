@@ -22,6 +22,7 @@ mod pipeline;
 mod pixel_beams;
 mod pixels;
 mod primary;
+mod scopes;
 mod shading;
 mod soft_shadows;
 

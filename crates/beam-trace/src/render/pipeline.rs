@@ -9,6 +9,7 @@ use rayon::prelude::*;
 
 use super::output::RenderOutput;
 use super::piece::{Piece, PieceShadows};
+use super::scopes::PixelScopes;
 use super::{hard_shadows, pixel_beams, primary, shading, soft_shadows};
 use crate::backend::{Backend, Routed, Routing};
 use crate::error::Error;
@@ -102,7 +103,7 @@ impl<'a> Pipeline<'a> {
             (classes, scopes, traced)
         } else {
             passes.push(PassStats::skipped(Pass::ScreenBoxes.name()));
-            (vec![None; npix], vec![None; npix], Vec::new())
+            (vec![None; npix], PixelScopes::none(npix), Vec::new())
         };
 
         let (mut samples, cost) = match plan.primary {

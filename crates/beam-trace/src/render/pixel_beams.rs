@@ -22,7 +22,8 @@ use rayon::prelude::*;
 
 use super::batches::{PixelSamples, RowBatch, row_batches};
 use super::pixels::{Pixels, offsets};
-use super::primary::{PixelClasses, PixelScopes};
+use super::primary::PixelClasses;
+use super::scopes::PixelScopes;
 use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery, VariationQuery};
 use crate::beam::{BeamScope, BoxClass, child_window};
 use crate::camera::Camera;
@@ -247,7 +248,7 @@ pub(super) fn pixel_beams(
                     depth: 0,
                     path: 0,
                     parent: class(k),
-                    scope: scopes[first + k].clone(),
+                    scope: scopes.get(first + k).cloned(),
                     known: class(k).filter(|c| {
                         refine.threshold.is_none()
                             || smooth(k)

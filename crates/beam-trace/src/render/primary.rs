@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 use super::batches::{PixelSamples, RowBatch, row_batches};
 use super::pixels::{self, Pixels, owners};
+use super::scopes::PixelScopes;
 use crate::backend::{BeamQuery, CellQuery, HitQuery, Queries, RayQuery, VariationQuery};
 use crate::beam::{BeamScope, BoxClass};
 use crate::beam::{child_window, forward};
@@ -57,10 +58,6 @@ impl BoxPixel {
 
 /// What the first primary pass proved of each pixel (`None`: nothing, no box classified it).
 pub(super) type PixelClasses = Vec<Option<BoxPixel>>;
-
-/// The backend's scope of the box of each pixel that is not a Miss ([`BeamScope`]), for
-/// the parts of the pixel; `None` elsewhere.
-pub(super) type PixelScopes = Vec<Option<BeamScope>>;
 
 /// What the search of each of a pixel's rays proved past its first cell, for each pixel
 /// the frustum octree traced
@@ -155,12 +152,36 @@ fn octree(
         progress.advance(u64::from(band[band.len() - 1].y1 - band[0].y0));
     }
     traced.sort_unstable_by_key(|&(p, _)| p);
+    // The scopes the pixels keep, once per first cell: a Hit pixel's ray is searched (in
+    // the cell's scope) only where the plan narrows hits. Cell `j` of tile `t` has the
+    // scope `kept[index[t][j]]`.
+    let mut kept = Vec::new();
+    let index: Vec<Vec<u32>> = firsts
+        .iter_mut()
+        .map(|cells| {
+            let cells = &mut cells.cells;
+            cells
+                .iter_mut()
+                .map(|f| {
+                    let scope = if f.hit && !narrow_hits {
+                        None
+                    } else {
+                        f.scope.take()
+                    };
+                    PixelScopes::index(scope.map(|s| {
+                        kept.push(s);
+                        kept.len() - 1
+                    }))
+                })
+                .collect()
+        })
+        .collect();
     // Every pixel's class and scope, in parallel: the tiles lie on the image's grid of
     // `OCTREE_TILE` from the window's corner, row by row.
     let (corner, width) = (window.rect(), window.width());
     let columns = width.div_ceil(OCTREE_TILE) as usize;
     let mut classes: PixelClasses = Vec::new();
-    let mut scopes: PixelScopes = Vec::new();
+    let mut scopes = Vec::new();
     (0..window.len())
         .into_par_iter()
         .map(|i| {
@@ -171,21 +192,18 @@ fn octree(
             debug_assert!(x >= tile.x0 && x < tile.x1 && y >= tile.y0 && y < tile.y1);
             let k = (y - tile.y0) * (tile.x1 - tile.x0) + (x - tile.x0);
             match slots[t][k as usize] {
-                u32::MAX => (Some(BoxPixel::of(BoxClass::Miss, false)), None),
+                u32::MAX => (
+                    Some(BoxPixel::of(BoxClass::Miss, false)),
+                    PixelScopes::index(None),
+                ),
                 j => {
                     let f = &firsts[t].cells[j as usize];
-                    // A Hit pixel's ray is searched (in the cell's scope) only where
-                    // the plan narrows hits.
-                    let scope = if f.hit && !narrow_hits {
-                        None
-                    } else {
-                        f.scope.clone()
-                    };
-                    (Some(BoxPixel::of(f.class(), false)), scope)
+                    (Some(BoxPixel::of(f.class(), false)), index[t][j as usize])
                 }
             }
         })
         .unzip_into_vecs(&mut classes, &mut scopes);
+    let scopes = PixelScopes::from_parts(scopes, kept);
     // The beams evaluated: the cells and the leaves' inclusion tests.
     c.beams = c.search.g_evals;
     progress.end();
@@ -211,7 +229,7 @@ fn screen_boxes(
     let t0 = Instant::now();
     progress.begin(Pass::ScreenBoxes.name(), window.len() as u64);
     let mut classes: PixelClasses = vec![None; window.len()];
-    let mut scopes: PixelScopes = vec![None; window.len()];
+    let mut scopes = PixelScopes::none(window.len());
     let mut c = ScreenBoxCounters::default();
     // With anti-aliasing, the Hit boxes of more than one pixel whose shading is judged
     // once for all their pixels.
@@ -268,9 +286,10 @@ fn screen_boxes(
             for (x, y) in rect.pixels() {
                 let edge = x == rect.x0 || y == rect.y0;
                 classes[window.local(x, y)] = Some(BoxPixel::of(class, edge));
-                if !matches!(class, BoxClass::Miss) {
-                    scopes[window.local(x, y)] = answer.scope.clone();
-                }
+            }
+            if !matches!(class, BoxClass::Miss) {
+                let pixels = rect.pixels().map(|(x, y)| window.local(x, y));
+                scopes.set(pixels, answer.scope.clone());
             }
             progress.advance(rect.area());
         }
@@ -438,7 +457,7 @@ fn pixel_ray(
     (rays, start, narrow): (&PixelRays, RayStart, bool),
     i: usize,
     window: &Window,
-    (class, scope, traced): (Option<BoxPixel>, &Option<BeamScope>, &[Traced]),
+    (class, scope, traced): (Option<BoxPixel>, Option<&BeamScope>, &[Traced]),
     r: usize,
 ) -> PixelRay {
     let (x, y) = window.pixel(i);
@@ -479,7 +498,7 @@ fn pixel_ray(
                 ray: rays.centre(x, y),
                 window: t_final,
                 // A ray that is not searched needs no scope.
-                scope: if narrow { scope.clone() } else { None },
+                scope: if narrow { scope.cloned() } else { None },
             },
             fallback: Some(forward()),
         },
@@ -490,7 +509,7 @@ fn pixel_ray(
                     // cell through the region of its scope where it has one (the scope
                     // holds there), then the rest of the ray.
                     let rest = Interval::new_unchecked(t.inf(), f64::INFINITY);
-                    match scope.as_ref().filter(|s| t.subset(s.t)) {
+                    match scope.filter(|s| t.subset(s.t)) {
                         Some(s) => (
                             Interval::new_unchecked(t.inf(), s.t.sup()),
                             Some(s.clone()),
@@ -583,7 +602,7 @@ pub(super) fn primary_rays(
                 (&pixel_rays, start, narrow),
                 p,
                 window,
-                (classes[p], &scopes[p], traces_of(classes[p], traced, p)),
+                (classes[p], scopes.get(p), traces_of(classes[p], traced, p)),
                 r,
             )
         };
