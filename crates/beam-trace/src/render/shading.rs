@@ -64,17 +64,20 @@ pub(super) fn shading(
     let t0 = Instant::now();
     let nl = scene.lights.len();
     let samples = &pixels.samples;
-    // The hit samples, and each sample's rank among them (its colour's index).
+    // Lit: the hit samples are shaded in one batch, each sample's colour found by its rank
+    // among them. Unlit: a hit's colour is its material's, read where it is summed.
     let mut hit_samples = Vec::new();
-    let mut rank = Vec::with_capacity(samples.len());
-    for (j, s) in samples.iter().enumerate() {
-        rank.push(hit_samples.len());
-        if s.hit.is_some() {
-            hit_samples.push(j);
+    let mut rank = Vec::new();
+    let mut colors: Vec<[f32; 3]> = Vec::new();
+    if lit {
+        rank.reserve(samples.len());
+        for (j, s) in samples.iter().enumerate() {
+            rank.push(hit_samples.len());
+            if s.hit.is_some() {
+                hit_samples.push(j);
+            }
         }
-    }
-    let hit = |j: usize| samples[j].hit.expect("a hit sample");
-    let colors: Vec<[f32; 3]> = if lit {
+        let hit = |j: usize| samples[j].hit.expect("a hit sample");
         let lights: Vec<ShadeLight> = scene
             .lights
             .iter()
@@ -102,18 +105,21 @@ pub(super) fn shading(
                 .zip(&hit_samples)
                 .for_each(|(f, &j)| f.copy_from_slice(&vis[j * nl..(j + 1) * nl]));
         }
-        q.shade(&ShadeBatch {
-            lights: &lights,
-            ambient: scene.ambient,
-            samples: &shade,
-            fractions: &fractions,
-        })?
-        .values
-    } else {
-        hit_samples
-            .iter()
-            .map(|&j| scene.material_of(hit(j).leaf).color)
-            .collect()
+        colors = q
+            .shade(&ShadeBatch {
+                lights: &lights,
+                ambient: scene.ambient,
+                samples: &shade,
+                fractions: &fractions,
+            })?
+            .values;
+    }
+    let color = |j: usize, hit: &Hit| {
+        if lit {
+            colors[rank[j]]
+        } else {
+            scene.material_of(hit.leaf).color
+        }
     };
     let image = (0..pixels.len())
         .into_par_iter()
@@ -122,8 +128,8 @@ pub(super) fn shading(
             let mut wsum = 0f32;
             for j in pixels.range(p) {
                 let s = &samples[j];
-                let c = match s.hit {
-                    Some(_) => colors[rank[j]],
+                let c = match &s.hit {
+                    Some(h) => color(j, h),
                     None => scene.background,
                 };
                 for k in 0..3 {
