@@ -20,7 +20,7 @@ use std::time::Instant;
 use interval_core::Interval;
 use rayon::prelude::*;
 
-use super::batches::{PixelSamples, RowBatch, row_batches};
+use super::batches::{PixelSamples, ROWS_PER_BATCH, RowBatch, row_batches};
 use super::pixels::{Pixels, offsets};
 use super::primary::PixelClasses;
 use super::scopes::PixelScopes;
@@ -225,7 +225,7 @@ pub(super) fn pixel_beams(
     let npix = window.len();
     let mut pixels = Pixels::new();
     let mut cost: Vec<f32> = Vec::with_capacity(npix);
-    for RowBatch { rows, first, n } in row_batches(w, h) {
+    for RowBatch { rows, first, n } in row_batches(w, h, ROWS_PER_BATCH) {
         let mut pixel_cost = vec![0f32; n];
         // With anti-aliasing a Hit pixel's own beam is classified inside its box's
         // `T_final`: its own, narrower section is the region whose shading is judged.

@@ -6,7 +6,7 @@ use std::time::Instant;
 use interval_core::Interval;
 use rayon::prelude::*;
 
-use super::batches::{PixelSamples, RowBatch, row_batches};
+use super::batches::{PixelSamples, RAY_BATCH_PIXELS, RowBatch, row_batches};
 use super::pixels::{self, Pixels, owners};
 use super::scopes::PixelScopes;
 use crate::backend::{BeamQuery, CellQuery, HitQuery, Queries, RayQuery, VariationQuery};
@@ -579,7 +579,7 @@ pub(super) fn primary_rays(
         .sum();
     let mut pixels = Pixels::with_capacity(npix, all_rays);
     let mut cost: Vec<f32> = Vec::with_capacity(npix);
-    for RowBatch { rows, first, n } in row_batches(w, h) {
+    for RowBatch { rows, first, n } in row_batches(w, h, RAY_BATCH_PIXELS / w.max(1)) {
         // The rays of every pixel of the batch, built in parallel; pixel `k` owns the rays
         // `first_ray[k]..first_ray[k + 1]` of the flat batch.
         let first_ray = pixels::offsets(
