@@ -25,8 +25,8 @@ impl PixelScopes {
         }
     }
 
-    /// The pixels whose scopes are `scopes[of[p]]` (`of[p] == None`: none), as
-    /// [`PixelScopes::index`] numbers them.
+    /// The pixels whose scopes are `scopes[of[p]]`, each `of[p]` made by
+    /// [`PixelScopes::index`] (`index(None)`: the pixel has none).
     pub(super) fn from_parts(of: Vec<u32>, scopes: Vec<BeamScope>) -> Self {
         debug_assert!(of.iter().all(|&i| i == NONE || (i as usize) < scopes.len()));
         Self { of, scopes }
