@@ -3,8 +3,8 @@
 use super::pixels::Pixels;
 use crate::stats::PassStats;
 
-/// Rows of pixels a pass hands the backend per batch: batches big enough to keep every
-/// core (or the GPU) busy, small enough to show progress and bound memory.
+/// Rows of pixels the pixel-beams pass hands the backend per batch: batches big enough to
+/// keep every core (or the GPU) busy, small enough to show progress and bound memory.
 pub(super) const ROWS_PER_BATCH: u32 = 256;
 
 /// Pixels the primary-rays pass hands the backend per batch (whole rows, at least one).

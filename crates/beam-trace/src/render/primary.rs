@@ -154,25 +154,15 @@ fn octree(
     traced.sort_unstable_by_key(|&(p, _)| p);
     // The scopes the pixels keep, once per first cell: a Hit pixel's ray is searched (in
     // the cell's scope) only where the plan narrows hits. Cell `j` of tile `t` has the
-    // scope `kept[index[t][j]]`.
-    let mut kept = Vec::new();
+    // scope of index `index[t][j]`.
+    let mut scopes = PixelScopes::default();
     let index: Vec<Vec<u32>> = firsts
         .iter_mut()
         .map(|cells| {
-            let cells = &mut cells.cells;
             cells
+                .cells
                 .iter_mut()
-                .map(|f| {
-                    let scope = if f.hit && !narrow_hits {
-                        None
-                    } else {
-                        f.scope.take()
-                    };
-                    PixelScopes::index(scope.map(|s| {
-                        kept.push(s);
-                        kept.len() - 1
-                    }))
-                })
+                .map(|f| scopes.keep(f.scope.take().filter(|_| !f.hit || narrow_hits)))
                 .collect()
         })
         .collect();
@@ -181,7 +171,7 @@ fn octree(
     let (corner, width) = (window.rect(), window.width());
     let columns = width.div_ceil(OCTREE_TILE) as usize;
     let mut classes: PixelClasses = Vec::new();
-    let mut scopes = Vec::new();
+    let mut of = Vec::new();
     (0..window.len())
         .into_par_iter()
         .map(|i| {
@@ -192,18 +182,15 @@ fn octree(
             debug_assert!(x >= tile.x0 && x < tile.x1 && y >= tile.y0 && y < tile.y1);
             let k = (y - tile.y0) * (tile.x1 - tile.x0) + (x - tile.x0);
             match slots[t][k as usize] {
-                u32::MAX => (
-                    Some(BoxPixel::of(BoxClass::Miss, false)),
-                    PixelScopes::index(None),
-                ),
+                u32::MAX => (Some(BoxPixel::of(BoxClass::Miss, false)), PixelScopes::NONE),
                 j => {
                     let f = &firsts[t].cells[j as usize];
                     (Some(BoxPixel::of(f.class(), false)), index[t][j as usize])
                 }
             }
         })
-        .unzip_into_vecs(&mut classes, &mut scopes);
-    let scopes = PixelScopes::from_parts(scopes, kept);
+        .unzip_into_vecs(&mut classes, &mut of);
+    scopes.assign(of);
     // The beams evaluated: the cells and the leaves' inclusion tests.
     c.beams = c.search.g_evals;
     progress.end();

@@ -4,51 +4,51 @@
 
 use crate::beam::BeamScope;
 
-/// The index of a pixel without a scope.
-const NONE: u32 = u32::MAX;
-
 /// Each pixel's scope (`None` for a Miss box's pixels, and where the box handed none on).
 #[derive(Clone, Debug, Default)]
 pub(super) struct PixelScopes {
-    /// Pixel `p`'s scope is `scopes[of[p]]`, none where `of[p]` is [`NONE`].
+    /// Pixel `p`'s scope is `scopes[of[p]]`, none where `of[p]` is [`PixelScopes::NONE`].
     of: Vec<u32>,
     /// The scopes of the boxes.
     scopes: Vec<BeamScope>,
 }
 
 impl PixelScopes {
+    /// The index of a pixel without a scope.
+    pub(super) const NONE: u32 = u32::MAX;
+
     /// `pixels` pixels, none with a scope yet.
     pub(super) fn none(pixels: usize) -> Self {
         Self {
-            of: vec![NONE; pixels],
+            of: vec![Self::NONE; pixels],
             scopes: Vec::new(),
         }
     }
 
-    /// The pixels whose scopes are `scopes[of[p]]`, each `of[p]` made by
-    /// [`PixelScopes::index`] (`index(None)`: the pixel has none).
-    pub(super) fn from_parts(of: Vec<u32>, scopes: Vec<BeamScope>) -> Self {
-        debug_assert!(of.iter().all(|&i| i == NONE || (i as usize) < scopes.len()));
-        Self { of, scopes }
-    }
-
-    /// The index to give, in [`PixelScopes::from_parts`], to the pixels whose scope is the
-    /// `k`-th of the list (`None`: no scope).
-    pub(super) fn index(k: Option<usize>) -> u32 {
+    /// Keeps `scope` and returns the index its pixels take ([`PixelScopes::NONE`] for
+    /// none).
+    pub(super) fn keep(&mut self, scope: Option<BeamScope>) -> u32 {
+        let Some(s) = scope else {
+            return Self::NONE;
+        };
+        self.scopes.push(s);
         // An image has fewer boxes than pixels, and fewer pixels than `u32::MAX`: a
         // window's pixels are indexed by `u32` throughout the renderer.
-        k.map_or(NONE, |k| k as u32)
+        (self.scopes.len() - 1) as u32
+    }
+
+    /// Gives every pixel `p` the scope of index `of[p]` (from [`PixelScopes::keep`]).
+    pub(super) fn assign(&mut self, of: Vec<u32>) {
+        debug_assert!(
+            of.iter()
+                .all(|&i| i == Self::NONE || (i as usize) < self.scopes.len())
+        );
+        self.of = of;
     }
 
     /// Gives the pixels `pixels` the scope `scope` (kept once for all of them).
     pub(super) fn set(&mut self, pixels: impl Iterator<Item = usize>, scope: Option<BeamScope>) {
-        let index = match scope {
-            Some(s) => {
-                self.scopes.push(s);
-                Self::index(Some(self.scopes.len() - 1))
-            }
-            None => NONE,
-        };
+        let index = self.keep(scope);
         for p in pixels {
             self.of[p] = index;
         }
@@ -58,7 +58,7 @@ impl PixelScopes {
     #[inline]
     pub(super) fn get(&self, p: usize) -> Option<&BeamScope> {
         match self.of[p] {
-            NONE => None,
+            Self::NONE => None,
             k => Some(&self.scopes[k as usize]),
         }
     }
@@ -95,10 +95,11 @@ mod tests {
         s.set([4].into_iter(), Some(scope(3.0)));
         assert_eq!(t(&s, 4), Some(3.0));
         assert_eq!(t(&s, 0), Some(1.0));
-        let parts = PixelScopes::from_parts(
-            vec![PixelScopes::index(Some(1)), PixelScopes::index(None)],
-            vec![scope(5.0), scope(6.0)],
-        );
+        let mut parts = PixelScopes::default();
+        parts.keep(Some(scope(5.0)));
+        let kept = parts.keep(Some(scope(6.0)));
+        let none = parts.keep(None);
+        parts.assign(vec![kept, none]);
         assert_eq!(parts.get(0).map(|s| s.t.inf()), Some(6.0));
         assert!(parts.get(1).is_none());
     }

@@ -66,11 +66,9 @@ pub(super) fn shading(
     let samples = &pixels.samples;
     // Lit: the hit samples are shaded in one batch, each sample's colour found by its rank
     // among them. Unlit: a hit's colour is its material's, read where it is summed.
-    let mut hit_samples = Vec::new();
-    let mut rank = Vec::new();
-    let mut colors: Vec<[f32; 3]> = Vec::new();
-    if lit {
-        rank.reserve(samples.len());
+    let (rank, colors) = if lit {
+        let mut hit_samples = Vec::new();
+        let mut rank = Vec::with_capacity(samples.len());
         for (j, s) in samples.iter().enumerate() {
             rank.push(hit_samples.len());
             if s.hit.is_some() {
@@ -105,7 +103,7 @@ pub(super) fn shading(
                 .zip(&hit_samples)
                 .for_each(|(f, &j)| f.copy_from_slice(&vis[j * nl..(j + 1) * nl]));
         }
-        colors = q
+        let colors = q
             .shade(&ShadeBatch {
                 lights: &lights,
                 ambient: scene.ambient,
@@ -113,7 +111,10 @@ pub(super) fn shading(
                 fractions: &fractions,
             })?
             .values;
-    }
+        (rank, colors)
+    } else {
+        (Vec::new(), Vec::new())
+    };
     let color = |j: usize, hit: &Hit| {
         if lit {
             colors[rank[j]]
