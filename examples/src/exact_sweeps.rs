@@ -38,6 +38,8 @@ pub struct Options {
     pub light_scales: Vec<f64>,
     /// Lights per side of each area light (`k × k`).
     pub light_counts: Vec<u32>,
+    /// Where to write the exact method's render of the scene (PNG), if anywhere.
+    pub image: Option<std::path::PathBuf>,
 }
 
 /// One render's figures.
@@ -50,6 +52,8 @@ struct Run {
     counters: Vec<(String, u64)>,
     /// Thread seconds of the exact method's phases, summed over the lights.
     phases: Vec<(String, f64)>,
+    /// The image.
+    image: beam_trace::Image,
 }
 
 impl Run {
@@ -94,6 +98,7 @@ fn run(scene: &Scene, method: &str) -> Result<Run, String> {
         fractions,
         counters: pass.counters.clone(),
         phases,
+        image: out.image,
     })
 }
 
@@ -187,64 +192,112 @@ fn samples_for(points: &[(u32, f64)], target: f64) -> Option<f64> {
 }
 
 /// A stand-in for the paper's scanned models: the lumpy ball and canopy of
-/// [`crate::polygon_scene::lumpy_ball_and_canopy`] (about `triangles` triangles from
-/// `seed`; the ball closed) on an implicit floor `y = 0`, under a square light of side 1 at
-/// height 4, seen from above and to the side.
+/// The generated stand-ins for the paper's models.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum StandIn {
+    /// A lumpy ball and a canopy of leaves ([`crate::polygon_scene::lumpy_ball_and_canopy`]):
+    /// curved, every triangle its own face.
+    Canopy,
+    /// A furnished hall ([`crate::polygon_scene::furnished_hall`]): planar faces, each
+    /// triangulated, many small parts.
+    Hall,
+}
+
+/// The stand-in `kind` of about `triangles` triangles from `seed` on an implicit floor
+/// `y = 0`, under a square light of side 1 at height 4 above the origin, seen from above
+/// and to the side.
 ///
 /// # Errors
 /// None in practice: the base scene is fixed text.
-pub fn generated_scene(triangles: usize, seed: u64) -> Result<Scene, String> {
-    let text = r#"
+pub fn generated_scene(kind: StandIn, triangles: usize, seed: u64) -> Result<Scene, String> {
+    // The meshes, and the half-width of the square they stand in about the origin.
+    let (meshes, half) = match kind {
+        StandIn::Canopy => {
+            let (ball, leaves) = crate::polygon_scene::lumpy_ball_and_canopy(triangles, seed);
+            (
+                vec![
+                    ("ball", ball, [0.85, 0.45, 0.25]),
+                    ("canopy", leaves, [0.3, 0.6, 0.3]),
+                ],
+                1.5,
+            )
+        }
+        StandIn::Hall => {
+            let (furniture, half) = crate::polygon_scene::furnished_hall(triangles, seed);
+            (vec![("furniture", furniture, [0.7, 0.55, 0.4])], half)
+        }
+    };
+    // The canopy's view (from above and to the side), and the hall's, its floor just
+    // wider than the furniture, which fills the picture.
+    let (eye, look_y, floor) = match kind {
+        StandIn::Canopy => ((3.6, 5.4), 0.7, 4.0),
+        StandIn::Hall => ((1.5 * half + 1.0, 2.1 * half + 1.5), 0.0, half + 1.0),
+    };
+    let text = format!(
+        r#"
         background = [0.08, 0.09, 0.12]
         ambient = 0.12
         [camera]
-        eye = [0.0, 3.6, 5.4]
-        look_at = [0.0, 0.7, 0.0]
+        eye = [0.0, {ey}, {ez}]
+        look_at = [0.0, {ly}, 0.0]
         up = [0.0, 1.0, 0.0]
         fov = 45.0
         [[surfaces]]
         name = "floor"
         formula = "y"
-        bounds = [[-4.0, -0.5, -4.0], [4.0, 0.0, 4.0]]
+        bounds = [[-{f}, -0.5, -{f}], [{f}, 0.0, {f}]]
         clip = true
-        material = { color = [0.75, 0.75, 0.72], specular = 0.05, shininess = 8.0 }
+        material = {{ color = [0.75, 0.75, 0.72], specular = 0.05, shininess = 8.0 }}
         [[lights]]
         type = "area"
         center = [0.0, 4.0, 0.0]
         size = 1.0
         normal = "y"
-    "#;
-    let mut scene = Scene::from_toml(text, "generated.toml", None).map_err(|e| e.to_string())?;
-    let (ball, leaves) = crate::polygon_scene::lumpy_ball_and_canopy(triangles, seed);
-    let mesh = |name: &str, tris: Vec<[glam::DVec3; 3]>, color: [f32; 3]| MeshSurface {
-        name: name.into(),
-        triangles: tris
-            .into_iter()
-            .map(|[a, b, c]| Triangle::new(a, b, c))
-            .filter(|t| !t.is_degenerate())
-            .collect(),
-        material: Material {
-            color,
-            ..Material::default()
-        },
-    };
-    scene.meshes = vec![
-        mesh("ball", ball, [0.85, 0.45, 0.25]),
-        mesh("canopy", leaves, [0.3, 0.6, 0.3]),
-    ];
+    "#,
+        ey = eye.0,
+        ez = eye.1,
+        ly = look_y,
+        f = floor,
+    );
+    let mut scene = Scene::from_toml(&text, "generated.toml", None).map_err(|e| e.to_string())?;
+    scene.meshes = meshes
+        .into_iter()
+        .map(|(name, tris, color)| MeshSurface {
+            name: name.into(),
+            triangles: tris
+                .into_iter()
+                .map(|[a, b, c]| Triangle::new(a, b, c))
+                .filter(|t| !t.is_degenerate())
+                .collect(),
+            material: Material {
+                color,
+                ..Material::default()
+            },
+        })
+        .collect();
     Ok(scene)
 }
 
 /// The experiments on the scene file `path` (or the generated scene of
-/// [`generated_scene`] with `generate = Some((triangles, seed))`), as a markdown report.
+/// [`generated_scene`] with `generate = Some((kind, triangles, seed))`), as a markdown
+/// report.
 ///
 /// # Errors
 /// A scene that cannot be read or rendered, or a method the spec parser refuses.
-pub fn report(path: &Path, generate: Option<(usize, u64)>, o: &Options) -> Result<String, String> {
+pub fn report(
+    path: &Path,
+    generate: Option<(StandIn, usize, u64)>,
+    o: &Options,
+) -> Result<String, String> {
     let (mut scene, name) = match generate {
-        Some((n, seed)) => (
-            generated_scene(n, seed)?,
-            format!("a lumpy ball and canopy of about {n} triangles (seed {seed})"),
+        Some((kind, n, seed)) => (
+            generated_scene(kind, n, seed)?,
+            match kind {
+                StandIn::Canopy => {
+                    format!("a lumpy ball and canopy of about {n} triangles (seed {seed})")
+                }
+                StandIn::Hall => format!("a furnished hall of about {n} triangles (seed {seed})"),
+            },
         ),
         None => (
             Scene::load(path).map_err(|e| e.to_string())?,
@@ -272,24 +325,43 @@ pub fn report(path: &Path, generate: Option<(usize, u64)>, o: &Options) -> Resul
         rayon::current_num_threads()
     );
     let exact = run(&scene, "exact")?;
+    if let Some(path) = &o.image {
+        exact.image.write_png(path).map_err(|e| e.to_string())?;
+        eprintln!("wrote {}", path.display());
+    }
     let single = run(
         &scene,
         &format!("exact:{}:1", ShadowSpec::DEFAULT_EXACT_DEPTH),
     )?;
+    let triangles_only = run(
+        &scene,
+        &format!(
+            "exact:{}:{}:triangles",
+            ShadowSpec::DEFAULT_EXACT_DEPTH,
+            ShadowSpec::MAX_EXACT_GROUP
+        ),
+    )?;
     let _ = writeln!(
         md,
-        "**The exact method and its coherence**\n\n| method | time (s) | BSP nodes | peak nodes | \
-         peak memory (MB) | thread s per phase |\n|---|---:|---:|---:|---:|---|"
+        "**The exact method, its coherence and its faces**\n\n| method | time (s) | occluders \
+         (faces / triangles) | BSP nodes | peak nodes | peak memory (MB) | thread s per phase |\n\
+         |---|---:|---:|---:|---:|---:|---|"
     );
     for (name, r) in [
-        ("`exact` (groups)", &exact),
+        ("`exact` (groups, faces)", &exact),
         ("`exact:D:1` (a tree per query)", &single),
+        (
+            "`exact:D:G:triangles` (triangles, not faces)",
+            &triangles_only,
+        ),
     ] {
         let peak = r.counter("bsp_peak_nodes");
         let _ = writeln!(
             md,
-            "| {name} | {:.3} | {} | {peak} | {:.2} | {} |",
+            "| {name} | {:.3} | {} / {} | {} | {peak} | {:.2} | {} |",
             r.secs,
+            r.counter("shaft_faces"),
+            r.counter("shaft_triangles"),
             r.counter("bsp_nodes"),
             (peak as usize * NODE_BYTES) as f64 / 1e6,
             r.phase_list()
@@ -297,8 +369,10 @@ pub fn report(path: &Path, generate: Option<(usize, u64)>, o: &Options) -> Resul
     }
     let _ = writeln!(
         md,
-        "\nWithout coherence the method takes {:.2} times as long (the paper: 16 to 48 times).\n",
-        single.secs / exact.secs
+        "\nWithout coherence the method takes {:.2} times as long (the paper: 16 to 48 times); \
+         with the triangles as occluders instead of the faces, {:.2} times.\n",
+        single.secs / exact.secs,
+        triangles_only.secs / exact.secs
     );
     let _ = writeln!(
         md,

@@ -118,6 +118,121 @@ pub fn lumpy_ball_and_canopy(triangles: usize, seed: u64) -> (Vec<Triangle>, Vec
     (out, canopy)
 }
 
+/// A closed prism over the convex polygon `base` (points `(x, z)` in order, either way
+/// round) from height `y0` to `y1`: its sides as quads cut in two, its caps as fans, every
+/// triangle wound outward. Vertical sides and horizontal caps keep each face's corners on
+/// one plane exactly (a side's upper corners are its lower ones raised), so a mesh's
+/// coplanar neighbours can be merged into its faces again.
+fn prism(base: &[(f64, f64)], y0: f64, y1: f64) -> Vec<Triangle> {
+    let n = base.len();
+    let at = |k: usize, y: f64| DVec3::new(base[k % n].0, y, base[k % n].1);
+    let mut out = Vec::with_capacity(4 * n - 4);
+    for k in 0..n {
+        let (a, b) = (at(k, y0), at(k + 1, y0));
+        let (c, d) = (at(k + 1, y1), at(k, y1));
+        out.push([a, b, c]);
+        out.push([a, c, d]);
+    }
+    for k in 1..n - 1 {
+        out.push([at(0, y0), at(k + 1, y0), at(k, y0)]);
+        out.push([at(0, y1), at(k, y1), at(k + 1, y1)]);
+    }
+    // Outward: each triangle's normal away from the prism's centre (it is convex).
+    let centre = (0..n).map(|k| at(k, 0.5 * (y0 + y1))).sum::<DVec3>() / n as f64;
+    for t in &mut out {
+        let normal = (t[1] - t[0]).cross(t[2] - t[0]);
+        if normal.dot((t[0] + t[1] + t[2]) / 3.0 - centre) < 0.0 {
+            t.swap(1, 2);
+        }
+    }
+    out
+}
+
+/// The base of a box of half-sides `(hx, hz)` about `(cx, cz)`, turned by `angle` about
+/// the vertical.
+fn rectangle((cx, cz): (f64, f64), (hx, hz): (f64, f64), angle: f64) -> Vec<(f64, f64)> {
+    let (s, c) = angle.sin_cos();
+    [(-hx, -hz), (hx, -hz), (hx, hz), (-hx, hz)]
+        .iter()
+        .map(|&(x, z)| (cx + c * x - s * z, cz + s * x + c * z))
+        .collect()
+}
+
+/// The base of a leg: a regular polygon of `sides` corners and radius `r` about `(cx, cz)`.
+fn circle((cx, cz): (f64, f64), r: f64, sides: usize) -> Vec<(f64, f64)> {
+    (0..sides)
+        .map(|k| {
+            let a = std::f64::consts::TAU * k as f64 / sides as f64;
+            (cx + r * a.cos(), cz + r * a.sin())
+        })
+        .collect()
+}
+
+/// A furnished hall, about `triangles` triangles from `seed`: a grid of tables, each with
+/// four chairs around it (2.1 apart, so that no two sets meet), every piece a closed prism (box tops, seats and backs; legs
+/// turned as polygons of many sides), each table and chair turned a little at random.
+/// The architectural kind of model the paper renders (a conference room): large planar
+/// faces, each triangulated, and many small parts. Returns the pieces' triangles and the
+/// half-width of the square the hall's furniture stands in (centred on the origin).
+///
+/// A set (a table and its chairs) with legs of `n` sides is `80 n + 28` triangles; the
+/// hall holds up to 100 sets, and beyond that the legs get more sides.
+pub fn furnished_hall(triangles: usize, seed: u64) -> (Vec<Triangle>, f64) {
+    let mut rng = SplitMix64::new(seed);
+    let sets = (triangles / 1_300).clamp(1, 100);
+    let sides = ((triangles / sets).saturating_sub(28) / 80).max(6);
+    let per_row = (sets as f64).sqrt().ceil() as usize;
+    let spacing = 2.1;
+    let half = 0.5 * spacing * per_row as f64;
+    let mut out = Vec::with_capacity(sets * (80 * sides + 28));
+    let mut piece = |top: Vec<(f64, f64)>,
+                     legs: &[(f64, f64)],
+                     leg: (f64, f64),
+                     back: Option<Vec<(f64, f64)>>| {
+        // The parts a millimetre apart: touching parts would share no edge but meet, and
+        // the mesh index judges only pieces proven closed and embedded.
+        out.extend(prism(&top, leg.1, leg.1 + 0.04));
+        for &p in legs {
+            out.extend(prism(&circle(p, leg.0, sides), 0.0, leg.1 - 0.001));
+        }
+        if let Some(b) = back {
+            out.extend(prism(&b, leg.1 + 0.041, leg.1 + 0.5));
+        }
+    };
+    for k in 0..sets {
+        let centre = (
+            spacing * ((k % per_row) as f64 + 0.5) - half,
+            spacing * ((k / per_row) as f64 + 0.5) - half,
+        );
+        let turn = 0.3 * (rng.next_f64() - 0.5);
+        let (s, c) = turn.sin_cos();
+        let place = |(x, z): (f64, f64)| (centre.0 + c * x - s * z, centre.1 + s * x + c * z);
+        // The table: a top of 0.9 × 0.9 at 0.72, four legs.
+        let corners = [(-0.38, -0.38), (0.38, -0.38), (0.38, 0.38), (-0.38, 0.38)];
+        piece(
+            rectangle(centre, (0.45, 0.45), turn),
+            &corners.map(place),
+            (0.03, 0.72),
+            None,
+        );
+        // The chairs, one per side, facing the table, each turned a little more.
+        for side in 0..4 {
+            let a = turn + std::f64::consts::FRAC_PI_2 * side as f64 + 0.2 * (rng.next_f64() - 0.5);
+            let (sa, ca) = a.sin_cos();
+            let at = |(x, z): (f64, f64)| (centre.0 + ca * x - sa * z, centre.1 + sa * x + ca * z);
+            let seat = at((0.0, 0.72));
+            let legs = [(-0.17, 0.55), (0.17, 0.55), (0.17, 0.89), (-0.17, 0.89)].map(at);
+            piece(
+                rectangle(seat, (0.21, 0.21), a),
+                &legs,
+                (0.02, 0.44),
+                Some(rectangle(at((0.0, 0.9)), (0.2, 0.02), a)),
+            );
+        }
+    }
+    (out, half)
+}
+
 /// The triangles of a closed, outward-wound mesh that have some corner of `light` in front
 /// of their plane (the others are redundant occluders, see [`lumpy_ball_and_canopy`]).
 pub fn facing(tris: &[Triangle], light: &Patch) -> Vec<Triangle> {
@@ -342,6 +457,35 @@ pub fn shaft(
 mod tests {
     use super::*;
     use beam_trace::shadow::exact::{ExactShadows, Plane};
+
+    /// The hall's pieces are closed, wound outward and apart from each other (every
+    /// triangle faces out of its solid), about as many triangles as asked, and its faces
+    /// merge: the boxes' quads and the legs' caps and sides, fewer than half the triangles.
+    #[test]
+    fn the_hall_is_closed_pieces_whose_faces_merge() {
+        for asked in [3_000, 40_000] {
+            let (hall, half) = furnished_hall(asked, 5);
+            let tris: Vec<beam_trace::mesh::Triangle> = hall
+                .iter()
+                .map(|&[a, b, c]| beam_trace::mesh::Triangle::new(a, b, c))
+                .collect();
+            assert!(
+                tris.len() as f64 > 0.8 * asked as f64 && (tris.len() as f64) < 1.2 * asked as f64,
+                "{} triangles for {asked}",
+                tris.len()
+            );
+            let f = beam_trace::mesh::facing(&tris);
+            let out = f.iter().filter(|&&x| x == 1).count();
+            assert_eq!(out, f.len(), "triangles facing out of a closed piece");
+            assert!(
+                hall.iter()
+                    .flatten()
+                    .all(|p| p.x.abs() <= half && p.z.abs() <= half)
+            );
+            let faces = beam_trace::mesh::faces(&tris, &vec![0; tris.len()]);
+            assert!(2 * faces.len() < tris.len(), "{} faces", faces.len());
+        }
+    }
 
     /// The ball is closed: dropping the faces turned away from the light changes no exact
     /// visible fraction, and every edge is shared by exactly two triangles.

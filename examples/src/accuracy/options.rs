@@ -74,6 +74,7 @@ impl Reference {
             Reference::Exact => ShadowSpec::Exact {
                 depth: ShadowSpec::DEFAULT_EXACT_DEPTH,
                 group: ShadowSpec::MAX_EXACT_GROUP,
+                faces: true,
             },
         }
     }

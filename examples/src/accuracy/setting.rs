@@ -192,10 +192,17 @@ impl Setting {
                 let settings = written.trim_start_matches("certified:");
                 format!("c{}", settings.replace(':', "/"))
             }
-            ShadowSpec::Exact { depth, group } if group == ShadowSpec::MAX_EXACT_GROUP => {
-                format!("e{depth}")
-            }
-            ShadowSpec::Exact { depth, group } => format!("e{depth}/{group}"),
+            ShadowSpec::Exact {
+                depth,
+                group,
+                faces: true,
+            } if group == ShadowSpec::MAX_EXACT_GROUP => format!("e{depth}"),
+            ShadowSpec::Exact {
+                depth,
+                group,
+                faces: true,
+            } => format!("e{depth}/{group}"),
+            ShadowSpec::Exact { depth, group, .. } => format!("e{depth}/{group}t"),
         };
         match self.variant {
             Variant::Default => method,

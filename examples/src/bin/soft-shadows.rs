@@ -93,13 +93,20 @@ enum Table {
         /// Lights per side each area light is cut into (6: 36 lights).
         #[arg(long, value_delimiter = ',', default_value = "1,2,3,4,6")]
         light_counts: Vec<u32>,
-        /// Instead of the scene file, a generated lumpy ball and canopy of about this many
-        /// triangles on a floor (stand-ins for the paper's scanned models).
+        /// Instead of the scene file, a generated scene of about this many triangles on a
+        /// floor (stand-ins for the paper's models, see `--stand-in`).
         #[arg(long)]
         generate: Option<usize>,
+        /// What `--generate` makes: a lumpy ball and canopy (curved, small triangles) or a
+        /// furnished hall (planar faces, many parts).
+        #[arg(long, value_enum, default_value = "canopy")]
+        stand_in: examples::exact_sweeps::StandIn,
         /// Seed of the generated scene.
         #[arg(long, default_value_t = 1)]
         seed: u64,
+        /// Also write the exact method's render of the scene to this PNG file.
+        #[arg(long)]
+        image: Option<std::path::PathBuf>,
     },
 }
 
@@ -309,16 +316,19 @@ fn run(args: Args) -> Result<(), String> {
             light_scales,
             light_counts,
             generate,
+            stand_in,
             seed,
+            image,
         } => examples::exact_sweeps::report(
             &scene,
-            generate.map(|n| (n, seed)),
+            generate.map(|n| (stand_in, n, seed)),
             &examples::exact_sweeps::Options {
                 size: (width, height),
                 samples,
                 sweep_samples,
                 light_scales,
                 light_counts,
+                image,
             },
         )?,
     };

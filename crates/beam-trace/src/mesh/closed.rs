@@ -16,7 +16,7 @@ use interval_core::Interval;
 use super::triangle::Triangle;
 
 /// A vertex's exact coordinates (`-0.0` taken as `0.0`).
-fn key(p: DVec3) -> [u64; 3] {
+pub(super) fn key(p: DVec3) -> [u64; 3] {
     [p.x, p.y, p.z].map(|c| (c + 0.0).to_bits())
 }
 

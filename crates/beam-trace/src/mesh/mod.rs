@@ -21,6 +21,7 @@
 mod bvh;
 mod closed;
 mod embedded;
+mod faces;
 mod inner;
 mod obj;
 mod shaft;
@@ -37,6 +38,7 @@ pub(crate) use embedded::in_range;
 use inner::inner_squares_of;
 
 pub use closed::facing;
+pub use faces::{Faces, MAX_FACE_VERTICES, faces};
 pub use inner::{InnerSquare, inner_squares};
 pub use obj::read_obj;
 pub use shaft::Shaft;
@@ -57,6 +59,9 @@ pub struct MeshIndex {
     /// The squares inside the meshes' closed components of [`MIN_INNER_FACES`] faces or
     /// more ([`inner_squares`]).
     inner: Vec<InnerSquare>,
+    /// The triangles' faces ([`faces`]), each of one mesh and facing one way, numbered over
+    /// all the meshes.
+    faces: Faces,
 }
 
 /// The fewest faces of a closed component that the index looks for squares inside: a
@@ -72,6 +77,7 @@ impl MeshIndex {
         let mut facings = Vec::new();
         let mut bounds = Vec::new();
         let mut inner = Vec::new();
+        let mut all_faces = Faces::default();
         for (k, m) in meshes.into_iter().enumerate() {
             // Only closed components proven embedded are judged: what the shadows take of
             // them holds of the boundary of a solid.
@@ -79,7 +85,12 @@ impl MeshIndex {
             inner.extend(inner_squares_of(m, &components, MIN_INNER_FACES));
             all.extend_from_slice(m);
             owner.extend(std::iter::repeat_n(k as u32, m.len()));
-            facings.extend(facing_of(m, &components));
+            let facing = facing_of(m, &components);
+            let mine = faces(m, &facing.iter().map(|&f| i32::from(f)).collect::<Vec<_>>());
+            let first = all_faces.outlines.len() as u32;
+            all_faces.of.extend(mine.of.iter().map(|f| f + first));
+            all_faces.outlines.extend(mine.outlines);
+            facings.extend(facing);
             bounds.push(bounds_of(m).unwrap_or([interval_core::Interval::EMPTY; 3]));
         }
         Self {
@@ -89,7 +100,24 @@ impl MeshIndex {
             facing: facings,
             bounds,
             inner,
+            faces: all_faces,
         }
+    }
+
+    /// The face ([`faces`]) of triangle `triangle`.
+    pub fn face_of(&self, triangle: u32) -> u32 {
+        self.faces.of[triangle as usize]
+    }
+
+    /// The outline of face `face`: a strictly convex polygon that is exactly the union of
+    /// its triangles (or one triangle).
+    pub fn face(&self, face: u32) -> &[DVec3] {
+        &self.faces.outlines[face as usize]
+    }
+
+    /// The number of faces of the meshes.
+    pub fn face_count(&self) -> usize {
+        self.faces.len()
     }
 
     /// The hierarchy; its triangle indices are those of [`MeshIndex::owner`].

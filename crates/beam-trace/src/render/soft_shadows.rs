@@ -102,6 +102,7 @@ pub(super) fn soft_shadows(
             c.rays += a.work.rays;
             c.cache_hits += a.work.cache_hits;
             c.shaft_triangles += a.work.shaft_triangles;
+            c.shaft_faces += a.work.shaft_faces;
             c.bsp_nodes += a.work.bsp.inner_nodes;
             c.bsp_peak_nodes = c.bsp_peak_nodes.max(a.work.bsp.peak_nodes);
             c.bsp_fragments += a.work.bsp.fragments;

@@ -196,6 +196,20 @@ pub trait Occluders {
         Vec::new()
     }
 
+    /// The occluders that stand for the `triangles` of [`Occluders::triangles`] that are not
+    /// redundant: convex polygons, each exactly a union of the scene's triangles, holding
+    /// every one of them (the faces of [`crate::mesh::MeshIndex::face`]: coplanar
+    /// neighbours merged), each once, in the order of their first triangle. A segment meets
+    /// one of them exactly where it meets one of those triangles or another triangle of
+    /// their faces. By default each triangle alone.
+    fn faces(&mut self, triangles: &[ShaftTriangle]) -> Vec<Vec<DVec3>> {
+        triangles
+            .iter()
+            .filter(|t| !t.redundant)
+            .map(|t| t.triangle.v.to_vec())
+            .collect()
+    }
+
     /// Convex polygons inside closed meshes that some segment from `from` to `light` may
     /// reach, each blocking only segments that a triangle of [`Occluders::triangles`]
     /// blocks as well (the index finds them only inside closed meshes proven embedded,
@@ -232,6 +246,8 @@ pub struct ShaftTriangle {
     /// light: [`crate::mesh::MeshIndex::turned_away`]). The visible fractions need no
     /// redundant triangle; a proof that no triangle meets a segment needs them all.
     pub redundant: bool,
+    /// The face of the scene's meshes that holds it ([`crate::mesh::MeshIndex::face_of`]).
+    pub face: u32,
 }
 
 /// Work counters of soft shadows (the columns of the soft-shadow paper's Table 1 and more).
@@ -253,6 +269,8 @@ pub struct ShadowWork {
     pub cache_hits: u64,
     /// Triangles kept by the exact method's shaft culling, summed over its queries.
     pub shaft_triangles: u64,
+    /// The faces of those triangles ([`Occluders::faces`]): the exact method's occluders.
+    pub shaft_faces: u64,
     /// The exact method's BSP work.
     pub bsp: BspWork,
     /// The exact method's thread time per phase (zero for the other methods).
@@ -272,6 +290,7 @@ impl ShadowWork {
         self.rays += o.rays;
         self.cache_hits += o.cache_hits;
         self.shaft_triangles += o.shaft_triangles;
+        self.shaft_faces += o.shaft_faces;
         self.bsp.add(&o.bsp);
         self.exact_times.add(&o.exact_times);
         self.root.add(&o.root);

@@ -64,7 +64,15 @@ impl ShadowSpec {
                 budget,
                 segments,
             }),
-            ShadowSpec::Exact { depth, group } => Box::new(exact::Exact { depth, group }),
+            ShadowSpec::Exact {
+                depth,
+                group,
+                faces,
+            } => Box::new(exact::Exact {
+                depth,
+                group,
+                faces,
+            }),
         }
     }
 }

@@ -128,6 +128,9 @@ pub enum ShadowSpec {
         /// Most queries sharing one BSP (1: a tree per query, the method without
         /// coherence).
         group: u32,
+        /// The occluders are the meshes' faces (coplanar neighbours merged,
+        /// [`crate::mesh::faces`]); `false` (`exact:D:G:triangles`): their triangles.
+        faces: bool,
     },
 }
 
@@ -203,8 +206,14 @@ impl fmt::Display for ShadowSpec {
                     write!(f, "certified:{tolerance}")
                 }
             }
-            ShadowSpec::Exact { depth, group } => {
-                if group != ShadowSpec::MAX_EXACT_GROUP {
+            ShadowSpec::Exact {
+                depth,
+                group,
+                faces,
+            } => {
+                if !faces {
+                    write!(f, "exact:{depth}:{group}:triangles")
+                } else if group != ShadowSpec::MAX_EXACT_GROUP {
                     write!(f, "exact:{depth}:{group}")
                 } else if depth != ShadowSpec::DEFAULT_EXACT_DEPTH {
                     write!(f, "exact:{depth}")
@@ -218,7 +227,7 @@ impl fmt::Display for ShadowSpec {
 
 const FORMS: &str = "stochastic:N, stochastic:N:cache, beam:n, beam-all:n, beam-quadtree:n, \
                      minkowski:stochastic:N, minkowski:beam:n, certified:TOL, \
-                     certified:TOL:BUDGET, certified:TOL:BUDGET:SEGMENTS, exact, exact:D, exact:D:G";
+                     certified:TOL:BUDGET, certified:TOL:BUDGET:SEGMENTS, exact, exact:D, exact:D:G, exact:D:G:triangles";
 
 fn count(s: &str, text: &str, what: &str, max: u32) -> Result<u32, String> {
     match text.parse::<u32>() {
@@ -293,14 +302,22 @@ impl FromStr for ShadowSpec {
             ["exact"] => Ok(ShadowSpec::Exact {
                 depth: ShadowSpec::DEFAULT_EXACT_DEPTH,
                 group: ShadowSpec::MAX_EXACT_GROUP,
+                faces: true,
             }),
             ["exact", d] => Ok(ShadowSpec::Exact {
                 depth: halvings(d)?,
                 group: ShadowSpec::MAX_EXACT_GROUP,
+                faces: true,
             }),
             ["exact", d, g] => Ok(ShadowSpec::Exact {
                 depth: halvings(d)?,
                 group: count(s, g, "largest group", ShadowSpec::MAX_EXACT_GROUP)?,
+                faces: true,
+            }),
+            ["exact", d, g, "triangles"] => Ok(ShadowSpec::Exact {
+                depth: halvings(d)?,
+                group: count(s, g, "largest group", ShadowSpec::MAX_EXACT_GROUP)?,
+                faces: false,
             }),
             _ => Err(format!("unknown shadow method '{s}' (one of: {FORMS})")),
         }
@@ -329,6 +346,7 @@ mod tests {
             "exact",
             "exact:3",
             "exact:8:1",
+            "exact:8:64:triangles",
         ] {
             let spec: ShadowSpec = s.parse().unwrap();
             assert_eq!(spec.to_string(), s);

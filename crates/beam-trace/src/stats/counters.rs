@@ -204,6 +204,9 @@ counters! {
         cache_hits,
         /// Triangles kept by the exact method's shaft culling, over its queries.
         shaft_triangles,
+        /// The faces those triangles make (coplanar neighbours merged): the exact method's
+        /// occluders.
+        shaft_faces,
         /// Inner nodes the exact method's BSPs created.
         bsp_nodes,
         /// The most nodes of one BSP alive at once (its peak memory, in nodes).

@@ -116,7 +116,21 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
             .map(|i| ShaftTriangle {
                 triangle: *m.bvh().triangle(i),
                 redundant: m.turned_away(i, &light_box, &corners),
+                face: m.face_of(i),
             })
+            .collect()
+    }
+
+    fn faces(&mut self, triangles: &[ShaftTriangle]) -> Vec<Vec<DVec3>> {
+        let Some(m) = &self.queries.meshes else {
+            return Vec::new();
+        };
+        // A face's triangles are of one mesh, one plane and one facing: redundant alike.
+        let mut seen = std::collections::HashSet::new();
+        triangles
+            .iter()
+            .filter(|t| !t.redundant && seen.insert(t.face))
+            .map(|t| m.face(t.face).to_vec())
             .collect()
     }
 

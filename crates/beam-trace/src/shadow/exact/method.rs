@@ -77,6 +77,9 @@ pub struct Exact {
     /// Most neighbouring queries sharing one BSP (1: a tree per query, the method without
     /// coherence).
     pub group: u32,
+    /// The occluders are the meshes' faces ([`Occluders::faces`]: coplanar neighbours
+    /// merged), not their triangles.
+    pub faces: bool,
 }
 
 /// What the refinement against the implicit surfaces has summed.
@@ -193,13 +196,20 @@ impl Exact {
             return;
         }
         // Faces of closed meshes turned away from the light block nothing that their
-        // mesh's other faces do not: the tree needs only the others.
-        let polygons: Vec<Vec<DVec3>> = triangles
-            .iter()
-            .filter(|t| !t.redundant)
-            .map(|t| t.triangle.v.to_vec())
-            .collect();
-        work.shaft_triangles += polygons.len() as u64;
+        // mesh's other faces do not: the tree needs only the others, each coplanar
+        // neighbourhood as one convex face (no edge between two of its triangles to sort).
+        work.shaft_triangles += triangles.iter().filter(|t| !t.redundant).count() as u64;
+        let polygons = if self.faces {
+            timed(&mut times.shaft, || occluders.faces(&triangles))
+        } else {
+            let plain: Vec<Vec<DVec3>> = triangles
+                .iter()
+                .filter(|t| !t.redundant)
+                .map(|t| t.triangle.v.to_vec())
+                .collect();
+            plain
+        };
+        work.shaft_faces += polygons.len() as u64;
         let receiver = Plane {
             point: first.origin,
             normal: n,
@@ -437,6 +447,7 @@ impl ShadowMethod for Exact {
         ShadowSpec::Exact {
             depth: self.depth,
             group: self.group,
+            faces: self.faces,
         }
         .to_string()
     }

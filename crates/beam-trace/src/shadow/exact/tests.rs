@@ -412,6 +412,82 @@ fn squares_inside_a_closed_mesh_change_the_cost_not_the_answer() {
     assert!(2 * f < p, "{f} nodes with the square against {p}");
 }
 
+/// A mesh's faces (coplanar neighbours merged, [`crate::mesh::faces`]) change the cost,
+/// not the fractions: boxes above the floor, one turned about two axes (its faces' vertices
+/// rounded off any plane but its triangles'), the triangles against the faces, the same
+/// fractions to 1e-9 at the floor points, with fewer nodes.
+#[test]
+fn faces_change_the_cost_not_the_answer() {
+    let (light, floor) = setup();
+    let (sin, cos) = 0.4f64.sin_cos();
+    let turned = |p: DVec3| {
+        let q = DVec3::new(cos * p.x - sin * p.y, sin * p.x + cos * p.y, p.z);
+        DVec3::new(q.x, cos * q.y - sin * q.z, sin * q.y + cos * q.z)
+    };
+    let mut tris = Vec::new();
+    for (lo, hi, turn) in [
+        (
+            DVec3::new(-0.6, 0.8, -0.5),
+            DVec3::new(-0.1, 1.0, 0.3),
+            false,
+        ),
+        (DVec3::new(0.2, 1.2, -0.2), DVec3::new(0.5, 1.3, 0.6), false),
+        (
+            DVec3::new(-0.2, -0.2, -0.2),
+            DVec3::new(0.2, 0.2, 0.2),
+            true,
+        ),
+    ] {
+        let corner = |k: usize| {
+            let p = DVec3::new(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            );
+            if turn {
+                turned(p) + DVec3::new(0.3, 0.6, -0.4)
+            } else {
+                p
+            }
+        };
+        for q in [
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+        ] {
+            tris.push(crate::mesh::Triangle::new(
+                corner(q[0]),
+                corner(q[1]),
+                corner(q[2]),
+            ));
+            tris.push(crate::mesh::Triangle::new(
+                corner(q[0]),
+                corner(q[2]),
+                corner(q[3]),
+            ));
+        }
+    }
+    let faces = crate::mesh::faces(&tris, &vec![0; tris.len()]);
+    // The axis-aligned boxes merge into quads; the turned one's quads where rounding
+    // left their corners on one plane.
+    assert!(faces.len() <= 24 + 12, "{} faces", faces.len());
+    let triangles: Vec<Vec<DVec3>> = tris.iter().map(|t| t.v.to_vec()).collect();
+    let mut plain = ExactShadows::new(light, floor, &triangles, 5).unwrap();
+    let mut fused = ExactShadows::new(light, floor, &faces.outlines, 5).unwrap();
+    for x in floor_points() {
+        let (a, b) = (
+            plain.visible_fraction(x, Some(DVec3::Y)).unwrap(),
+            fused.visible_fraction(x, Some(DVec3::Y)).unwrap(),
+        );
+        assert!((a - b).abs() < 1e-9, "at {x}: {a} against {b}");
+    }
+    let (p, f) = (plain.work().inner_nodes, fused.work().inner_nodes);
+    assert!(f < p, "{f} nodes with the faces against {p}");
+}
+
 /// The closed form of [`a_square_parallel_to_the_light_matches_the_closed_form`]'s
 /// visible fraction, enclosed in outward-rounded intervals.
 fn enclosed_closed_form(x: DVec3, r: Rect, h: f64) -> interval_core::Interval<f64> {

@@ -1,0 +1,392 @@
+//! Faces: the triangles of a mesh merged into convex polygons where neighbours lie in one
+//! plane (the quads of a box, the fans of a polygon an exporter triangulated).
+//!
+//! Two triangles are merged across an edge `a → b` when the edge occurs once each way (the
+//! two are consistently wound neighbours and no third triangle shares it), when the other
+//! triangle's far vertex lies **exactly** in the face's plane (Shewchuk's adaptive
+//! `orient3d`, the `robust` crate, on the vertices' doubles) and when the face stays
+//! **strictly convex** (every corner turns the face's way, decided by the exact `orient2d`
+//! of the points projected along the axis of the plane's largest normal coordinate: a
+//! projection that keeps, for points of one plane, every orientation up to one common
+//! sign). A face is then exactly the union of its triangles: the lines it stabs are the
+//! lines they stab (up to the shared edges, a set of measure zero), and a method that sorts
+//! lines by occluder edges (the exact soft shadows) needs only the face's outline, not the
+//! edges between its triangles.
+
+use std::collections::HashMap;
+
+use glam::DVec3;
+
+use super::closed::key;
+use super::triangle::Triangle;
+
+/// The most vertices a face is grown to (a face of many more would only be walked more
+/// often by the methods that clip it).
+pub const MAX_FACE_VERTICES: usize = 32;
+
+/// The faces of a set of triangles: each triangle's face, and each face's outline.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Faces {
+    /// Per triangle (in the order given), the index of its face.
+    pub of: Vec<u32>,
+    /// Per face, its vertices in order (the winding of its triangles): a strictly convex
+    /// polygon, or the triangle itself where it has no merged neighbour (degenerate
+    /// triangles included, as given).
+    pub outlines: Vec<Vec<DVec3>>,
+}
+
+impl Faces {
+    /// The number of faces.
+    pub fn len(&self) -> usize {
+        self.outlines.len()
+    }
+
+    /// Whether there is no face (no triangle).
+    pub fn is_empty(&self) -> bool {
+        self.outlines.is_empty()
+    }
+}
+
+/// The sign (−1, 0, 1) of `orient3d(a, b, c, d)`, exactly.
+fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
+    let p = |v: DVec3| robust::Coord3D {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    };
+    sign(robust::orient3d(p(a), p(b), p(c), p(d)))
+}
+
+fn sign(x: f64) -> i8 {
+    if x > 0.0 {
+        1
+    } else if x < 0.0 {
+        -1
+    } else {
+        0
+    }
+}
+
+/// A plane's points projected to 2D along `drop` (the coordinate left out), and the exact
+/// sign of the turn `p → q → r` there.
+#[derive(Copy, Clone)]
+struct Projection {
+    drop: usize,
+}
+
+impl Projection {
+    /// The projection along the axis of `n`'s largest coordinate, which is not zero.
+    fn along(n: DVec3) -> Self {
+        let a = n.abs();
+        let drop = if a.x >= a.y && a.x >= a.z {
+            0
+        } else if a.y >= a.z {
+            1
+        } else {
+            2
+        };
+        Self { drop }
+    }
+
+    fn point(self, p: DVec3) -> robust::Coord<f64> {
+        let (x, y) = match self.drop {
+            0 => (p.y, p.z),
+            1 => (p.z, p.x),
+            _ => (p.x, p.y),
+        };
+        robust::Coord { x, y }
+    }
+
+    /// The exact sign of the turn `p → q → r` after projection.
+    fn turn(self, p: DVec3, q: DVec3, r: DVec3) -> i8 {
+        sign(robust::orient2d(
+            self.point(p),
+            self.point(q),
+            self.point(r),
+        ))
+    }
+}
+
+/// A face being grown: its vertices (ids and points) in order.
+struct Growing {
+    ids: Vec<u32>,
+    points: Vec<DVec3>,
+    /// The plane's projection and the sign of a turn of the face's winding.
+    projection: Projection,
+    turn: i8,
+    /// Three vertices spanning the plane (the first triangle's).
+    plane: [DVec3; 3],
+}
+
+impl Growing {
+    /// Whether inserting `d` between vertices `i` and `i + 1` keeps the face strictly
+    /// convex: only the turns at `i`, `d` and `i + 1` change.
+    fn convex_with(&self, i: usize, d: DVec3) -> bool {
+        let n = self.points.len();
+        let at = |k: usize| self.points[k % n];
+        let (before, a, b, after) = (at(i + n - 1), at(i), at(i + 1), at(i + 2));
+        let t = self.projection;
+        t.turn(before, a, d) == self.turn
+            && t.turn(a, d, b) == self.turn
+            && t.turn(d, b, after) == self.turn
+    }
+}
+
+/// The faces of `tris`, where `group` tells which triangles may be merged (those of equal
+/// value: one mesh's, facing one way, [`super::closed`]).
+pub fn faces(tris: &[Triangle], group: &[i32]) -> Faces {
+    let mut ids: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut vertex = |p: DVec3| {
+        let n = ids.len() as u32;
+        *ids.entry(key(p)).or_insert(n)
+    };
+    let corners: Vec<[u32; 3]> = tris.iter().map(|t| t.v.map(&mut vertex)).collect();
+    // Each directed edge: the triangle that has it, or `None` once a second one does.
+    let mut edges: HashMap<(u32, u32), Option<u32>> = HashMap::new();
+    for (t, c) in corners.iter().enumerate() {
+        for k in 0..3 {
+            edges
+                .entry((c[k], c[(k + 1) % 3]))
+                .and_modify(|e| *e = None)
+                .or_insert(Some(t as u32));
+        }
+    }
+    let mut of = vec![u32::MAX; tris.len()];
+    let mut outlines = Vec::new();
+    for (t, tri) in tris.iter().enumerate() {
+        if of[t] != u32::MAX {
+            continue;
+        }
+        let id = outlines.len() as u32;
+        of[t] = id;
+        let projection = Projection::along(tri.normal());
+        let turn = projection.turn(tri.v[0], tri.v[1], tri.v[2]);
+        let mut face = Growing {
+            ids: corners[t].to_vec(),
+            points: tri.v.to_vec(),
+            projection,
+            turn,
+            plane: tri.v,
+        };
+        // A degenerate triangle (no turn) stays alone.
+        let mut grown = turn != 0;
+        while grown && face.ids.len() < MAX_FACE_VERTICES {
+            grown = false;
+            for i in 0..face.ids.len() {
+                let (a, b) = (face.ids[i], face.ids[(i + 1) % face.ids.len()]);
+                let (Some(Some(_)), Some(&Some(u))) = (edges.get(&(a, b)), edges.get(&(b, a)))
+                else {
+                    continue;
+                };
+                let u = u as usize;
+                if of[u] != u32::MAX || group[u] != group[t] {
+                    continue;
+                }
+                // The neighbour's vertex off the shared edge.
+                let Some(k) = (0..3).find(|&k| corners[u][k] != a && corners[u][k] != b) else {
+                    continue;
+                };
+                let (d_id, d) = (corners[u][k], tris[u].v[k]);
+                let [p, q, r] = face.plane;
+                if face.ids.contains(&d_id) || orient3d(p, q, r, d) != 0 || !face.convex_with(i, d)
+                {
+                    continue;
+                }
+                face.ids.insert(i + 1, d_id);
+                face.points.insert(i + 1, d);
+                of[u] = id;
+                grown = true;
+                break;
+            }
+        }
+        outlines.push(face.points);
+    }
+    Faces { of, outlines }
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    fn dv(x: f64, y: f64, z: f64) -> DVec3 {
+        DVec3::new(x, y, z)
+    }
+
+    /// The twelve triangles of the box `[lo, hi]`, wound outward, two per side.
+    fn boxed(lo: DVec3, hi: DVec3) -> Vec<Triangle> {
+        let c = |k: usize| {
+            dv(
+                if k & 1 == 0 { lo.x } else { hi.x },
+                if k & 2 == 0 { lo.y } else { hi.y },
+                if k & 4 == 0 { lo.z } else { hi.z },
+            )
+        };
+        let quads = [
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+        ];
+        quads
+            .iter()
+            .flat_map(|q| {
+                [
+                    Triangle::new(c(q[0]), c(q[1]), c(q[2])),
+                    Triangle::new(c(q[0]), c(q[2]), c(q[3])),
+                ]
+            })
+            .collect()
+    }
+
+    /// Twice the area of a planar polygon.
+    fn twice_area(poly: &[DVec3]) -> f64 {
+        let n = poly.len();
+        (0..n)
+            .map(|i| poly[i].cross(poly[(i + 1) % n]))
+            .sum::<DVec3>()
+            .length()
+    }
+
+    #[test]
+    fn a_box_is_six_quads() {
+        let tris = boxed(dv(-1.0, 0.5, 2.0), dv(3.0, 1.25, 2.5));
+        let f = faces(&tris, &[0; 12]);
+        assert_eq!(f.len(), 6);
+        for (k, face) in f.outlines.iter().enumerate() {
+            assert_eq!(face.len(), 4);
+            let members: Vec<usize> = (0..12).filter(|&t| f.of[t] == k as u32).collect();
+            assert_eq!(members.len(), 2);
+            let sum: f64 = members.iter().map(|&t| twice_area(&tris[t].v)).sum();
+            assert!((twice_area(face) - sum).abs() <= 1e-12 * sum);
+        }
+    }
+
+    #[test]
+    fn different_groups_bent_neighbours_and_non_convex_unions_stay_apart() {
+        let tris = boxed(DVec3::ZERO, DVec3::ONE);
+        // Every triangle its own group: nothing merges.
+        let groups: Vec<i32> = (0..12).collect();
+        assert_eq!(faces(&tris, &groups).len(), 12);
+        // Two triangles folded along their shared edge.
+        let folded = [
+            Triangle::new(dv(0.0, 0.0, 0.0), dv(1.0, 0.0, 0.0), dv(0.0, 1.0, 0.0)),
+            Triangle::new(dv(1.0, 0.0, 0.0), dv(1.0, 1.0, 1e-12), dv(0.0, 1.0, 0.0)),
+        ];
+        assert_eq!(faces(&folded, &[0, 0]).len(), 2);
+        // Two coplanar triangles whose union has a reflex corner.
+        let dart = [
+            Triangle::new(dv(0.0, 0.0, 0.0), dv(2.0, 0.0, 0.0), dv(1.0, 0.2, 0.0)),
+            Triangle::new(dv(2.0, 0.0, 0.0), dv(1.0, 1.0, 0.0), dv(1.0, 0.2, 0.0)),
+        ];
+        assert_eq!(faces(&dart, &[0, 0]).len(), 2);
+        // Wound against each other (the shared edge the same way in both): not neighbours.
+        let crossed = [
+            Triangle::new(dv(0.0, 0.0, 0.0), dv(1.0, 0.0, 0.0), dv(0.0, 1.0, 0.0)),
+            Triangle::new(dv(1.0, 0.0, 0.0), dv(0.0, 1.0, 0.0), dv(1.0, 1.0, 0.0)),
+        ];
+        assert_eq!(faces(&crossed, &[0, 0]).len(), 2);
+        // Wound alike, they make the unit square.
+        let square = [
+            crossed[0],
+            Triangle::new(dv(0.0, 1.0, 0.0), dv(1.0, 0.0, 0.0), dv(1.0, 1.0, 0.0)),
+        ];
+        assert_eq!(faces(&square, &[0, 0]).len(), 1);
+    }
+
+    /// The vertices of a convex polygon of `n` corners on the plane through `o` across axis
+    /// `axis` (so that every vertex lies on it exactly), and its fan from corner `start`.
+    fn fan(
+        n: usize,
+        start: usize,
+        radius: f64,
+        o: DVec3,
+        axis: usize,
+    ) -> (Vec<DVec3>, Vec<Triangle>) {
+        let poly: Vec<DVec3> = (0..n)
+            .map(|k| {
+                let a = std::f64::consts::TAU * k as f64 / n as f64;
+                let (x, y) = (radius * a.cos(), radius * a.sin());
+                o + match axis {
+                    0 => dv(0.0, x, y),
+                    1 => dv(y, 0.0, x),
+                    _ => dv(x, y, 0.0),
+                }
+            })
+            .collect();
+        let s = start % n;
+        let tris = (1..n - 1)
+            .map(|k| Triangle::new(poly[s], poly[(s + k) % n], poly[(s + k + 1) % n]))
+            .collect();
+        (poly, tris)
+    }
+
+    proptest! {
+        /// A convex polygon on a plane across an axis, triangulated as a fan from any
+        /// corner, merges back into one face with the polygon's corners and area.
+        #[test]
+        fn fans_of_convex_polygons_merge_back(
+            n in 3usize..MAX_FACE_VERTICES,
+            start in 0usize..32,
+            radius in 0.1f64..10.0,
+            axis in 0usize..3,
+            offset in (-5.0f64..5.0, -5.0f64..5.0, -5.0f64..5.0),
+        ) {
+            let o = dv(offset.0, offset.1, offset.2);
+            let (poly, tris) = fan(n, start, radius, o, axis);
+            let f = faces(&tris, &vec![0; tris.len()]);
+            prop_assert_eq!(f.len(), 1);
+            let order = |p: &DVec3, q: &DVec3| p.to_array().partial_cmp(&q.to_array()).unwrap();
+            let (mut got, mut want) = (f.outlines[0].clone(), poly);
+            got.sort_by(order);
+            want.sort_by(order);
+            prop_assert_eq!(got, want);
+        }
+
+        /// Whatever merges (fans on tilted planes, where rounding leaves most vertices off
+        /// the first triangle's plane, and boxes), each face is exactly the union of its
+        /// triangles: it holds their corners, its area is theirs, and it turns one way.
+        #[test]
+        fn every_face_is_the_union_of_its_triangles(
+            n in 3usize..16,
+            start in 0usize..16,
+            radius in 0.1f64..10.0,
+            tilt in (-1.0f64..1.0, -1.0f64..1.0, 0.1f64..1.0),
+            lo in (-5.0f64..5.0, -5.0f64..5.0, -5.0f64..5.0),
+            size in (0.01f64..3.0, 0.01f64..3.0, 0.01f64..3.0),
+        ) {
+            let normal = dv(tilt.0, tilt.1, tilt.2).normalize();
+            let (u, v) = (normal.any_orthonormal_vector(), normal.cross(normal.any_orthonormal_vector()));
+            let o = dv(lo.0, lo.1, lo.2);
+            let (_, flat) = fan(n, start, radius, DVec3::ZERO, 2);
+            let mut tris: Vec<Triangle> = flat
+                .iter()
+                .map(|t| Triangle { v: t.v.map(|p| o + p.x * u + p.y * v) })
+                .collect();
+            tris.extend(boxed(o, o + dv(size.0, size.1, size.2)));
+            let f = faces(&tris, &vec![0; tris.len()]);
+            for (k, face) in f.outlines.iter().enumerate() {
+                let members: Vec<&Triangle> =
+                    (0..tris.len()).filter(|&t| f.of[t] == k as u32).map(|t| &tris[t]).collect();
+                prop_assert!(!members.is_empty());
+                for t in &members {
+                    for p in t.v {
+                        prop_assert!(face.contains(&p));
+                    }
+                }
+                let sum: f64 = members.iter().map(|t| twice_area(&t.v)).sum();
+                prop_assert!((twice_area(face) - sum).abs() <= 1e-9 * sum.max(1e-300));
+                if face.len() > 3 {
+                    let t = Projection::along(members[0].normal());
+                    let m = face.len();
+                    let turns: Vec<i8> =
+                        (0..m).map(|i| t.turn(face[i], face[(i + 1) % m], face[(i + 2) % m])).collect();
+                    prop_assert!(turns.iter().all(|&s| s != 0 && s == turns[0]));
+                }
+            }
+        }
+    }
+}
