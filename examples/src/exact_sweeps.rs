@@ -34,9 +34,10 @@ pub struct Options {
     pub samples: Vec<u32>,
     /// Samples of the stochastic runs of the light sweeps.
     pub sweep_samples: u32,
-    /// Multipliers of each light's side (its area grows with the square).
+    /// Multipliers of each light's side (its area grows with the square); none: no light
+    /// size table.
     pub light_scales: Vec<f64>,
-    /// Lights per side of each area light (`k × k`).
+    /// Lights per side of each area light (`k × k`); none: no light count table.
     pub light_counts: Vec<u32>,
     /// Where to write the exact method's render of the scene (PNG), if anywhere.
     pub image: Option<std::path::PathBuf>,
@@ -384,6 +385,7 @@ pub fn report(
     for &n in &o.samples {
         let r = run(&scene, &format!("stochastic:{n}"))?;
         let (rmse, worst) = errors(&r, &exact);
+        eprintln!("    RMSE {rmse:.5}, largest error {worst:.3}");
         fit.push((n, rmse));
         per_sample = r.secs / f64::from(n);
         let _ = writeln!(
@@ -408,6 +410,17 @@ pub fn report(
             let _ = writeln!(md, "\n(The runs do not fit a falling RMSE.)\n");
         }
     }
+    if !o.light_scales.is_empty() {
+        light_size(&mut md, &scene, o)?;
+    }
+    if !o.light_counts.is_empty() {
+        light_count(&mut md, &scene, lights, o)?;
+    }
+    Ok(md)
+}
+
+/// The light size table: every light scaled by each of `o.light_scales`.
+fn light_size(md: &mut String, scene: &Scene, o: &Options) -> Result<(), String> {
     let _ = writeln!(
         md,
         "**Light size** (each light's side times `k`, its area times `k²`)\n\n| k | area | exact \
@@ -417,7 +430,7 @@ pub fn report(
     );
     let sampled = format!("stochastic:{}", o.sweep_samples);
     for &k in &o.light_scales {
-        let s = with_lights(&scene, |p| vec![scaled(p, k)]);
+        let s = with_lights(scene, |p| vec![scaled(p, k)]);
         let (e, r) = (run(&s, "exact")?, run(&s, &sampled)?);
         let _ = writeln!(
             md,
@@ -430,6 +443,13 @@ pub fn report(
             r.secs / e.secs
         );
     }
+    Ok(())
+}
+
+/// The light count table: every light cut into `k × k` for each of `o.light_counts`
+/// (`lights` area lights in the scene).
+fn light_count(md: &mut String, scene: &Scene, lights: usize, o: &Options) -> Result<(), String> {
+    let sampled = format!("stochastic:{}", o.sweep_samples);
     let _ = writeln!(
         md,
         "\n**Light count** (each light cut into `k × k` lights, the same area and power)\n\n\
@@ -437,7 +457,7 @@ pub fn report(
          stochastic / exact |\n|---:|---:|---:|---:|---:|---:|"
     );
     for &k in &o.light_counts {
-        let s = with_lights(&scene, |p| tiled(p, k));
+        let s = with_lights(scene, |p| tiled(p, k));
         let (e, r) = (run(&s, "exact")?, run(&s, &sampled)?);
         let _ = writeln!(
             md,
@@ -450,7 +470,7 @@ pub fn report(
             r.secs / e.secs
         );
     }
-    Ok(md)
+    Ok(())
 }
 
 #[cfg(test)]

@@ -78,7 +78,11 @@ struct Args {
     /// certified:TOL, certified:TOL:BUDGET or certified:TOL:BUDGET:SEGMENTS (the visible
     /// fraction proven to lie in a bound at most TOL wide, with at most BUDGET beams per
     /// point, default 1024, and an estimate inside it from SEGMENTS stratified segments,
-    /// default 32).
+    /// default 32), or, for scenes with triangle meshes, exact, exact:D or exact:D:G (the
+    /// meshes' shadows by the lazy BSP of seed 003, up to G neighbouring points sharing a
+    /// tree, default 64, the implicit surfaces' by beams over the visible fragments halved
+    /// up to D times, default 10) and exact:D:G:triangles (the triangles as occluders
+    /// rather than the meshes' faces).
     #[arg(long)]
     shadows: Option<ShadowSpec>,
     /// Where the searches run: cpu (the reliable CPU renderer) or gpu (wgpu compute).

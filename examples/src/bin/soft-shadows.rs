@@ -5,7 +5,8 @@
 //! soft-shadows penumbra [--size 256] [--samples 32] [--markdown FILE]
 //! soft-shadows exact [SCENE] [--width 320] [--height 240] [--samples 16,64,256,1024]
 //!                    [--sweep-samples 64] [--light-scales 1,2,5,10] [--light-counts 1,2,3,4,6]
-//!                    [--generate TRIANGLES [--seed S]]
+//!                    [--no-sweeps] [--generate TRIANGLES [--stand-in canopy|hall] [--seed S]]
+//!                    [--image FILE]
 //! ```
 //!
 //! * `table1`: the reliable soft-shadow paper's Table 1. Orthocircle, Chubs, Kusner-Schmitt
@@ -93,6 +94,9 @@ enum Table {
         /// Lights per side each area light is cut into (6: 36 lights).
         #[arg(long, value_delimiter = ',', default_value = "1,2,3,4,6")]
         light_counts: Vec<u32>,
+        /// Leave out the light size and light count tables.
+        #[arg(long)]
+        no_sweeps: bool,
         /// Instead of the scene file, a generated scene of about this many triangles on a
         /// floor (stand-ins for the paper's models, see `--stand-in`).
         #[arg(long)]
@@ -315,6 +319,7 @@ fn run(args: Args) -> Result<(), String> {
             sweep_samples,
             light_scales,
             light_counts,
+            no_sweeps,
             generate,
             stand_in,
             seed,
@@ -326,8 +331,8 @@ fn run(args: Args) -> Result<(), String> {
                 size: (width, height),
                 samples,
                 sweep_samples,
-                light_scales,
-                light_counts,
+                light_scales: if no_sweeps { Vec::new() } else { light_scales },
+                light_counts: if no_sweeps { Vec::new() } else { light_counts },
                 image,
             },
         )?,
