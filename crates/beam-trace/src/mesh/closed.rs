@@ -16,7 +16,7 @@ use interval_core::Interval;
 use super::triangle::Triangle;
 
 /// A vertex's exact coordinates (`-0.0` taken as `0.0`).
-pub(super) fn key(p: DVec3) -> [u64; 3] {
+fn key(p: DVec3) -> [u64; 3] {
     [p.x, p.y, p.z].map(|c| (c + 0.0).to_bits())
 }
 
@@ -29,17 +29,20 @@ fn root(parent: &mut [usize], mut i: usize) -> usize {
     i
 }
 
-/// Per triangle of `tris`, the component it belongs to (numbered from 0 in the order of
-/// their first triangles) where that component is closed, `None` where it is not.
-pub(crate) fn closed_components(tris: &[Triangle]) -> Vec<Option<u32>> {
+/// The directed edges of a set of triangles: each edge `(a, b)` of vertex ids, and the
+/// triangle that has it (`None` where more than one does).
+pub(super) type Edges = HashMap<(u32, u32), Option<usize>>;
+
+/// Each triangle's vertex ids (vertices compared by their exact coordinates, numbered in
+/// the order they first occur), and the directed edges ([`Edges`]).
+pub(super) fn corners_and_edges(tris: &[Triangle]) -> (Vec<[u32; 3]>, Edges) {
     let mut ids: HashMap<[u64; 3], u32> = HashMap::new();
     let mut vertex = |p: DVec3| {
         let n = ids.len() as u32;
         *ids.entry(key(p)).or_insert(n)
     };
     let corners: Vec<[u32; 3]> = tris.iter().map(|t| t.v.map(&mut vertex)).collect();
-    // Each directed edge: the triangle that has it, or `None` once a second one does.
-    let mut edges: HashMap<(u32, u32), Option<usize>> = HashMap::new();
+    let mut edges = Edges::new();
     for (t, c) in corners.iter().enumerate() {
         for k in 0..3 {
             edges
@@ -48,6 +51,13 @@ pub(crate) fn closed_components(tris: &[Triangle]) -> Vec<Option<u32>> {
                 .or_insert(Some(t));
         }
     }
+    (corners, edges)
+}
+
+/// Per triangle of `tris`, the component it belongs to (numbered from 0 in the order of
+/// their first triangles) where that component is closed, `None` where it is not.
+pub(crate) fn closed_components(tris: &[Triangle]) -> Vec<Option<u32>> {
+    let (corners, edges) = corners_and_edges(tris);
     let mut parent: Vec<usize> = (0..tris.len()).collect();
     let mut open = vec![false; tris.len()];
     for (t, c) in corners.iter().enumerate() {

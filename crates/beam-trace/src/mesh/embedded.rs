@@ -29,58 +29,10 @@
 use glam::DVec3;
 
 use super::bvh::Bvh;
+use super::orient::{Projection, orient};
 use super::triangle::Triangle;
 
-/// The sign of `orient3d(a, b, c, d)`: positive where `d` lies below the plane through
-/// `a, b, c` seen counterclockwise (Shewchuk's convention), exactly.
-fn orient(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
-    let p = |v: DVec3| robust::Coord3D {
-        x: v.x,
-        y: v.y,
-        z: v.z,
-    };
-    sign(robust::orient3d(p(a), p(b), p(c), p(d)))
-}
-
-fn sign(x: f64) -> i8 {
-    i8::from(x > 0.0) - i8::from(x < 0.0)
-}
-
-/// A plane's points seen along the axis `drop` (that coordinate left out: exact), where
-/// orientations in the plane keep their signs up to one factor for the whole plane.
-#[derive(Copy, Clone)]
-struct Projection {
-    drop: usize,
-}
-
 impl Projection {
-    /// The projection along the largest component of the normal of `t` (`None` for a
-    /// triangle whose normal may vanish).
-    fn of(t: &Triangle) -> Option<Self> {
-        let n = (t.v[1] - t.v[0]).cross(t.v[2] - t.v[0]);
-        let a = n.abs();
-        let drop = if a.x >= a.y && a.x >= a.z {
-            0
-        } else if a.y >= a.z {
-            1
-        } else {
-            2
-        };
-        // The largest component is exactly non-zero when it exceeds its rounding (six
-        // products of rounded differences and their sums: far below 16 ulps of the terms).
-        let [d0, d1] = [t.v[1] - t.v[0], t.v[2] - t.v[0]];
-        let (i, j) = ((drop + 1) % 3, (drop + 2) % 3);
-        let terms = (d0[i] * d1[j]).abs() + (d0[j] * d1[i]).abs();
-        (a[drop] > 16.0 * f64::EPSILON * terms).then_some(Projection { drop })
-    }
-
-    /// The sign of `orient2d(a, b, c)` of the projected points, exactly.
-    fn orient(&self, a: DVec3, b: DVec3, c: DVec3) -> i8 {
-        let (i, j) = ((self.drop + 1) % 3, (self.drop + 2) % 3);
-        let p = |v: DVec3| robust::Coord { x: v[i], y: v[j] };
-        sign(robust::orient2d(p(a), p(b), p(c)))
-    }
-
     /// Whether the edge `p → q` of a triangle whose third vertex is `r` has every point of
     /// `others` strictly on its outer side.
     fn parts(&self, (p, q, r): (DVec3, DVec3, DVec3), others: &[DVec3]) -> bool {
@@ -274,38 +226,10 @@ mod tests {
 
     use super::*;
     use crate::mesh::closed::closed_components;
-    use crate::mesh::tests::lumpy_ball;
+    use crate::mesh::tests::{cube, lumpy_ball};
 
     fn tri(a: [f64; 3], b: [f64; 3], c: [f64; 3]) -> Triangle {
         Triangle::new(DVec3::from(a), DVec3::from(b), DVec3::from(c))
-    }
-
-    /// The 12 triangles of the box `[lo, hi]`, wound outward.
-    fn cube(lo: DVec3, hi: DVec3) -> Vec<Triangle> {
-        let c = |i: usize| {
-            DVec3::new(
-                if i & 1 == 0 { lo.x } else { hi.x },
-                if i & 2 == 0 { lo.y } else { hi.y },
-                if i & 4 == 0 { lo.z } else { hi.z },
-            )
-        };
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        quads
-            .iter()
-            .flat_map(|q| {
-                [
-                    Triangle::new(c(q[0]), c(q[1]), c(q[2])),
-                    Triangle::new(c(q[0]), c(q[2]), c(q[3])),
-                ]
-            })
-            .collect()
     }
 
     fn judged(tris: &[Triangle]) -> usize {

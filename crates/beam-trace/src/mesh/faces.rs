@@ -13,11 +13,10 @@
 //! lines by occluder edges (the exact soft shadows) needs only the face's outline, not the
 //! edges between its triangles.
 
-use std::collections::HashMap;
-
 use glam::DVec3;
 
-use super::closed::key;
+use super::closed::corners_and_edges;
+use super::orient::{Projection, orient};
 use super::triangle::Triangle;
 
 /// The most vertices a face is grown to (a face of many more would only be walked more
@@ -47,71 +46,12 @@ impl Faces {
     }
 }
 
-/// The sign (−1, 0, 1) of `orient3d(a, b, c, d)`, exactly.
-fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> i8 {
-    let p = |v: DVec3| robust::Coord3D {
-        x: v.x,
-        y: v.y,
-        z: v.z,
-    };
-    sign(robust::orient3d(p(a), p(b), p(c), p(d)))
-}
-
-fn sign(x: f64) -> i8 {
-    if x > 0.0 {
-        1
-    } else if x < 0.0 {
-        -1
-    } else {
-        0
-    }
-}
-
-/// A plane's points projected to 2D along `drop` (the coordinate left out), and the exact
-/// sign of the turn `p → q → r` there.
-#[derive(Copy, Clone)]
-struct Projection {
-    drop: usize,
-}
-
-impl Projection {
-    /// The projection along the axis of `n`'s largest coordinate, which is not zero.
-    fn along(n: DVec3) -> Self {
-        let a = n.abs();
-        let drop = if a.x >= a.y && a.x >= a.z {
-            0
-        } else if a.y >= a.z {
-            1
-        } else {
-            2
-        };
-        Self { drop }
-    }
-
-    fn point(self, p: DVec3) -> robust::Coord<f64> {
-        let (x, y) = match self.drop {
-            0 => (p.y, p.z),
-            1 => (p.z, p.x),
-            _ => (p.x, p.y),
-        };
-        robust::Coord { x, y }
-    }
-
-    /// The exact sign of the turn `p → q → r` after projection.
-    fn turn(self, p: DVec3, q: DVec3, r: DVec3) -> i8 {
-        sign(robust::orient2d(
-            self.point(p),
-            self.point(q),
-            self.point(r),
-        ))
-    }
-}
-
 /// A face being grown: its vertices (ids and points) in order.
 struct Growing {
     ids: Vec<u32>,
     points: Vec<DVec3>,
-    /// The plane's projection and the sign of a turn of the face's winding.
+    /// The plane's projection (which keeps the turns of its points up to one sign) and
+    /// the sign of a turn of the face's winding there.
     projection: Projection,
     turn: i8,
     /// Three vertices spanning the plane (the first triangle's).
@@ -126,31 +66,16 @@ impl Growing {
         let at = |k: usize| self.points[k % n];
         let (before, a, b, after) = (at(i + n - 1), at(i), at(i + 1), at(i + 2));
         let t = self.projection;
-        t.turn(before, a, d) == self.turn
-            && t.turn(a, d, b) == self.turn
-            && t.turn(d, b, after) == self.turn
+        t.orient(before, a, d) == self.turn
+            && t.orient(a, d, b) == self.turn
+            && t.orient(d, b, after) == self.turn
     }
 }
 
 /// The faces of `tris`, where `group` tells which triangles may be merged (those of equal
-/// value: one mesh's, facing one way, [`super::closed`]).
+/// value: one mesh's, facing one way, [`super::facing`]).
 pub fn faces(tris: &[Triangle], group: &[i32]) -> Faces {
-    let mut ids: HashMap<[u64; 3], u32> = HashMap::new();
-    let mut vertex = |p: DVec3| {
-        let n = ids.len() as u32;
-        *ids.entry(key(p)).or_insert(n)
-    };
-    let corners: Vec<[u32; 3]> = tris.iter().map(|t| t.v.map(&mut vertex)).collect();
-    // Each directed edge: the triangle that has it, or `None` once a second one does.
-    let mut edges: HashMap<(u32, u32), Option<u32>> = HashMap::new();
-    for (t, c) in corners.iter().enumerate() {
-        for k in 0..3 {
-            edges
-                .entry((c[k], c[(k + 1) % 3]))
-                .and_modify(|e| *e = None)
-                .or_insert(Some(t as u32));
-        }
-    }
+    let (corners, edges) = corners_and_edges(tris);
     let mut of = vec![u32::MAX; tris.len()];
     let mut outlines = Vec::new();
     for (t, tri) in tris.iter().enumerate() {
@@ -159,8 +84,12 @@ pub fn faces(tris: &[Triangle], group: &[i32]) -> Faces {
         }
         let id = outlines.len() as u32;
         of[t] = id;
-        let projection = Projection::along(tri.normal());
-        let turn = projection.turn(tri.v[0], tri.v[1], tri.v[2]);
+        // A triangle whose normal may vanish (degenerate) stays alone.
+        let Some(projection) = Projection::of(tri) else {
+            outlines.push(tri.v.to_vec());
+            continue;
+        };
+        let turn = projection.orient(tri.v[0], tri.v[1], tri.v[2]);
         let mut face = Growing {
             ids: corners[t].to_vec(),
             points: tri.v.to_vec(),
@@ -168,7 +97,6 @@ pub fn faces(tris: &[Triangle], group: &[i32]) -> Faces {
             turn,
             plane: tri.v,
         };
-        // A degenerate triangle (no turn) stays alone.
         let mut grown = turn != 0;
         while grown && face.ids.len() < MAX_FACE_VERTICES {
             grown = false;
@@ -178,7 +106,6 @@ pub fn faces(tris: &[Triangle], group: &[i32]) -> Faces {
                 else {
                     continue;
                 };
-                let u = u as usize;
                 if of[u] != u32::MAX || group[u] != group[t] {
                     continue;
                 }
@@ -188,8 +115,7 @@ pub fn faces(tris: &[Triangle], group: &[i32]) -> Faces {
                 };
                 let (d_id, d) = (corners[u][k], tris[u].v[k]);
                 let [p, q, r] = face.plane;
-                if face.ids.contains(&d_id) || orient3d(p, q, r, d) != 0 || !face.convex_with(i, d)
-                {
+                if face.ids.contains(&d_id) || orient(p, q, r, d) != 0 || !face.convex_with(i, d) {
                     continue;
                 }
                 face.ids.insert(i + 1, d_id);
@@ -209,37 +135,10 @@ mod tests {
     use proptest::prelude::*;
 
     use super::*;
+    use crate::mesh::tests::cube;
 
     fn dv(x: f64, y: f64, z: f64) -> DVec3 {
         DVec3::new(x, y, z)
-    }
-
-    /// The twelve triangles of the box `[lo, hi]`, wound outward, two per side.
-    fn boxed(lo: DVec3, hi: DVec3) -> Vec<Triangle> {
-        let c = |k: usize| {
-            dv(
-                if k & 1 == 0 { lo.x } else { hi.x },
-                if k & 2 == 0 { lo.y } else { hi.y },
-                if k & 4 == 0 { lo.z } else { hi.z },
-            )
-        };
-        let quads = [
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-        ];
-        quads
-            .iter()
-            .flat_map(|q| {
-                [
-                    Triangle::new(c(q[0]), c(q[1]), c(q[2])),
-                    Triangle::new(c(q[0]), c(q[2]), c(q[3])),
-                ]
-            })
-            .collect()
     }
 
     /// Twice the area of a planar polygon.
@@ -253,7 +152,7 @@ mod tests {
 
     #[test]
     fn a_box_is_six_quads() {
-        let tris = boxed(dv(-1.0, 0.5, 2.0), dv(3.0, 1.25, 2.5));
+        let tris = cube(dv(-1.0, 0.5, 2.0), dv(3.0, 1.25, 2.5));
         let f = faces(&tris, &[0; 12]);
         assert_eq!(f.len(), 6);
         for (k, face) in f.outlines.iter().enumerate() {
@@ -267,7 +166,7 @@ mod tests {
 
     #[test]
     fn different_groups_bent_neighbours_and_non_convex_unions_stay_apart() {
-        let tris = boxed(DVec3::ZERO, DVec3::ONE);
+        let tris = cube(DVec3::ZERO, DVec3::ONE);
         // Every triangle its own group: nothing merges.
         let groups: Vec<i32> = (0..12).collect();
         assert_eq!(faces(&tris, &groups).len(), 12);
@@ -366,7 +265,7 @@ mod tests {
                 .iter()
                 .map(|t| Triangle { v: t.v.map(|p| o + p.x * u + p.y * v) })
                 .collect();
-            tris.extend(boxed(o, o + dv(size.0, size.1, size.2)));
+            tris.extend(cube(o, o + dv(size.0, size.1, size.2)));
             let f = faces(&tris, &vec![0; tris.len()]);
             for (k, face) in f.outlines.iter().enumerate() {
                 let members: Vec<&Triangle> =
@@ -380,10 +279,10 @@ mod tests {
                 let sum: f64 = members.iter().map(|t| twice_area(&t.v)).sum();
                 prop_assert!((twice_area(face) - sum).abs() <= 1e-9 * sum.max(1e-300));
                 if face.len() > 3 {
-                    let t = Projection::along(members[0].normal());
+                    let t = Projection::of(members[0]).expect("a face of several triangles has a plane");
                     let m = face.len();
                     let turns: Vec<i8> =
-                        (0..m).map(|i| t.turn(face[i], face[(i + 1) % m], face[(i + 2) % m])).collect();
+                        (0..m).map(|i| t.orient(face[i], face[(i + 1) % m], face[(i + 2) % m])).collect();
                     prop_assert!(turns.iter().all(|&s| s != 0 && s == turns[0]));
                 }
             }

@@ -24,6 +24,7 @@ mod embedded;
 mod faces;
 mod inner;
 mod obj;
+mod orient;
 mod shaft;
 mod triangle;
 

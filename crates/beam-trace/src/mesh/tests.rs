@@ -403,6 +403,34 @@ fn an_obj_cube_reads_as_twelve_triangles_and_bad_files_are_named() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// The 12 triangles of the box `[lo, hi]`, wound outward.
+pub(crate) fn cube(lo: DVec3, hi: DVec3) -> Vec<Triangle> {
+    let c = |i: usize| {
+        DVec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    };
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    quads
+        .iter()
+        .flat_map(|q| {
+            [
+                Triangle::new(c(q[0]), c(q[1]), c(q[2])),
+                Triangle::new(c(q[0]), c(q[2]), c(q[3])),
+            ]
+        })
+        .collect()
+}
+
 /// A closed surface around the origin: a latitude-longitude grid with single poles,
 /// each vertex at its own distance `r[i]` (so not convex), windings facing out.
 pub(crate) fn lumpy_ball(r: &[f64], lat: usize, lon: usize) -> Vec<Triangle> {

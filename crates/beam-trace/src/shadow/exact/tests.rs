@@ -438,37 +438,18 @@ fn faces_change_the_cost_not_the_answer() {
             true,
         ),
     ] {
-        let corner = |k: usize| {
-            let p = DVec3::new(
-                if k & 1 == 0 { lo.x } else { hi.x },
-                if k & 2 == 0 { lo.y } else { hi.y },
-                if k & 4 == 0 { lo.z } else { hi.z },
-            );
+        let place = |p: DVec3| {
             if turn {
                 turned(p) + DVec3::new(0.3, 0.6, -0.4)
             } else {
                 p
             }
         };
-        for q in [
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-        ] {
-            tris.push(crate::mesh::Triangle::new(
-                corner(q[0]),
-                corner(q[1]),
-                corner(q[2]),
-            ));
-            tris.push(crate::mesh::Triangle::new(
-                corner(q[0]),
-                corner(q[2]),
-                corner(q[3]),
-            ));
-        }
+        tris.extend(
+            crate::mesh::tests::cube(lo, hi)
+                .into_iter()
+                .map(|t| crate::mesh::Triangle { v: t.v.map(place) }),
+        );
     }
     let faces = crate::mesh::faces(&tris, &vec![0; tris.len()]);
     // The axis-aligned boxes merge into quads; the turned one's quads where rounding
