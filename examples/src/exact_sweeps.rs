@@ -192,7 +192,6 @@ fn samples_for(points: &[(u32, f64)], target: f64) -> Option<f64> {
     (b < 0.0).then(|| ((target.ln() - (my - b * mx)) / b).exp())
 }
 
-/// A stand-in for the paper's scanned models: the lumpy ball and canopy of
 /// The generated stand-ins for the paper's models.
 #[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
 pub enum StandIn {
@@ -211,8 +210,9 @@ pub enum StandIn {
 /// # Errors
 /// None in practice: the base scene is fixed text.
 pub fn generated_scene(kind: StandIn, triangles: usize, seed: u64) -> Result<Scene, String> {
-    // The meshes, and the half-width of the square they stand in about the origin.
-    let (meshes, half) = match kind {
+    // The meshes, and the view: the canopy's from above and to the side, the hall's with
+    // its floor just wider than the furniture, which fills the picture.
+    let (meshes, (eye, look_y, floor)) = match kind {
         StandIn::Canopy => {
             let (ball, leaves) = crate::polygon_scene::lumpy_ball_and_canopy(triangles, seed);
             (
@@ -220,19 +220,16 @@ pub fn generated_scene(kind: StandIn, triangles: usize, seed: u64) -> Result<Sce
                     ("ball", ball, [0.85, 0.45, 0.25]),
                     ("canopy", leaves, [0.3, 0.6, 0.3]),
                 ],
-                1.5,
+                ((3.6, 5.4), 0.7, 4.0),
             )
         }
         StandIn::Hall => {
             let (furniture, half) = crate::polygon_scene::furnished_hall(triangles, seed);
-            (vec![("furniture", furniture, [0.7, 0.55, 0.4])], half)
+            (
+                vec![("furniture", furniture, [0.7, 0.55, 0.4])],
+                ((1.5 * half + 1.0, 2.1 * half + 1.5), 0.0, half + 1.0),
+            )
         }
-    };
-    // The canopy's view (from above and to the side), and the hall's, its floor just
-    // wider than the furniture, which fills the picture.
-    let (eye, look_y, floor) = match kind {
-        StandIn::Canopy => ((3.6, 5.4), 0.7, 4.0),
-        StandIn::Hall => ((1.5 * half + 1.0, 2.1 * half + 1.5), 0.0, half + 1.0),
     };
     let text = format!(
         r#"

@@ -148,14 +148,19 @@ fn prism(base: &[(f64, f64)], y0: f64, y1: f64) -> Vec<Triangle> {
     out
 }
 
-/// The base of a box of half-sides `(hx, hz)` about `(cx, cz)`, turned by `angle` about
-/// the vertical.
-fn rectangle((cx, cz): (f64, f64), (hx, hz): (f64, f64), angle: f64) -> Vec<(f64, f64)> {
+/// The map from a piece's own floor coordinates `(x, z)` to the hall's: turned by `angle`
+/// about the vertical, then moved to `(cx, cz)`.
+fn placed((cx, cz): (f64, f64), angle: f64) -> impl Fn((f64, f64)) -> (f64, f64) {
     let (s, c) = angle.sin_cos();
+    move |(x, z)| (cx + c * x - s * z, cz + s * x + c * z)
+}
+
+/// The base of a box of half-sides `(hx, hz)` about `centre`, turned by `angle` about the
+/// vertical.
+fn rectangle(centre: (f64, f64), (hx, hz): (f64, f64), angle: f64) -> Vec<(f64, f64)> {
     [(-hx, -hz), (hx, -hz), (hx, hz), (-hx, hz)]
-        .iter()
-        .map(|&(x, z)| (cx + c * x - s * z, cz + s * x + c * z))
-        .collect()
+        .map(placed(centre, angle))
+        .to_vec()
 }
 
 /// The base of a leg: a regular polygon of `sides` corners and radius `r` about `(cx, cz)`.
@@ -169,8 +174,9 @@ fn circle((cx, cz): (f64, f64), r: f64, sides: usize) -> Vec<(f64, f64)> {
 }
 
 /// A furnished hall, about `triangles` triangles from `seed`: a grid of tables, each with
-/// four chairs around it (2.1 apart, so that no two sets meet), every piece a closed prism (box tops, seats and backs; legs
-/// turned as polygons of many sides), each table and chair turned a little at random.
+/// four chairs around it (2.1 apart, so that no two sets meet), every piece a closed prism
+/// (box tops, seats and backs; legs turned as polygons of many sides), each table and chair
+/// turned a little at random.
 /// The architectural kind of model the paper renders (a conference room): large planar
 /// faces, each triangulated, and many small parts. Returns the pieces' triangles and the
 /// half-width of the square the hall's furniture stands in (centred on the origin).
@@ -205,8 +211,7 @@ pub fn furnished_hall(triangles: usize, seed: u64) -> (Vec<Triangle>, f64) {
             spacing * ((k / per_row) as f64 + 0.5) - half,
         );
         let turn = 0.3 * (rng.next_f64() - 0.5);
-        let (s, c) = turn.sin_cos();
-        let place = |(x, z): (f64, f64)| (centre.0 + c * x - s * z, centre.1 + s * x + c * z);
+        let place = placed(centre, turn);
         // The table: a top of 0.9 × 0.9 at 0.72, four legs.
         let corners = [(-0.38, -0.38), (0.38, -0.38), (0.38, 0.38), (-0.38, 0.38)];
         piece(
@@ -218,10 +223,9 @@ pub fn furnished_hall(triangles: usize, seed: u64) -> (Vec<Triangle>, f64) {
         // The chairs, one per side, facing the table, each turned a little more.
         for side in 0..4 {
             let a = turn + std::f64::consts::FRAC_PI_2 * side as f64 + 0.2 * (rng.next_f64() - 0.5);
-            let (sa, ca) = a.sin_cos();
-            let at = |(x, z): (f64, f64)| (centre.0 + ca * x - sa * z, centre.1 + sa * x + ca * z);
+            let at = placed(centre, a);
             let seat = at((0.0, 0.72));
-            let legs = [(-0.17, 0.55), (0.17, 0.55), (0.17, 0.89), (-0.17, 0.89)].map(at);
+            let legs = [(-0.17, 0.55), (0.17, 0.55), (0.17, 0.89), (-0.17, 0.89)].map(&at);
             piece(
                 rectangle(seat, (0.21, 0.21), a),
                 &legs,

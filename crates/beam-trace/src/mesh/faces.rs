@@ -74,7 +74,7 @@ impl Growing {
 
 /// The faces of `tris`, where `group` tells which triangles may be merged (those of equal
 /// value: one mesh's, facing one way, [`super::facing`]).
-pub fn faces(tris: &[Triangle], group: &[i32]) -> Faces {
+pub fn faces<G: PartialEq>(tris: &[Triangle], group: &[G]) -> Faces {
     let (corners, edges) = corners_and_edges(tris);
     let mut of = vec![u32::MAX; tris.len()];
     let mut outlines = Vec::new();

@@ -87,7 +87,7 @@ impl MeshIndex {
             all.extend_from_slice(m);
             owner.extend(std::iter::repeat_n(k as u32, m.len()));
             let facing = facing_of(m, &components);
-            let mine = faces(m, &facing.iter().map(|&f| i32::from(f)).collect::<Vec<_>>());
+            let mine = faces(m, &facing);
             let first = all_faces.outlines.len() as u32;
             all_faces.of.extend(mine.of.iter().map(|f| f + first));
             all_faces.outlines.extend(mine.outlines);

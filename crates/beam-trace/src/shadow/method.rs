@@ -201,13 +201,9 @@ pub trait Occluders {
     /// every one of them (the faces of [`crate::mesh::MeshIndex::face`]: coplanar
     /// neighbours merged), each once, in the order of their first triangle. A segment meets
     /// one of them exactly where it meets one of those triangles or another triangle of
-    /// their faces. By default each triangle alone.
+    /// their faces. By default each triangle alone ([`triangle_occluders`]).
     fn faces(&mut self, triangles: &[ShaftTriangle]) -> Vec<Vec<DVec3>> {
-        triangles
-            .iter()
-            .filter(|t| !t.redundant)
-            .map(|t| t.triangle.v.to_vec())
-            .collect()
+        triangle_occluders(triangles)
     }
 
     /// Convex polygons inside closed meshes that some segment from `from` to `light` may
@@ -248,6 +244,15 @@ pub struct ShaftTriangle {
     pub redundant: bool,
     /// The face of the scene's meshes that holds it ([`crate::mesh::MeshIndex::face_of`]).
     pub face: u32,
+}
+
+/// The `triangles` that are not redundant, each as an occluder of its own.
+pub(crate) fn triangle_occluders(triangles: &[ShaftTriangle]) -> Vec<Vec<DVec3>> {
+    triangles
+        .iter()
+        .filter(|t| !t.redundant)
+        .map(|t| t.triangle.v.to_vec())
+        .collect()
 }
 
 /// Work counters of soft shadows (the columns of the soft-shadow paper's Table 1 and more).

@@ -309,16 +309,13 @@ impl FromStr for ShadowSpec {
                 group: ShadowSpec::MAX_EXACT_GROUP,
                 faces: true,
             }),
-            ["exact", d, g] => Ok(ShadowSpec::Exact {
-                depth: halvings(d)?,
-                group: count(s, g, "largest group", ShadowSpec::MAX_EXACT_GROUP)?,
-                faces: true,
-            }),
-            ["exact", d, g, "triangles"] => Ok(ShadowSpec::Exact {
-                depth: halvings(d)?,
-                group: count(s, g, "largest group", ShadowSpec::MAX_EXACT_GROUP)?,
-                faces: false,
-            }),
+            ["exact", d, g, rest @ ..] if rest.is_empty() || rest == ["triangles"] => {
+                Ok(ShadowSpec::Exact {
+                    depth: halvings(d)?,
+                    group: count(s, g, "largest group", ShadowSpec::MAX_EXACT_GROUP)?,
+                    faces: rest.is_empty(),
+                })
+            }
             _ => Err(format!("unknown shadow method '{s}' (one of: {FORMS})")),
         }
     }

@@ -16,6 +16,7 @@ use crate::shadow::beam::cleared;
 use crate::shadow::hard::Visibility;
 use crate::shadow::method::{
     BeamStart, LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork,
+    triangle_occluders,
 };
 use crate::shadow::spec::ShadowSpec;
 use crate::shadow::stochastic::Stochastic;
@@ -202,12 +203,7 @@ impl Exact {
         let polygons = if self.faces {
             timed(&mut times.shaft, || occluders.faces(&triangles))
         } else {
-            let plain: Vec<Vec<DVec3>> = triangles
-                .iter()
-                .filter(|t| !t.redundant)
-                .map(|t| t.triangle.v.to_vec())
-                .collect();
-            plain
+            triangle_occluders(&triangles)
         };
         work.shaft_faces += polygons.len() as u64;
         let receiver = Plane {
