@@ -201,7 +201,7 @@ pub trait Occluders {
     /// every one of them (the faces of [`crate::mesh::MeshIndex::face`]: coplanar
     /// neighbours merged), each once, in the order of their first triangle. A segment meets
     /// one of them exactly where it meets one of those triangles or another triangle of
-    /// their faces. By default each triangle alone ([`triangle_occluders`]).
+    /// their faces. By default each triangle alone.
     fn faces(&mut self, triangles: &[ShaftTriangle]) -> Vec<Vec<DVec3>> {
         triangle_occluders(triangles)
     }
