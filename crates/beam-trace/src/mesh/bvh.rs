@@ -243,6 +243,22 @@ impl Bvh {
         out
     }
 
+    /// The triangles (indices in the list the hierarchy was built from) whose boxes some
+    /// segment of `shaft` may reach ([`Shaft::may_reach`]), in leaf order.
+    pub fn boxes_in_shaft(&self, shaft: &Shaft) -> Vec<u32> {
+        let mut out = Vec::new();
+        self.visit_where(
+            |node| shaft.may_reach(node),
+            |k| {
+                if shaft.may_reach(&self.triangles[k].bounds()) {
+                    out.push(self.ids[k]);
+                }
+                false
+            },
+        );
+        out
+    }
+
     /// Whether some triangle may meet the box `b` (`false` is a proof that none does).
     pub fn may_meet(&self, b: &IBox) -> bool {
         self.may_meet_except(b, None, None)

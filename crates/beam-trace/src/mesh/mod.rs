@@ -60,6 +60,9 @@ pub struct MeshIndex {
     /// The squares inside the meshes' closed components of [`MIN_INNER_FACES`] faces or
     /// more ([`inner_squares`]).
     inner: Vec<InnerSquare>,
+    /// The squares' boxes in a hierarchy: square `k` as the triangle of its first three
+    /// corners, whose box is the square's (two of them are opposite corners).
+    inner_bvh: Bvh,
     /// The triangles' faces ([`faces`]), each of one mesh and facing one way, numbered over
     /// all the meshes.
     faces: Faces,
@@ -100,6 +103,12 @@ impl MeshIndex {
             owner,
             facing: facings,
             bounds,
+            inner_bvh: Bvh::new(
+                &inner
+                    .iter()
+                    .map(|sq| Triangle::new(sq.corners[0], sq.corners[1], sq.corners[2]))
+                    .collect::<Vec<_>>(),
+            ),
             inner,
             faces: all_faces,
         }
@@ -144,13 +153,12 @@ impl MeshIndex {
     pub fn inner_in(&self, shaft: &Shaft, light: &IBox, toward: DVec3) -> Vec<Vec<DVec3>> {
         let reach = toward.abs();
         let most = reach.max_element();
-        self.inner
-            .iter()
-            .filter(|sq| {
-                reach[sq.axis] >= 0.5 * most
-                    && disjoint(&sq.solid, light)
-                    && shaft.may_reach(&sq.bounds())
-            })
+        // Those whose box the shaft may reach, in the order of the list.
+        let mut near = self.inner_bvh.boxes_in_shaft(shaft);
+        near.sort_unstable();
+        near.into_iter()
+            .map(|k| &self.inner[k as usize])
+            .filter(|sq| reach[sq.axis] >= 0.5 * most && disjoint(&sq.solid, light))
             .map(|sq| sq.corners.to_vec())
             .collect()
     }
