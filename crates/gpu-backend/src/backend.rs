@@ -2,10 +2,16 @@
 //! shadow queries answered by the [`BeamKernel`], shading by the [`ShadingKernel`]. The
 //! pipeline is beam-trace's; nothing here decides what a pass does.
 //!
+//! Triangle meshes are searched on the host, through beam-trace's hierarchy and tests, and
+//! each beam's, ray's or segment's answer combined with the kernel's answer for the
+//! implicit surfaces by the rules the CPU backend uses (`MeshIndex::primary_beam`,
+//! `shadow_beam`, `first_root`): each is a proof about the same rays and parameters.
+//!
 //! What the GPU does not answer (placing shading points and normals, which need point and
 //! gradient evaluations; the shading-variation estimator of IAA; the stochastic method's
-//! last-occluder cache, which searches single objects; shading beyond
-//! [`MAX_LIGHTS`] lights) it says in [`Backend::support`], and the routing sends to the CPU.
+//! last-occluder cache, which searches single objects; the exact method's trees; shading
+//! beyond [`MAX_LIGHTS`] lights) it says in [`Backend::support`], and the routing sends to
+//! the CPU.
 
 use std::time::Instant;
 
@@ -14,13 +20,14 @@ use beam_trace::backend::{
     RayQuery, SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use beam_trace::beam::BoxClass;
-use beam_trace::beam::child_window;
+use beam_trace::beam::{child_window, forward};
 use beam_trace::frustum::TileCells;
+use beam_trace::mesh::MeshIndex;
 use beam_trace::ray::{Beam, IBox, Ray, point_box};
 use beam_trace::root::{Proof, RootCounters, RootResult};
 use beam_trace::sample::{Hit, SHADOW_OFFSET};
 use beam_trace::shadow::beam::shadow_beam_settings;
-use beam_trace::shadow::hard::Visibility;
+use beam_trace::shadow::hard::{Visibility, segment_visibility};
 use beam_trace::shadow::rounds::{Answer, Question, RoundsError, visibility_in_rounds};
 use beam_trace::shadow::{Occlusion, ShadowQuery, ShadowSpec};
 use beam_trace::stats::PassStats;
@@ -66,10 +73,6 @@ impl Backend for GpuBackend {
             // A kernel would leave every piece across a domain boundary open (a possible
             // root where the CPU proves none): those queries go back to the CPU backend.
             return no("the kernels have no two-sided test of domain boundaries");
-        }
-        if searches && !scene.meshes.is_empty() {
-            // The kernels search the implicit surfaces only; the CPU searches both.
-            return no("the kernels do not search triangle meshes");
         }
         match kind {
             QueryKind::Beams | QueryKind::Roots | QueryKind::Segments => Support::Yes,
@@ -121,6 +124,11 @@ impl Backend for GpuBackend {
         );
         let diag = geometry.diagonal();
         let offset = SHADOW_OFFSET * scene.diagonal();
+        // The kernels search the implicit surfaces; the triangles are searched here, through
+        // the same hierarchy and tests as on the CPU, and the two answers combined by the
+        // same rules (`beam_trace::mesh::combine`).
+        let meshes = (!scene.meshes.is_empty())
+            .then(|| MeshIndex::new(scene.meshes.iter().map(|m| m.triangles.as_slice())));
         Ok(Prepared {
             queries: Box::new(GpuQueries {
                 gpu: &self.gpu,
@@ -128,6 +136,7 @@ impl Backend for GpuBackend {
                 plan,
                 kernel,
                 shader,
+                meshes,
                 bounds: geometry.bounds(),
                 primary: KernelSettings {
                     epsilon: plan.beam.epsilon as f32,
@@ -165,6 +174,8 @@ struct GpuQueries<'g> {
     plan: &'g Plan,
     kernel: BeamKernel,
     shader: Option<ShadingKernel>,
+    /// The scene's triangles, searched on the host beside the kernels' implicit answers.
+    meshes: Option<MeshIndex>,
     bounds: IBox,
     primary: KernelSettings,
     ray: KernelSettings,
@@ -230,6 +241,27 @@ impl GpuQueries<'_> {
         .beam()
     }
 
+    /// The first root of the segment `from → to` (`t = 1` at `to`) for `t ∈ [start, 1]`
+    /// from the kernel's class of its implicit part and, where the scene has meshes, the
+    /// first crossing of a triangle.
+    fn segment_root(&self, class: GpuClass, from: DVec3, to: DVec3, start: f64) -> RootResult {
+        let implicit = root_result(class);
+        match &self.meshes {
+            Some(m) => {
+                let ray = Ray {
+                    origin: from,
+                    dir: to - from,
+                };
+                m.first_root(
+                    implicit,
+                    &ray,
+                    Interval::new_unchecked(start.clamp(0.0, 1.0), 1.0),
+                )
+            }
+            None => implicit,
+        }
+    }
+
     /// Answers a shadow method's questions: segments, beams with and without the
     /// inclusion test, one dispatch each.
     fn questions(&self, questions: &[Question]) -> Result<Vec<(Answer, RootCounters)>, Error> {
@@ -287,14 +319,8 @@ impl GpuQueries<'_> {
                     g_evals: u64::from(b.steps),
                     ..RootCounters::default()
                 };
-                let a = if group == 0 {
-                    Answer::Segment(Occlusion {
-                        visibility: visibility(b.class),
-                        at: match b.class {
-                            GpuClass::Miss => None,
-                            GpuClass::Hit { t } | GpuClass::Undecided { t } => Some(t.mid()),
-                        },
-                    })
+                let a = if let Question::Segment { from, to, start } = questions[i] {
+                    Answer::Segment(occlusion(self.segment_root(b.class, from, to, start)))
                 } else {
                     Answer::Beam(box_class(b.class))
                 };
@@ -344,6 +370,16 @@ impl GpuQueries<'_> {
                     }
                 }
             }
+            // The triangles' part of each shadow beam, over the same parameters.
+            if let Some(m) = &self.meshes {
+                for (&i, q) in picked.iter().zip(&queries) {
+                    if let (Question::Beam { inclusion, .. }, Some((Answer::Beam(class), _))) =
+                        (questions[i], out[i].as_mut())
+                    {
+                        *class = m.shadow_beam(*class, &q.beam, q.t, inclusion);
+                    }
+                }
+            }
         }
         Ok(out.into_iter().flatten().collect())
     }
@@ -358,12 +394,28 @@ fn box_class(c: GpuClass) -> BoxClass {
     }
 }
 
-/// A segment's visibility from its kernel class: rejected is a proof that it is free.
-fn visibility(c: GpuClass) -> Visibility {
+/// A single ray's first root from its kernel class: a proven section of a single ray holds
+/// a root (a sign change of a continuous `g`); rejected is a proof that there is none.
+fn root_result(c: GpuClass) -> RootResult {
     match c {
-        GpuClass::Miss => Visibility::Lit,
-        GpuClass::Hit { .. } => Visibility::Occluded,
-        GpuClass::Undecided { .. } => Visibility::Undecided,
+        GpuClass::Miss => RootResult::NoRoot,
+        GpuClass::Hit { t } => RootResult::Root {
+            t,
+            proof: Proof::Exists,
+        },
+        GpuClass::Undecided { t } => RootResult::Undecided { t },
+    }
+}
+
+/// A shadow segment's answer from its first root: free where none is proven, and where it
+/// may be blocked, about where.
+fn occlusion(r: RootResult) -> Occlusion {
+    Occlusion {
+        visibility: segment_visibility(r, true),
+        at: match r {
+            RootResult::Root { t, .. } | RootResult::Undecided { t } => Some(t.mid()),
+            RootResult::NoRoot => None,
+        },
     }
 }
 
@@ -411,6 +463,12 @@ impl Queries for GpuQueries<'_> {
             }
             answers.search.add(&c);
         }
+        if let Some(m) = &self.meshes {
+            for (a, b) in answers.values.iter_mut().zip(queries) {
+                let window = child_window(b.parent.as_ref());
+                *a = m.primary_beam(a.class, &b.beam, window).into();
+            }
+        }
         Ok(answers)
     }
 
@@ -419,17 +477,17 @@ impl Queries for GpuQueries<'_> {
             .iter()
             .map(|r| self.query(r.ray.beam(), r.window))
             .collect();
-        // A proven section of a single ray holds a root (a sign change of a continuous g).
-        let mut answers = map(self.classify(&q, &self.ray)?, |c| match c {
-            GpuClass::Miss => RootResult::NoRoot,
-            GpuClass::Hit { t } => RootResult::Root {
-                t,
-                proof: Proof::Exists,
-            },
-            GpuClass::Undecided { t } => RootResult::Undecided { t },
-        });
+        let mut answers = map(self.classify(&q, &self.ray)?, root_result);
         let escalated = escalate_open(self.scene, self.plan, queries, &mut answers.values);
         answers.search.add(&escalated);
+        if let Some(m) = &self.meshes {
+            for (r, q) in answers.values.iter_mut().zip(queries) {
+                let window = q.window.intersection(forward());
+                if !window.is_empty() {
+                    *r = m.first_root(*r, &q.ray, window);
+                }
+            }
+        }
         Ok(answers)
     }
 
@@ -457,7 +515,21 @@ impl Queries for GpuQueries<'_> {
                 t: Interval::new_unchecked(0.0, 1.0),
             })
             .collect();
-        Ok(map(self.classify(&q, &self.segment)?, visibility))
+        let mut answers = self.classify(&q, &self.segment)?;
+        let roots: Vec<RootResult> = answers
+            .values
+            .drain(..)
+            .zip(queries)
+            .map(|(c, s)| self.segment_root(c, s.from, s.to, 0.0))
+            .collect();
+        Ok(map(
+            Answers {
+                values: roots,
+                cost: answers.cost,
+                search: answers.search,
+            },
+            |r| segment_visibility(r, true),
+        ))
     }
 
     fn soft_shadows(

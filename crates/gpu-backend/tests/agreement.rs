@@ -18,6 +18,27 @@ use beam_trace::{Cpu, NoProgress, Pass, RenderOutput, Routing, Scene, render, re
 use gpu_backend::{Gpu, GpuBackend};
 
 fn scene(method: &str) -> Scene {
+    scene_with(method, "")
+}
+
+/// A box given as polygons (a closed triangle mesh) between the ball and the area light,
+/// which shades the ball and the floor.
+const CUBE: &str = r#"
+[[meshes]]
+name = "cube"
+polygons = [
+    [[-0.5, -0.5, -0.5], [-0.5, 0.5, -0.5], [0.5, 0.5, -0.5], [0.5, -0.5, -0.5]],
+    [[-0.5, -0.5, 0.5], [0.5, -0.5, 0.5], [0.5, 0.5, 0.5], [-0.5, 0.5, 0.5]],
+    [[-0.5, -0.5, -0.5], [0.5, -0.5, -0.5], [0.5, -0.5, 0.5], [-0.5, -0.5, 0.5]],
+    [[-0.5, 0.5, -0.5], [-0.5, 0.5, 0.5], [0.5, 0.5, 0.5], [0.5, 0.5, -0.5]],
+    [[-0.5, -0.5, -0.5], [-0.5, -0.5, 0.5], [-0.5, 0.5, 0.5], [-0.5, 0.5, -0.5]],
+    [[0.5, -0.5, -0.5], [0.5, 0.5, -0.5], [0.5, 0.5, 0.5], [0.5, -0.5, 0.5]],
+]
+transform = { translate = [-1.4, 0.2, 1.2], rotate = [0.0, 30.0, 0.0], scale = 0.7 }
+"#;
+
+/// The suite's scene with `extra` (more surfaces or meshes) appended.
+fn scene_with(method: &str, extra: &str) -> Scene {
     let text = format!(
         r#"
 [camera]
@@ -51,7 +72,7 @@ intensity = 0.3
 
 [render]
 shadow_method = "{method}"
-"#
+{extra}"#
     );
     Scene::from_toml(&text, "gpu.toml", None).unwrap_or_else(|e| panic!("{e}"))
 }
@@ -87,6 +108,14 @@ fn suite() -> Vec<(String, Scene)> {
     let mut per_pixel = scene("minkowski:stochastic:8");
     per_pixel.settings.primary = PrimaryMode::PerPixel;
     out.push(("per-pixel".into(), per_pixel));
+    // A triangle mesh beside the implicit surfaces: the GPU's implicit answers and the
+    // host's triangle answers combined.
+    for method in ["certified:0.1:64", "stochastic:16"] {
+        out.push((format!("mesh, {method}"), scene_with(method, CUBE)));
+    }
+    let mut mesh_per_pixel = scene_with("beam:3", CUBE);
+    mesh_per_pixel.settings.primary = PrimaryMode::PerPixel;
+    out.push(("mesh, per-pixel".into(), mesh_per_pixel));
     out
 }
 
@@ -188,6 +217,30 @@ fn the_gpu_routing_names_what_runs_on_the_cpu() {
     }
     let out = render_on(&s, &backend, &NoProgress).expect("the GPU renders");
     assert!(out.stats.pass("gpu-compile").is_some_and(|p| p.ran));
+}
+
+#[test]
+fn a_scene_with_meshes_searches_on_the_gpu_but_for_the_exact_method() {
+    let Some(gpu) = Gpu::for_tests() else { return };
+    let backend = GpuBackend::new(gpu);
+    let s = scene_with("certified:0.1:64", CUBE);
+    let plan = beam_trace::Plan::for_scene(&s);
+    let routing = Routing::new(&backend, &s, &plan).to_string();
+    for line in ["beams on gpu", "segments on gpu", "soft-shadows on gpu"] {
+        assert!(routing.contains(line), "{line}:\n{routing}");
+    }
+    let exact = scene_with("exact", CUBE);
+    let plan = beam_trace::Plan::for_scene(&exact);
+    let routing = Routing::new(&backend, &exact, &plan).to_string();
+    assert!(
+        routing.contains("soft-shadows on the cpu (the exact method"),
+        "{routing}"
+    );
+    // The exact method's answers come from the CPU, the rest of the render from the GPU.
+    let out = render_on(&exact, &backend, &NoProgress).expect("the GPU renders");
+    let reference = render(&exact, &NoProgress).expect("the CPU renders");
+    let bad = contradictions(&out, &reference);
+    assert!(bad.is_empty(), "{}", bad.join("\n"));
 }
 
 #[test]

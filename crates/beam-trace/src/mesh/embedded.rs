@@ -27,7 +27,6 @@
 //! * **all three**: the same triangle twice.
 
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::bvh::Bvh;
 use super::orient::{Projection, orient};
@@ -191,44 +190,30 @@ pub(crate) fn embedded_components(
     }
     let members: Vec<Triangle> = closed.iter().map(|&t| tris[t as usize]).collect();
     let bvh = Bvh::new(&members);
-    // Each component judged on its own (in parallel: the set found is the same in any
-    // order). Its members, by index in `members`.
-    let count = components
-        .iter()
-        .flatten()
-        .map(|&c| c as usize + 1)
-        .max()
-        .unwrap_or(0);
-    let mut of: Vec<Vec<usize>> = vec![Vec::new(); count];
-    for (i, &t) in closed.iter().enumerate() {
-        if let Some(c) = components[t as usize] {
-            of[c as usize].push(i);
+    let mut bad = std::collections::HashSet::new();
+    for (i, s) in members.iter().enumerate() {
+        let cs = components[closed[i] as usize];
+        if bad.contains(&cs) {
+            continue;
+        }
+        // A triangle without area, or with coordinates where the predicates could
+        // overflow or underflow, leaves its component unjudged.
+        if Projection::of(s).is_none() || !s.v.iter().all(|p| in_range(*p)) {
+            bad.insert(cs);
+            continue;
+        }
+        for j in bvh.in_box(&s.bounds()) {
+            let j = j as usize;
+            let ct = components[closed[j] as usize];
+            if j <= i || ct != cs {
+                continue;
+            }
+            if meet_improperly(s, &members[j]) {
+                bad.insert(cs);
+                break;
+            }
         }
     }
-    let judged: Vec<bool> = of
-        .par_iter()
-        .map(|mine| {
-            mine.iter().any(|&i| {
-                let s = &members[i];
-                // A triangle without area, or with coordinates where the predicates could
-                // overflow or underflow, leaves its component unjudged.
-                if Projection::of(s).is_none() || !s.v.iter().all(|p| in_range(*p)) {
-                    return true;
-                }
-                let cs = components[closed[i] as usize];
-                bvh.in_box(&s.bounds()).into_iter().any(|j| {
-                    let j = j as usize;
-                    j > i && components[closed[j] as usize] == cs && meet_improperly(s, &members[j])
-                })
-            })
-        })
-        .collect();
-    let bad: std::collections::HashSet<Option<u32>> = judged
-        .iter()
-        .enumerate()
-        .filter(|&(_, &b)| b)
-        .map(|(c, _)| Some(c as u32))
-        .collect();
     components
         .iter()
         .map(|c| c.filter(|c| !bad.contains(&Some(*c))))

@@ -31,7 +31,6 @@
 
 use glam::{DVec2, DVec3};
 use interval_core::Interval;
-use rayon::prelude::*;
 
 use super::closed::closed_components;
 use super::triangle::{Triangle, bounds_of};
@@ -293,22 +292,23 @@ pub(crate) fn inner_squares_of(
             faces[*c as usize].push(*t);
         }
     }
-    // Each component on its own, in parallel, the squares kept in the components' order.
-    faces
-        .par_iter()
-        .filter(|f| f.len() >= min_faces.max(1))
-        .flat_map_iter(|faces| {
-            let solid = bounds_of(faces);
-            (0..3).filter_map(move |axis| {
-                let solid = solid?;
-                let (u, v) = plane_axes(axis);
-                let width = solid[u].wid().max(solid[v].wid());
-                let sq = square(faces, &solid, axis)?;
+    let mut out = Vec::new();
+    for faces in faces.iter().filter(|f| f.len() >= min_faces.max(1)) {
+        let Some(solid) = bounds_of(faces) else {
+            continue;
+        };
+        for axis in 0..3 {
+            let (u, v) = plane_axes(axis);
+            let width = solid[u].wid().max(solid[v].wid());
+            if let Some(sq) = square(faces, &solid, axis) {
                 let side = sq.corners[2][u] - sq.corners[0][u];
-                (side >= 0.05 * width).then_some(sq)
-            })
-        })
-        .collect()
+                if side >= 0.05 * width {
+                    out.push(sq);
+                }
+            }
+        }
+    }
+    out
 }
 
 #[cfg(test)]

@@ -20,6 +20,7 @@
 
 mod bvh;
 mod closed;
+mod combine;
 mod embedded;
 mod faces;
 mod inner;
@@ -39,6 +40,7 @@ pub(crate) use embedded::in_range;
 use inner::inner_squares_of;
 
 pub use closed::facing;
+pub use combine::with_triangles;
 pub use faces::{Faces, MAX_FACE_VERTICES, faces};
 pub use inner::{InnerSquare, inner_squares};
 pub use obj::read_obj;

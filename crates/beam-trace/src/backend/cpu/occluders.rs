@@ -4,7 +4,7 @@
 use glam::DVec3;
 use interval_core::Interval;
 
-use super::queries::{CpuQueries, Evals, with_mesh};
+use super::queries::{CpuQueries, Evals};
 use crate::aa::{facing, shadow_origins};
 use crate::beam::{
     BeamSettings, BoxClass, Extent, evaluate_box, evaluate_box_near, rejection_search,
@@ -275,19 +275,9 @@ impl CpuQueries<'_> {
     ) -> BoxClass {
         let window = Interval::new_unchecked(start.at(), 1.0);
         let implicit = self.shadow_beam_implicit(ev, beam, (start, inclusion), settings, c);
-        // Blocked by the implicit surfaces, or by one triangle, is blocked whatever the
-        // other occluders do.
-        match (implicit, self.mesh_beam(beam, window)) {
-            (class @ BoxClass::Hit { .. }, _) | (class, None) => class,
-            (class, Some(tm)) => {
-                let covered = inclusion
-                    .then(|| self.meshes.as_ref()?.bvh().covering(beam, window))
-                    .flatten();
-                match covered {
-                    Some((t_final, _)) => BoxClass::Hit { t_final },
-                    None => with_mesh(class, tm, None),
-                }
-            }
+        match &self.meshes {
+            Some(m) => m.shadow_beam(implicit, beam, window, inclusion),
+            None => implicit,
         }
     }
 

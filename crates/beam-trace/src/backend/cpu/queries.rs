@@ -272,16 +272,11 @@ impl CpuQueries<'_> {
         c: &mut RootCounters,
     ) -> Classified {
         let implicit = self.classify_implicit(ev, query, c);
-        let window = child_window(query.parent.as_ref()).intersection(forward());
-        let Some(tm) = self.mesh_beam(&query.beam, window) else {
+        let Some(m) = &self.meshes else {
             return implicit;
         };
-        let covered = self
-            .meshes
-            .as_ref()
-            .and_then(|m| m.bvh().beam_hit(&query.beam, window))
-            .map(|(t, _)| t);
-        let class = with_mesh(implicit.class, tm, covered);
+        let window = child_window(query.parent.as_ref());
+        let class = m.primary_beam(implicit.class, &query.beam, window);
         // The implicit surfaces' scope goes with their own Hit only.
         let scope = if class == implicit.class {
             implicit.scope
@@ -289,16 +284,6 @@ impl CpuQueries<'_> {
             None
         };
         Classified { class, scope }
-    }
-
-    /// The first parameter range in `window` where a ray of `beam` may meet a triangle of
-    /// the scene's meshes (`None`: proven that none does, or there are no meshes).
-    pub(super) fn mesh_beam(&self, beam: &Beam, window: Interval<f64>) -> Option<Interval<f64>> {
-        let window = window.intersection(forward());
-        if window.is_empty() {
-            return None;
-        }
-        self.meshes.as_ref()?.bvh().beam_first(beam, window)
     }
 
     /// [`classify`](Self::classify) against the implicit surfaces alone.
@@ -417,7 +402,7 @@ impl CpuQueries<'_> {
         }
         let implicit = self.cast_implicit(ev, ray, t, (scope, root), c);
         match &self.meshes {
-            Some(m) => implicit.first_of(m.bvh().first_crossing(ray, t).result),
+            Some(m) => m.first_root(implicit, ray, t),
             None => implicit,
         }
     }
@@ -540,35 +525,6 @@ impl CpuQueries<'_> {
             },
         };
         shading_parameter(eval, ray, t, c)
-    }
-}
-
-/// The class of a beam whose implicit class is `implicit`, where its rays may meet a
-/// triangle first in `tm` (and in no range before), and where, if `covered` is given, every
-/// ray's first crossing of a triangle is proven to lie in it ([`Bvh::beam_hit`](crate::mesh::Bvh::beam_hit)).
-/// The beam is Hit where the first of the two is proven for every ray; else it is Undecided
-/// from the earlier of the two ranges on.
-pub(super) fn with_mesh(
-    implicit: BoxClass,
-    tm: Interval<f64>,
-    covered: Option<Interval<f64>>,
-) -> BoxClass {
-    let earlier = |t: Interval<f64>| if tm.inf() < t.inf() { tm } else { t };
-    match (implicit, covered) {
-        (BoxClass::Miss, Some(t)) => BoxClass::Hit { t_final: t },
-        (BoxClass::Miss, None) => BoxClass::Undecided { t: tm },
-        (BoxClass::Undecided { t }, Some(tc)) if tc.sup() < t.inf() => {
-            BoxClass::Hit { t_final: tc }
-        }
-        (BoxClass::Undecided { t }, _) => BoxClass::Undecided { t: earlier(t) },
-        (BoxClass::Hit { t_final }, _) if tm.inf() > t_final.sup() => implicit,
-        (BoxClass::Hit { t_final }, Some(tc)) if t_final.sup() < tc.inf() => implicit,
-        (BoxClass::Hit { t_final }, Some(tc)) if tc.sup() < t_final.inf() => {
-            BoxClass::Hit { t_final: tc }
-        }
-        (BoxClass::Hit { t_final }, _) => BoxClass::Undecided {
-            t: earlier(t_final),
-        },
     }
 }
 
