@@ -15,7 +15,7 @@ use crate::root::RootResult;
 /// ray's first crossing of a triangle is proven to lie in it
 /// ([`Bvh::beam_hit`](super::Bvh::beam_hit)). The beam is Hit where the first of the two is
 /// proven for every ray; else it is Undecided from the earlier of the two ranges on.
-pub fn with_triangles(
+fn with_triangles(
     implicit: BoxClass,
     tm: Interval<f64>,
     covered: Option<Interval<f64>>,

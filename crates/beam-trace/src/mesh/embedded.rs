@@ -29,7 +29,7 @@
 use glam::DVec3;
 
 use super::bvh::Bvh;
-use super::orient::{Projection, orient};
+use super::orient::{Projection, in_range, orient};
 use super::triangle::Triangle;
 
 impl Projection {
@@ -166,14 +166,6 @@ fn apart_unshared(s: &Triangle, t: &Triangle, (ps, pt): (Projection, Projection)
     }
     !(edges(s).iter().any(|&(p, q, _)| segment_meets(p, q, t, pt))
         || edges(t).iter().any(|&(p, q, _)| segment_meets(p, q, s, ps)))
-}
-
-/// Whether the exact predicates stay exact on `p`: coordinates zero or of magnitude
-/// between `1e-30` and `1e30` (no product of differences overflows or underflows).
-pub(crate) fn in_range(p: DVec3) -> bool {
-    p.to_array()
-        .iter()
-        .all(|&x| x == 0.0 || (1e-30..=1e30).contains(&x.abs()))
 }
 
 /// `components` ([`super::closed::closed_components`]) with every closed component of

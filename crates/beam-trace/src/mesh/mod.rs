@@ -36,11 +36,10 @@ use crate::ibox::{IBox, disjoint};
 pub use bvh::{Bvh, FirstCrossing};
 use closed::{closed_components, facing_of};
 use embedded::embedded_components;
-pub(crate) use embedded::in_range;
 use inner::inner_squares_of;
+pub(crate) use orient::in_range;
 
 pub use closed::facing;
-pub use combine::with_triangles;
 pub use faces::{Faces, MAX_FACE_VERTICES, faces};
 pub use inner::{InnerSquare, inner_squares};
 pub use obj::read_obj;

@@ -55,3 +55,11 @@ impl Projection {
         sign(robust::orient2d(p(a), p(b), p(c)))
     }
 }
+
+/// Whether the exact predicates stay exact on `p`: coordinates zero or of magnitude
+/// between `1e-30` and `1e30` (no product of differences overflows or underflows).
+pub(crate) fn in_range(p: DVec3) -> bool {
+    p.to_array()
+        .iter()
+        .all(|&x| x == 0.0 || (1e-30..=1e30).contains(&x.abs()))
+}

@@ -16,7 +16,7 @@
 use glam::DVec3;
 use interval_core::Interval;
 
-use super::embedded::in_range;
+use super::orient::in_range;
 use super::triangle::Triangle;
 use crate::ibox::{IBox, disjoint, hull};
 use crate::ray::Beam;
