@@ -52,8 +52,9 @@ impl MeshIndex {
 
     /// A primary beam's class over `window` (clipped to `t ≥ 0`) from its class against the
     /// implicit surfaces alone (`implicit`, searched over the same parameters): Hit where
-    /// every ray's first crossing of a triangle is proven to lie in one range before any
-    /// other surface ([`Bvh::beam_hit`](super::Bvh::beam_hit)), by [`with_triangles`].
+    /// the first of the two, the implicit surfaces or a triangle
+    /// ([`Bvh::beam_hit`](super::Bvh::beam_hit)), is proven for every ray; else Undecided
+    /// from the earlier of the two ranges where a ray may meet a surface.
     pub fn primary_beam(&self, implicit: BoxClass, beam: &Beam, window: Interval<f64>) -> BoxClass {
         let window = window.intersection(forward());
         let Some(tm) = self.beam_first(beam, window) else {
@@ -67,7 +68,7 @@ impl MeshIndex {
     /// alone (`implicit`, searched over the same parameters): blocked by the implicit
     /// surfaces is blocked whatever the triangles do; with `inclusion`, a beam whose every
     /// ray crosses one triangle is blocked there ([`Bvh::covering`](super::Bvh::covering));
-    /// else [`with_triangles`].
+    /// else Undecided from the earlier of the two ranges where a ray may meet a surface.
     pub fn shadow_beam(
         &self,
         implicit: BoxClass,
