@@ -233,12 +233,16 @@ impl GpuQueries<'_> {
         })
     }
 
-    fn segment_beam(from: DVec3, to: DVec3) -> Beam {
+    /// The segment `from → to` as a ray (`t = 1` at `to`).
+    fn segment_ray(from: DVec3, to: DVec3) -> Ray {
         Ray {
             origin: from,
             dir: to - from,
         }
-        .beam()
+    }
+
+    fn segment_beam(from: DVec3, to: DVec3) -> Beam {
+        Self::segment_ray(from, to).beam()
     }
 
     /// The first root of the segment `from → to` (`t = 1` at `to`) for `t ∈ [start, 1]`
@@ -247,17 +251,11 @@ impl GpuQueries<'_> {
     fn segment_root(&self, class: GpuClass, from: DVec3, to: DVec3, start: f64) -> RootResult {
         let implicit = root_result(class);
         match &self.meshes {
-            Some(m) => {
-                let ray = Ray {
-                    origin: from,
-                    dir: to - from,
-                };
-                m.first_root(
-                    implicit,
-                    &ray,
-                    Interval::new_unchecked(start.clamp(0.0, 1.0), 1.0),
-                )
-            }
+            Some(m) => m.first_root(
+                implicit,
+                &Self::segment_ray(from, to),
+                Interval::new_unchecked(start.clamp(0.0, 1.0), 1.0),
+            ),
             None => implicit,
         }
     }

@@ -20,6 +20,13 @@ fn sign(x: f64) -> i8 {
     i8::from(x > 0.0) - i8::from(x < 0.0)
 }
 
+/// The sign of `orient2d(a, b, c)` of points of a plane, exactly: positive where `a, b, c`
+/// turn counterclockwise.
+pub(super) fn orient2d(a: [f64; 2], b: [f64; 2], c: [f64; 2]) -> i8 {
+    let p = |v: [f64; 2]| robust::Coord { x: v[0], y: v[1] };
+    sign(robust::orient2d(p(a), p(b), p(c)))
+}
+
 /// A plane's points seen along the axis `drop` (that coordinate left out: exact), where
 /// orientations in the plane keep their signs up to one factor for the whole plane.
 #[derive(Copy, Clone)]
@@ -51,8 +58,8 @@ impl Projection {
     /// The sign of `orient2d(a, b, c)` of the projected points, exactly.
     pub(super) fn orient(&self, a: DVec3, b: DVec3, c: DVec3) -> i8 {
         let (i, j) = ((self.drop + 1) % 3, (self.drop + 2) % 3);
-        let p = |v: DVec3| robust::Coord { x: v[i], y: v[j] };
-        sign(robust::orient2d(p(a), p(b), p(c)))
+        let p = |v: DVec3| [v[i], v[j]];
+        orient2d(p(a), p(b), p(c))
     }
 }
 

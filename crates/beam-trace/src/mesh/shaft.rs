@@ -16,7 +16,7 @@
 use glam::DVec3;
 use interval_core::Interval;
 
-use super::orient::in_range;
+use super::orient::{in_range, orient, orient2d};
 use super::triangle::Triangle;
 use crate::ibox::{IBox, disjoint, hull};
 use crate::ray::Beam;
@@ -60,24 +60,15 @@ struct Side {
     a: [f64; 2],
     b: [f64; 2],
     /// The sign of `orient2d(a, b, p)` for the points `p` outside the hull.
-    outside: f64,
+    outside: i8,
     /// For each of the two axes, whether a box's innermost point on it (the least of
     /// `orient2d` times `outside`) is its upper end.
     inner_high: [bool; 2],
 }
 
-/// Exactly the sign of `orient2d(a, b, p)` (Shewchuk's adaptive predicate): positive where
-/// `a, b, p` turn counterclockwise.
-fn orient2d(a: [f64; 2], b: [f64; 2], p: [f64; 2]) -> f64 {
-    let c = |v: [f64; 2]| robust::Coord { x: v[0], y: v[1] };
-    let d = robust::orient2d(c(a), c(b), c(p));
-    if d > 0.0 {
-        1.0
-    } else if d < 0.0 {
-        -1.0
-    } else {
-        0.0
-    }
+/// The upper end of `iv` where `high`, else its lower end.
+fn end(iv: Interval<f64>, high: bool) -> f64 {
+    if high { iv.sup() } else { iv.inf() }
 }
 
 /// Whether every bound of `b` keeps the exact predicates exact ([`in_range`]).
@@ -103,7 +94,6 @@ impl Side {
     /// one side of it and it is not parallel to an axis (those are faces of the boxes' box);
     /// `None` otherwise.
     fn new(from: &IBox, to: &IBox, (i, j): (usize, usize), corner: [bool; 2]) -> Option<Side> {
-        let end = |iv: Interval<f64>, high: bool| if high { iv.sup() } else { iv.inf() };
         let a = [end(from[i], corner[0]), end(from[j], corner[1])];
         let b = [end(to[i], corner[0]), end(to[j], corner[1])];
         if a[0] == b[0] || a[1] == b[1] || !(a.iter().chain(&b).all(|x| x.is_finite())) {
@@ -113,18 +103,16 @@ impl Side {
             .into_iter()
             .chain(rectangle(to, (i, j)))
             .map(|p| orient2d(a, b, p));
-        let (neg, pos) = signs.fold((false, false), |(neg, pos), s| {
-            (neg || s < 0.0, pos || s > 0.0)
-        });
+        let (neg, pos) = signs.fold((false, false), |(neg, pos), s| (neg || s < 0, pos || s > 0));
         let outside = match (neg, pos) {
-            (true, false) => 1.0,
-            (false, true) => -1.0,
+            (true, false) => 1,
+            (false, true) => -1,
             _ => return None,
         };
         // `orient2d(a, b, p) = n · (p − a)` with `n = (a_j − b_j, b_i − a_i)`: a box's
         // innermost corner has the lower end on an axis where `outside · n` is positive.
         let n = [a[1] - b[1], b[0] - a[0]];
-        let inner_high = n.map(|nk| outside * nk < 0.0);
+        let inner_high = n.map(|nk| f64::from(outside) * nk < 0.0);
         Some(Side {
             i,
             j,
@@ -142,7 +130,6 @@ impl Side {
 
     /// Whether the box `b` is proven strictly outside: its innermost corner is.
     fn box_outside(&self, b: &IBox) -> bool {
-        let end = |iv: Interval<f64>, high: bool| if high { iv.sup() } else { iv.inf() };
         self.outside([
             end(b[self.i], self.inner_high[0]),
             end(b[self.j], self.inner_high[1]),
@@ -163,7 +150,7 @@ impl Shaft {
             j: 1,
             a: [0.0; 2],
             b: [0.0; 2],
-            outside: 0.0,
+            outside: 0,
             inner_high: [false; 2],
         };
         let mut sides = [placeholder; MOST_SIDES];
@@ -184,14 +171,8 @@ impl Shaft {
         let mut corner_count = 0;
         for b in [from, to] {
             for k in 0..8 {
-                let end = |axis: usize| {
-                    if k >> axis & 1 == 1 {
-                        b[axis].sup()
-                    } else {
-                        b[axis].inf()
-                    }
-                };
-                let c = DVec3::new(end(0), end(1), end(2));
+                let c =
+                    DVec3::from_array(std::array::from_fn(|axis| end(b[axis], k >> axis & 1 == 1)));
                 if !corners[..corner_count].contains(&c) {
                     corners[corner_count] = c;
                     corner_count += 1;
@@ -217,7 +198,7 @@ impl Shaft {
     fn plane_separates(&self, t: &Triangle) -> bool {
         let mut seen = 0i8;
         for c in &self.corners[..self.corner_count] {
-            let s = super::orient::orient(t.v[0], t.v[1], t.v[2], *c);
+            let s = orient(t.v[0], t.v[1], t.v[2], *c);
             if s == 0 || (seen != 0 && s != seen) {
                 return false;
             }
