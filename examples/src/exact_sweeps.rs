@@ -12,8 +12,15 @@
 //!   from a least-squares fit of `log RMSE` against `log N`.
 //! * **Coherence**: the exact method with one tree per query (`exact:D:1`) against its groups.
 //! * **Light size**: every area light scaled about its centre.
-//! * **Light count**: every area light cut into `k × k` lights of the same total area and
-//!   power.
+//! * **Light count**: `k × k` lights in place of every area light, either copies of it
+//!   spread on a grid (the paper's experiment: lights of the same size, each casting its
+//!   own shadows) or its `k × k` parts (the same total area).
+//!
+//! Both sweeps compare the exact method with `stochastic:N` at equal time and at equal
+//! quality: the RMSE of the `N`-sample fractions against the exact ones, and the time
+//! sampling would take to reach RMSE `1/255` at its measured cost per sample, its error
+//! falling with `N` as the equal-quality fit found on the scene (stratified samples
+//! converge faster than `N^-1/2` in a penumbra; `N^-1/2` where the fit has one run).
 //! * **Peak memory**: the largest tree of each run, in nodes and bytes.
 
 use std::fmt::Write as _;
@@ -39,6 +46,8 @@ pub struct Options {
     pub light_scales: Vec<f64>,
     /// Lights per side of each area light (`k × k`); none: no light count table.
     pub light_counts: Vec<u32>,
+    /// How the lights of the light count table are placed.
+    pub light_layout: LightLayout,
     /// Where to write the exact method's render of the scene (PNG), if anywhere.
     pub image: Option<std::path::PathBuf>,
 }
@@ -157,6 +166,60 @@ fn scaled(p: &Patch, k: f64) -> Patch {
     }
 }
 
+/// Where the `k × k` lights of the light count table come from.
+#[derive(Copy, Clone, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum LightLayout {
+    /// Copies of each light, of its size, on a grid along its edges twice its larger side
+    /// apart, centred on it (the paper's experiment: lights of the same size, each casting
+    /// its own shadows).
+    Spread,
+    /// Each light cut into `k × k` parts of the same total area.
+    Tiled,
+}
+
+impl LightLayout {
+    /// The lights in place of `p`.
+    fn lights(self, p: &Patch, k: u32) -> Vec<Patch> {
+        match self {
+            LightLayout::Spread => spread(p, k),
+            LightLayout::Tiled => tiled(p, k),
+        }
+    }
+
+    /// What the table says of the lights.
+    fn describe(self) -> &'static str {
+        match self {
+            LightLayout::Spread => {
+                "copies of each light on a grid twice its side apart, the power shared"
+            }
+            LightLayout::Tiled => "each light cut into `k × k` lights, the same area and power",
+        }
+    }
+}
+
+/// `k × k` copies of the patch on a grid along its edges, their centres twice its larger
+/// side apart, the grid centred on it.
+fn spread(p: &Patch, k: u32) -> Vec<Patch> {
+    let side = p.edge_u.length().max(p.edge_v.length());
+    let (u, v) = (
+        p.edge_u.normalize_or_zero() * 2.0 * side,
+        p.edge_v.normalize_or_zero() * 2.0 * side,
+    );
+    let mid = 0.5 * f64::from(k - 1);
+    let mut out = Vec::new();
+    for i in 0..k {
+        for j in 0..k {
+            let shift = (f64::from(i) - mid) * u + (f64::from(j) - mid) * v;
+            out.push(Patch {
+                corner: p.corner + shift,
+                edge_u: p.edge_u,
+                edge_v: p.edge_v,
+            });
+        }
+    }
+    out
+}
+
 /// The patch cut into `k × k` equal patches.
 fn tiled(p: &Patch, k: u32) -> Vec<Patch> {
     let step = 1.0 / f64::from(k);
@@ -170,9 +233,9 @@ fn tiled(p: &Patch, k: u32) -> Vec<Patch> {
     out
 }
 
-/// Least-squares `log RMSE = a + b log N` through the runs, and the `N` where it reaches
-/// `target`.
-fn samples_for(points: &[(u32, f64)], target: f64) -> Option<f64> {
+/// Least-squares `log RMSE = a + b log N` through the runs: `(a, b)`, where there are two
+/// runs or more with an error.
+fn fit(points: &[(u32, f64)]) -> Option<(f64, f64)> {
     let pts: Vec<(f64, f64)> = points
         .iter()
         .filter(|(_, e)| *e > 0.0)
@@ -189,7 +252,13 @@ fn samples_for(points: &[(u32, f64)], target: f64) -> Option<f64> {
     let sxy: f64 = pts.iter().map(|(x, y)| (x - mx) * (y - my)).sum();
     let sxx: f64 = pts.iter().map(|(x, _)| (x - mx) * (x - mx)).sum();
     let b = sxy / sxx;
-    (b < 0.0).then(|| ((target.ln() - (my - b * mx)) / b).exp())
+    Some((my - b * mx, b))
+}
+
+/// The `N` where the fit of [`fit`] through the runs reaches `target`, where it falls.
+fn samples_for(points: &[(u32, f64)], target: f64) -> Option<f64> {
+    let (a, b) = fit(points)?;
+    (b < 0.0).then(|| ((target.ln() - a) / b).exp())
 }
 
 /// The generated stand-ins for the paper's models.
@@ -377,13 +446,13 @@ pub fn report(
         "**Equal quality** (RMSE against the exact fractions)\n\n| method | time (s) | × exact | \
          RMSE | largest error |\n|---|---:|---:|---:|---:|"
     );
-    let mut fit = Vec::new();
+    let mut fit_points = Vec::new();
     let mut per_sample = 0.0;
     for &n in &o.samples {
         let r = run(&scene, &format!("stochastic:{n}"))?;
         let (rmse, worst) = errors(&r, &exact);
         eprintln!("    RMSE {rmse:.5}, largest error {worst:.3}");
-        fit.push((n, rmse));
+        fit_points.push((n, rmse));
         per_sample = r.secs / f64::from(n);
         let _ = writeln!(
             md,
@@ -392,7 +461,7 @@ pub fn report(
             r.secs / exact.secs
         );
     }
-    match samples_for(&fit, 1.0 / 255.0) {
+    match samples_for(&fit_points, 1.0 / 255.0) {
         Some(n) => {
             let _ = writeln!(
                 md,
@@ -407,67 +476,141 @@ pub fn report(
             let _ = writeln!(md, "\n(The runs do not fit a falling RMSE.)\n");
         }
     }
+    // How the sweeps' sampling error falls with the samples: the fit's slope.
+    let slope = fit(&fit_points)
+        .map(|(_, b)| b)
+        .filter(|b| *b < 0.0)
+        .unwrap_or(-0.5);
+    if !o.light_scales.is_empty() || !o.light_counts.is_empty() {
+        let _ = writeln!(
+            md,
+            "In the sweeps, sampling's error is taken to fall as `N^{slope:.2}` for the samples \
+             RMSE 1/255 needs.\n"
+        );
+    }
     if !o.light_scales.is_empty() {
-        light_size(&mut md, &scene, o)?;
+        light_size(&mut md, &scene, o, slope)?;
     }
     if !o.light_counts.is_empty() {
-        light_count(&mut md, &scene, lights, o)?;
+        light_count(&mut md, &scene, lights, o, slope)?;
     }
     Ok(md)
 }
 
 /// The light size table: every light scaled by each of `o.light_scales`.
-fn light_size(md: &mut String, scene: &Scene, o: &Options) -> Result<(), String> {
+/// `slope`: how the sampling error falls with the samples (`RMSE ∝ N^slope`).
+fn light_size(md: &mut String, scene: &Scene, o: &Options, slope: f64) -> Result<(), String> {
     let _ = writeln!(
         md,
         "**Light size** (each light's side times `k`, its area times `k²`)\n\n| k | area | exact \
-         (s) | BSP nodes | peak nodes | `stochastic:{s}` (s) | stochastic / exact |\n\
-         |---:|---:|---:|---:|---:|---:|---:|",
-        s = o.sweep_samples
+         (s) | BSP nodes | peak nodes | {} |\n|---:|---:|---:|---:|---:|{}",
+        Versus::header(o.sweep_samples),
+        Versus::RULE
     );
-    let sampled = format!("stochastic:{}", o.sweep_samples);
     for &k in &o.light_scales {
         let s = with_lights(scene, |p| vec![scaled(p, k)]);
-        let (e, r) = (run(&s, "exact")?, run(&s, &sampled)?);
+        let e = run(&s, "exact")?;
+        let versus = Versus::of(&e, &s, o.sweep_samples, slope)?;
         let _ = writeln!(
             md,
-            "| {k} | {:.0}× | {:.3} | {} | {} | {:.3} | {:.2} |",
+            "| {k} | {:.0}× | {:.3} | {} | {} | {versus} |",
             k * k,
             e.secs,
             e.counter("bsp_nodes"),
             e.counter("bsp_peak_nodes"),
-            r.secs,
-            r.secs / e.secs
         );
     }
     Ok(())
 }
 
-/// The light count table: every light cut into `k × k` for each of `o.light_counts`
-/// (`lights` area lights in the scene).
-fn light_count(md: &mut String, scene: &Scene, lights: usize, o: &Options) -> Result<(), String> {
-    let sampled = format!("stochastic:{}", o.sweep_samples);
+/// The light count table: `k × k` lights in place of each of the scene's `lights` area
+/// lights for each of `o.light_counts`, placed as `o.light_layout` says; `slope` as for
+/// [`light_size`].
+fn light_count(
+    md: &mut String,
+    scene: &Scene,
+    lights: usize,
+    o: &Options,
+    slope: f64,
+) -> Result<(), String> {
     let _ = writeln!(
         md,
-        "\n**Light count** (each light cut into `k × k` lights, the same area and power)\n\n\
-         | lights | exact (s) | BSP nodes | peak nodes | `{sampled}` (s, N per light) | \
-         stochastic / exact |\n|---:|---:|---:|---:|---:|---:|"
+        "\n**Light count** ({})\n\n| lights | exact (s) | BSP nodes | peak nodes | {} |\n\
+         |---:|---:|---:|---:|{}",
+        o.light_layout.describe(),
+        Versus::header(o.sweep_samples),
+        Versus::RULE
     );
     for &k in &o.light_counts {
-        let s = with_lights(scene, |p| tiled(p, k));
-        let (e, r) = (run(&s, "exact")?, run(&s, &sampled)?);
+        let s = with_lights(scene, |p| o.light_layout.lights(p, k));
+        let e = run(&s, "exact")?;
+        let versus = Versus::of(&e, &s, o.sweep_samples, slope)?;
         let _ = writeln!(
             md,
-            "| {} | {:.3} | {} | {} | {:.3} | {:.2} |",
+            "| {} | {:.3} | {} | {} | {versus} |",
             k * k * lights as u32,
             e.secs,
             e.counter("bsp_nodes"),
             e.counter("bsp_peak_nodes"),
-            r.secs,
-            r.secs / e.secs
         );
     }
     Ok(())
+}
+
+/// A sweep row's comparison with sampling: `stochastic:N`'s time and RMSE against the
+/// exact run, and the time RMSE `1/255` would take it (its error falling as `N^slope`, at
+/// its cost per sample), each over the exact method's time.
+struct Versus {
+    samples: u32,
+    secs: f64,
+    exact_secs: f64,
+    rmse: f64,
+    slope: f64,
+}
+
+impl Versus {
+    const RULE: &'static str = "---:|---:|---:|---:|---:|";
+
+    /// The columns' heads, for `samples` samples.
+    fn header(samples: u32) -> String {
+        format!(
+            "`stochastic:{samples}` (s) | stochastic / exact | its RMSE | RMSE 1/255: samples \
+             | RMSE 1/255: sampling / exact"
+        )
+    }
+
+    /// `stochastic:samples` on `scene`, against its exact run `exact`, its error taken to
+    /// fall as `N^slope`.
+    fn of(exact: &Run, scene: &Scene, samples: u32, slope: f64) -> Result<Versus, String> {
+        let r = run(scene, &format!("stochastic:{samples}"))?;
+        Ok(Versus {
+            samples,
+            secs: r.secs,
+            exact_secs: exact.secs,
+            rmse: errors(&r, exact).0,
+            slope,
+        })
+    }
+
+    /// The samples that RMSE `1/255` needs.
+    fn equal_quality_samples(&self) -> f64 {
+        f64::from(self.samples) * (self.rmse * 255.0).powf(-1.0 / self.slope)
+    }
+}
+
+impl std::fmt::Display for Versus {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let n = self.equal_quality_samples();
+        let per_sample = self.secs / f64::from(self.samples);
+        write!(
+            f,
+            "{:.3} | {:.2} | {:.5} | {n:.0} | {:.2}",
+            self.secs,
+            self.secs / self.exact_secs,
+            self.rmse,
+            n * per_sample / self.exact_secs
+        )
+    }
 }
 
 #[cfg(test)]
@@ -496,5 +639,40 @@ mod tests {
         let big = scaled(&p, 10.0);
         assert!((big.area() - 100.0 * p.area()).abs() < 1e-9);
         assert!((big.center() - p.center()).length() < 1e-12);
+    }
+
+    #[test]
+    fn spread_lights_keep_their_size_on_a_grid_around_the_light() {
+        let p = Patch::square(glam::DVec3::new(1.0, 3.0, -2.0), 2.0, 1);
+        let copies = spread(&p, 3);
+        assert_eq!(copies.len(), 9);
+        for c in &copies {
+            assert!((c.area() - p.area()).abs() < 1e-12);
+        }
+        let mean = copies
+            .iter()
+            .fold(glam::DVec3::ZERO, |m, c| m + c.center() / 9.0);
+        assert!((mean - p.center()).length() < 1e-12);
+        // Neighbours twice the side apart: they do not overlap.
+        let gap = (copies[1].center() - copies[0].center()).length();
+        assert!((gap - 4.0).abs() < 1e-12, "{gap}");
+        assert_eq!(spread(&p, 1), vec![p]);
+    }
+
+    #[test]
+    fn equal_quality_scales_the_samples_by_the_squared_error() {
+        let v = Versus {
+            samples: 4,
+            secs: 2.0,
+            exact_secs: 1.0,
+            rmse: 2.0 / 255.0,
+            slope: -0.5,
+        };
+        // Twice the target error: four times the samples, 16 in 8 s.
+        assert!((v.equal_quality_samples() - 16.0).abs() < 1e-9);
+        assert!(v.to_string().ends_with("| 16 | 8.00"), "{v}");
+        // Falling as `N^-1`: twice the samples.
+        let fast = Versus { slope: -1.0, ..v };
+        assert!((fast.equal_quality_samples() - 8.0).abs() < 1e-9);
     }
 }

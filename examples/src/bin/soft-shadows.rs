@@ -5,7 +5,7 @@
 //! soft-shadows penumbra [--size 256] [--samples 32] [--markdown FILE]
 //! soft-shadows exact [SCENE] [--width 320] [--height 240] [--samples 16,64,256,1024]
 //!                    [--sweep-samples 64] [--light-scales 1,2,5,10] [--light-counts 1,2,3,4,6]
-//!                    [--no-sweeps] [--generate TRIANGLES [--stand-in canopy|hall] [--seed S]]
+//!                    [--light-layout spread|tiled] [--no-sweeps] [--generate TRIANGLES [--stand-in canopy|hall] [--seed S]]
 //!                    [--image FILE]
 //! ```
 //!
@@ -91,9 +91,13 @@ enum Table {
         /// Multipliers of each light's side (area times their squares: 10 is 100 times).
         #[arg(long, value_delimiter = ',', default_value = "1,2,5,10")]
         light_scales: Vec<f64>,
-        /// Lights per side each area light is cut into (6: 36 lights).
+        /// Lights per side in place of each area light (6: 36 lights).
         #[arg(long, value_delimiter = ',', default_value = "1,2,3,4,6")]
         light_counts: Vec<u32>,
+        /// The lights of the light count table: copies of each light on a grid (the
+        /// paper's), or its parts.
+        #[arg(long, value_enum, default_value = "spread")]
+        light_layout: examples::exact_sweeps::LightLayout,
         /// Leave out the light size and light count tables.
         #[arg(long)]
         no_sweeps: bool,
@@ -319,6 +323,7 @@ fn run(args: Args) -> Result<(), String> {
             sweep_samples,
             light_scales,
             light_counts,
+            light_layout,
             no_sweeps,
             generate,
             stand_in,
@@ -333,6 +338,7 @@ fn run(args: Args) -> Result<(), String> {
                 sweep_samples,
                 light_scales: if no_sweeps { Vec::new() } else { light_scales },
                 light_counts: if no_sweeps { Vec::new() } else { light_counts },
+                light_layout,
                 image,
             },
         )?,
