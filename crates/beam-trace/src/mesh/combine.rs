@@ -69,6 +69,12 @@ impl MeshIndex {
     /// surfaces is blocked whatever the triangles do; with `inclusion`, a beam whose every
     /// ray crosses one triangle is blocked there ([`Bvh::covering`](super::Bvh::covering));
     /// else Undecided from the earlier of the two ranges where a ray may meet a surface.
+    ///
+    /// A shadow beam asks only whether its segments are blocked, so its Hit is weaker than
+    /// a primary beam's: every ray meets a surface (an implicit one or a triangle) in
+    /// `t_final`, but another surface may come first on some rays. What a shadow method
+    /// takes from it (blocked; or a sub-beam's search started at `inf t_final`, where each
+    /// of its rays still meets the same surface) holds either way.
     pub fn shadow_beam(
         &self,
         implicit: BoxClass,

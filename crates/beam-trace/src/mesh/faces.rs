@@ -8,15 +8,16 @@
 //! **strictly convex** (every corner turns the face's way, decided by the exact `orient2d`
 //! of the points projected along the axis of the plane's largest normal coordinate: a
 //! projection that keeps, for points of one plane, every orientation up to one common
-//! sign). A face is then exactly the union of its triangles: the lines it stabs are the
-//! lines they stab (up to the shared edges, a set of measure zero), and a method that sorts
+//! sign). Triangles with a coordinate the exact predicates do not cover (below `1e-30` or
+//! above `1e30` in magnitude, [`in_range`]) stay faces of their own. A face is then exactly
+//! the union of its triangles: the lines it stabs are the lines they stab (up to the shared edges, a set of measure zero), and a method that sorts
 //! lines by occluder edges (the exact soft shadows) needs only the face's outline, not the
 //! edges between its triangles.
 
 use glam::DVec3;
 
 use super::closed::corners_and_edges;
-use super::orient::{Projection, orient};
+use super::orient::{Projection, in_range, orient};
 use super::triangle::Triangle;
 
 /// The most vertices a face is grown to (a face of many more would only be walked more
@@ -72,6 +73,13 @@ impl Growing {
     }
 }
 
+/// Whether the exact predicates are exact on `tri`'s vertices ([`in_range`]), so that
+/// merging it decides coplanarity and convexity exactly (below `1e-30`, `orient3d` could
+/// underflow to zero on triangles that are not coplanar).
+fn mergeable(tri: &Triangle) -> bool {
+    tri.v.iter().all(|&p| in_range(p))
+}
+
 /// The faces of `tris`, where `group` tells which triangles may be merged (those of equal
 /// value: one mesh's, facing one way, [`super::facing`]).
 pub fn faces<G: PartialEq>(tris: &[Triangle], group: &[G]) -> Faces {
@@ -84,10 +92,14 @@ pub fn faces<G: PartialEq>(tris: &[Triangle], group: &[G]) -> Faces {
         }
         let id = outlines.len() as u32;
         of[t] = id;
-        // A triangle whose normal may vanish (degenerate) stays alone.
-        let Some(projection) = Projection::of(tri) else {
-            outlines.push(tri.v.to_vec());
-            continue;
+        // A triangle whose normal may vanish (degenerate), or whose coordinates could make
+        // the predicates underflow or overflow, stays alone.
+        let projection = match Projection::of(tri) {
+            Some(p) if mergeable(tri) => p,
+            _ => {
+                outlines.push(tri.v.to_vec());
+                continue;
+            }
         };
         let turn = projection.orient(tri.v[0], tri.v[1], tri.v[2]);
         let mut face = Growing {
@@ -114,6 +126,9 @@ pub fn faces<G: PartialEq>(tris: &[Triangle], group: &[G]) -> Faces {
                     continue;
                 };
                 let (d_id, d) = (corners[u][k], tris[u].v[k]);
+                if !mergeable(&tris[u]) {
+                    continue;
+                }
                 let [p, q, r] = face.plane;
                 if face.ids.contains(&d_id) || orient(p, q, r, d) != 0 || !face.convex_with(i, d) {
                     continue;
@@ -148,6 +163,16 @@ mod tests {
             .map(|i| poly[i].cross(poly[(i + 1) % n]))
             .sum::<DVec3>()
             .length()
+    }
+
+    #[test]
+    fn triangles_out_of_the_predicates_range_are_not_merged() {
+        // Where `orient3d` could underflow, each triangle is its own face; a box just inside
+        // the range is still six quads.
+        let tiny = cube(dv(1e-40, 2e-40, 3e-40), dv(2e-40, 3e-40, 5e-40));
+        assert_eq!(faces(&tiny, &[0; 12]).len(), 12);
+        let small = cube(dv(1e-20, 2e-20, 3e-20), dv(2e-20, 3e-20, 5e-20));
+        assert_eq!(faces(&small, &[0; 12]).len(), 6);
     }
 
     #[test]

@@ -315,6 +315,36 @@ mod tests {
         assert!(shaft.sides().is_empty());
     }
 
+    #[test]
+    fn contacts_on_the_hull_boundary_are_kept() {
+        // The shaft from the origin to the square [1, 2]² at z = 0 is flat; (1, 0.5, 0) lies
+        // on its side from the origin to (2, 1, 0).
+        let shaft = Shaft::new(
+            &point_box(DVec3::ZERO),
+            &[ival(1.0, 2.0), ival(1.0, 2.0), ival(0.0, 0.0)],
+        );
+        let touching = Triangle::new(
+            DVec3::new(1.0, 0.5, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(2.0, 0.5, -1.0),
+        );
+        assert!(shaft.may_meet(&touching));
+        let in_its_plane = Triangle::new(
+            DVec3::new(1.0, 1.0, 0.0),
+            DVec3::new(3.0, 1.0, 0.0),
+            DVec3::new(1.0, 3.0, 0.0),
+        );
+        assert!(shaft.may_meet(&in_its_plane));
+        assert!(shaft.may_reach(&point_box(DVec3::new(2.0, 1.0, 0.0))));
+        // Just beside the side: culled.
+        let beside = Triangle::new(
+            DVec3::new(1.0, 0.25, 0.0),
+            DVec3::new(2.0, 0.0, 0.0),
+            DVec3::new(2.0, 0.5, -1.0),
+        );
+        assert!(!shaft.may_meet(&beside));
+    }
+
     /// A point of the segment between a point of each box (`s`, `u`, `w` in `[0, 1]`).
     fn segment_point(from: &IBox, to: &IBox, s: [f64; 3], u: [f64; 3], w: f64) -> DVec3 {
         let at = |b: &IBox, f: [f64; 3]| {
@@ -329,6 +359,18 @@ mod tests {
     /// the boxes' hull.
     fn unit() -> impl Strategy<Value = f64> {
         0.01..=0.99f64
+    }
+
+    /// Boxes on a grid of integers, flat ones (zero width) included, so that shafts meet
+    /// points exactly on their faces, edges and corners.
+    fn grid_box() -> impl Strategy<Value = IBox> {
+        (
+            prop::array::uniform3(-2i32..=2),
+            prop::array::uniform3(0i32..=2),
+        )
+            .prop_map(|(lo, w)| {
+                std::array::from_fn(|k| ival(f64::from(lo[k]), f64::from(lo[k] + w[k])))
+            })
     }
 
     fn a_box() -> impl Strategy<Value = IBox> {
@@ -359,6 +401,26 @@ mod tests {
             // A triangle with `p` as a vertex.
             let [a, b] = [e[0], e[1]].map(DVec3::from_array);
             prop_assert!(shaft.may_meet(&Triangle::new(p, p + a, p + b)));
+        }
+
+        /// Points of segments exactly on the hull's boundary (halves of grid boxes, flat
+        /// boxes included: every predicate's zero case) are never culled, nor a triangle
+        /// with such a point as a vertex.
+        #[test]
+        fn exact_contacts_are_never_culled(
+            from in grid_box(),
+            to in grid_box(),
+            s in prop::array::uniform3(0u8..=2),
+            u in prop::array::uniform3(0u8..=2),
+            w in 0u8..=2,
+            e in prop::array::uniform2(prop::array::uniform3(-2i32..=2)),
+        ) {
+            let half = |x: u8| f64::from(x) / 2.0;
+            let p = segment_point(&from, &to, s.map(half), u.map(half), half(w));
+            let shaft = Shaft::new(&from, &to);
+            prop_assert!(shaft.may_reach(&point_box(p)), "{p:?}");
+            let [a, b] = e.map(|v| DVec3::from_array(v.map(f64::from)));
+            prop_assert!(shaft.may_meet(&Triangle::new(p, p + a, p + b)), "{p:?} {a:?} {b:?}");
         }
 
         /// A box proven outside has no point of the boxes' hull: sampled points of the
