@@ -30,7 +30,7 @@ use beam_trace::mesh::Triangle;
 use beam_trace::scene::{AaMode, AreaLight, Material, MeshSurface};
 use beam_trace::shadow::exact::NODE_BYTES;
 use beam_trace::shadow::{Patch, ShadowSpec};
-use beam_trace::{Light, NoProgress, RenderOutput, Scene, render};
+use beam_trace::{Light, RenderOutput, Scene, render};
 
 /// What to run.
 #[derive(Clone, Debug)]
@@ -87,7 +87,9 @@ impl Run {
 fn run(scene: &Scene, method: &str) -> Result<Run, String> {
     let mut s = scene.clone();
     s.settings.shadow_method = method.parse()?;
-    let out: RenderOutput = render(&s, &NoProgress).map_err(|e| e.to_string())?;
+    eprintln!("  {method} ...");
+    let out: RenderOutput =
+        render(&s, &crate::pass_bars::PassBars::new(false)).map_err(|e| e.to_string())?;
     let pass = out
         .stats
         .pass("soft-shadows")

@@ -22,15 +22,15 @@
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::sync::Mutex;
 
 use beam_trace::blocks::{BlockReport, BlockSettings, Frames, reads_proofs, render_blocks};
 use beam_trace::image::{check_writable, write_atomic};
 use beam_trace::root::RootMethod;
 use beam_trace::scene::{AaMode, Animation, PrimaryMode};
 use beam_trace::shadow::ShadowSpec;
-use beam_trace::{Precision, Progress, Scene, render_on};
+use beam_trace::{Precision, Scene, render_on};
 use clap::Parser;
+use examples::pass_bars::PassBars;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 
 /// Reliable interval ray tracing of implicit surfaces.
@@ -130,43 +130,6 @@ struct Args {
     /// No progress bar.
     #[arg(long)]
     quiet: bool,
-}
-
-struct Bar {
-    bar: Mutex<Option<ProgressBar>>,
-    quiet: bool,
-    /// Where the pass bars go, below a frame bar (animations); `None`: on their own.
-    multi: Option<MultiProgress>,
-}
-
-impl Progress for Bar {
-    fn begin(&self, pass: &str, total: u64) {
-        if self.quiet {
-            return;
-        }
-        let b = ProgressBar::new(total);
-        b.set_style(
-            ProgressStyle::with_template("{prefix:>13} [{bar:40}] {pos}/{len} {elapsed}")
-                .expect("valid template")
-                .progress_chars("=> "),
-        );
-        b.set_prefix(pass.to_string());
-        let b = match &self.multi {
-            Some(m) => m.add(b),
-            None => b,
-        };
-        *self.bar.lock().expect("progress lock") = Some(b);
-    }
-    fn advance(&self, n: u64) {
-        if let Some(b) = self.bar.lock().expect("progress lock").as_ref() {
-            b.inc(n);
-        }
-    }
-    fn end(&self) {
-        if let Some(b) = self.bar.lock().expect("progress lock").take() {
-            b.finish_and_clear();
-        }
-    }
 }
 
 /// What the command renders: one scene, or the frames of an animated scene file.
@@ -291,11 +254,7 @@ fn run(args: Args) -> Result<(), String> {
         scene.lights.len(),
         rayon::current_num_threads()
     );
-    let bar = Bar {
-        bar: Mutex::new(None),
-        quiet: args.quiet,
-        multi: None,
-    };
+    let bar = PassBars::new(args.quiet);
     let backend = backend(&args)?;
     let plan = beam_trace::Plan::for_scene(&scene);
     print!("{plan}");
@@ -443,11 +402,7 @@ fn run_animation(args: &Args, animation: &Animation) -> Result<(), String> {
         b.set_prefix("frames");
         b
     };
-    let bar = Bar {
-        bar: Mutex::new(None),
-        quiet: args.quiet,
-        multi: Some(multi.clone()),
-    };
+    let bar = PassBars::below(multi.clone(), args.quiet);
     let start = std::time::Instant::now();
     let blocks = BlockSettings {
         size: args.block.unwrap_or(animation.block()).max(1),
