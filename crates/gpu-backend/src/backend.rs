@@ -513,21 +513,17 @@ impl Queries for GpuQueries<'_> {
                 t: Interval::new_unchecked(0.0, 1.0),
             })
             .collect();
-        let mut answers = self.classify(&q, &self.segment)?;
-        let roots: Vec<RootResult> = answers
-            .values
-            .drain(..)
-            .zip(queries)
-            .map(|(c, s)| self.segment_root(c, s.from, s.to, 0.0))
-            .collect();
-        Ok(map(
-            Answers {
-                values: roots,
-                cost: answers.cost,
-                search: answers.search,
-            },
-            |r| segment_visibility(r, true),
-        ))
+        let answers = self.classify(&q, &self.segment)?;
+        Ok(Answers {
+            values: answers
+                .values
+                .into_iter()
+                .zip(queries)
+                .map(|(c, s)| segment_visibility(self.segment_root(c, s.from, s.to, 0.0), true))
+                .collect(),
+            cost: answers.cost,
+            search: answers.search,
+        })
     }
 
     fn soft_shadows(
