@@ -4,6 +4,8 @@
 use glam::DVec3;
 use interval_core::Interval;
 
+use crate::ray::Ray;
+
 /// Distance, as a fraction of the scene diagonal, by which a shadow segment starts off the
 /// surface along the normal. It must exceed the width of a root enclosure along the segment
 /// (`epsilon` times the segment's length) by a wide margin, or the search finds the surface
@@ -27,6 +29,18 @@ pub struct Hit {
 }
 
 impl Hit {
+    /// The hit of `ray` at the parameter `tm` inside its root enclosure `t`, shaded by
+    /// leaf `leaf`, before the normals pass: its normal faces the eye until then.
+    pub fn on_ray(ray: &Ray, t: Interval<f64>, tm: f64, leaf: u32) -> Hit {
+        Hit {
+            t,
+            point: ray.at(tm),
+            to_eye: (-ray.dir).normalize_or_zero(),
+            leaf,
+            normal: -ray.dir.normalize_or_zero(),
+        }
+    }
+
     /// The normal turned towards the eye (the side of the surface the sample sees).
     pub fn facing_normal(&self) -> DVec3 {
         if self.normal.dot(self.to_eye) < 0.0 {

@@ -187,6 +187,36 @@ fn batches_cut_in_pieces_give_the_same_output() {
 }
 
 #[test]
+fn hits_the_pass_makes_itself_are_the_ones_a_backend_answers() {
+    // Unlit, one surface: the CPU leaves the hit records to the primary pass
+    // (`Queries::direct_hits`); a backend that does not answers every one of them.
+    let backend = Pieces {
+        piece: 7,
+        declined: Vec::new(),
+    };
+    for primary in ["octree", "screen-rays", "per-pixel"] {
+        let text = format!(
+            "[camera]\neye = [0.0, 2.0, 6.0]\nlook_at = [0.0, -0.5, 0.0]\nwidth = 36\n\
+             height = 28\n[[surfaces]]\nformula = \"x^2 + y^2 + z^2 - 1\"\n\
+             bounds = [[-1.0, -1.0, -1.0], [1.0, 1.0, 1.0]]\n[render]\n\
+             primary = \"{primary}\"\nrays_per_undecided = 4\n"
+        );
+        let s = Scene::from_toml(&text, "unlit.toml", None).unwrap_or_else(|e| panic!("{e}"));
+        let plan = Plan::for_scene(&s);
+        assert!(!plan.narrow_hits, "{primary}: an unlit scene of one colour");
+        let a = render(&s, &NoProgress).unwrap();
+        let b = render_on(&s, &backend, &NoProgress).unwrap();
+        assert_eq!(a.image.pixels, b.image.pixels, "{primary}");
+        assert_eq!(a.classification().pixels, b.classification().pixels);
+        assert_eq!(a.stats.work(), b.stats.work());
+        assert!(
+            a.image.pixels.iter().any(|p| p[0] > 0.5),
+            "{primary}: the ball is seen"
+        );
+    }
+}
+
+#[test]
 fn declined_kinds_run_on_the_cpu_and_the_routing_says_so() {
     let backend = Pieces {
         piece: 1000,

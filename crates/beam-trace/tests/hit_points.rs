@@ -151,3 +151,48 @@ fn unlit_hit_points_are_the_near_ends_of_their_enclosures() {
         assert_eq!(point, ray.at(t.inf()), "enclosure {t:?}");
     }
 }
+
+/// The CPU backend's queries for `ball` with the tables `tail` after it.
+fn direct_hits_of(ball: &Ball, tail: &str) -> Option<beam_trace::backend::DirectHits> {
+    let scene = ball.scene(tail);
+    let plan = Plan::for_scene(&scene);
+    let prepared = Cpu
+        .prepare(&scene, &plan, &[QueryKind::Roots, QueryKind::HitPoints])
+        .unwrap_or_else(|e| panic!("{e}"));
+    prepared.queries.direct_hits()
+}
+
+#[test]
+fn direct_hits_are_the_answers_of_hit_points() {
+    // Unlit, one surface: every record follows from the enclosure, equal bit for bit to
+    // the backend's answer; an enclosure without a finite start is left to the backend.
+    let ball = UNIT_BALL;
+    let scene = ball.scene("");
+    let plan = Plan::for_scene(&scene);
+    let q = Cpu
+        .prepare(&scene, &plan, &[QueryKind::Roots, QueryKind::HitPoints])
+        .unwrap_or_else(|e| panic!("{e}"))
+        .queries;
+    let direct = q.direct_hits().expect("an unlit scene of one surface");
+    let found = hit_points(&ball, "");
+    let queries: Vec<HitQuery> = found
+        .iter()
+        .map(|&(ray, t, _)| HitQuery {
+            ray,
+            t,
+            scope: None,
+        })
+        .collect();
+    let answers = q.hit_points(&queries).unwrap_or_else(|e| panic!("{e}"));
+    for (query, answer) in queries.iter().zip(&answers.values) {
+        assert_eq!(direct.hit(&query.ray, query.t).as_ref(), Some(answer));
+    }
+    let open = Interval::new(f64::NEG_INFINITY, 1.0).unwrap();
+    assert_eq!(direct.hit(&queries[0].ray, open), None);
+    // Lit, or of two surfaces: the backend makes every record (a search, a leaf to tell).
+    assert_eq!(direct_hits_of(&ball, LIGHT), None);
+    let other = "[[surfaces]]\nformula = \"(x - 40)^2 + y^2 + z^2 - 1\"\n\
+                 bounds = [[38.0, -2.0, -2.0], [42.0, 2.0, 2.0]]\n\
+                 material = { color = [1.0, 0.0, 0.0] }\n";
+    assert_eq!(direct_hits_of(&ball, other), None);
+}

@@ -25,8 +25,8 @@ mod routing;
 mod traits;
 
 pub use query::{
-    Answers, BeamQuery, CellQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery,
-    ShadeBatch, ShadeLight, ShadeSample, SoftAnswers, Support, VariationQuery,
+    Answers, BeamQuery, CellQuery, Classified, DirectHits, HitQuery, QueryKind, RayQuery,
+    SegmentQuery, ShadeBatch, ShadeLight, ShadeSample, SoftAnswers, Support, VariationQuery,
 };
 pub(crate) use routing::Routed;
 pub use routing::Routing;

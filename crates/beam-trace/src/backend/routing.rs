@@ -7,8 +7,8 @@ use glam::DVec3;
 
 use super::cpu::Cpu;
 use super::query::{
-    Answers, BeamQuery, CellQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery,
-    ShadeBatch, SoftAnswers, Support, VariationQuery,
+    Answers, BeamQuery, CellQuery, Classified, DirectHits, HitQuery, QueryKind, RayQuery,
+    SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use super::traits::{Backend, Prepared, Queries};
 use crate::error::Error;
@@ -204,6 +204,9 @@ impl Queries for Routed<'_> {
     }
     fn hit_points(&self, q: &[HitQuery]) -> Result<Answers<Hit>, Error> {
         self.to(QueryKind::HitPoints).hit_points(q)
+    }
+    fn direct_hits(&self) -> Option<DirectHits> {
+        self.to(QueryKind::HitPoints).direct_hits()
     }
     fn shading_variation(&self, q: &[VariationQuery]) -> Result<Answers<f64>, Error> {
         self.to(QueryKind::ShadingVariation).shading_variation(q)

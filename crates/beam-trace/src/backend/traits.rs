@@ -3,8 +3,8 @@
 use glam::DVec3;
 
 use super::query::{
-    Answers, BeamQuery, CellQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery,
-    ShadeBatch, SoftAnswers, Support, VariationQuery,
+    Answers, BeamQuery, CellQuery, Classified, DirectHits, HitQuery, QueryKind, RayQuery,
+    SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use crate::error::Error;
 use crate::frustum::TileCells;
@@ -38,6 +38,13 @@ pub trait Queries: Sync {
     /// The hit record of each ray and root enclosure: the shading point inside the
     /// enclosure, the leaf surface that shades it, the direction to the eye.
     fn hit_points(&self, queries: &[HitQuery]) -> Result<Answers<Hit>, Error>;
+
+    /// The hit records that follow from a ray's root enclosure alone, which the caller
+    /// may make without asking [`hit_points`](Self::hit_points) (the same records):
+    /// `None` (the default) where every record is the backend's to make.
+    fn direct_hits(&self) -> Option<DirectHits> {
+        None
+    }
 
     /// The spread of the shaded colour over each hit region (see
     /// [`aa::shading_variation`](crate::aa::shading_variation)).

@@ -9,7 +9,9 @@ use rayon::prelude::*;
 use super::batches::{PixelSamples, RAY_BATCH_PIXELS, RowBatch, row_batches};
 use super::pixels::{self, Pixels, owners};
 use super::scopes::PixelScopes;
-use crate::backend::{BeamQuery, CellQuery, HitQuery, Queries, RayQuery, VariationQuery};
+use crate::backend::{
+    BeamQuery, CellQuery, DirectHits, HitQuery, Queries, RayQuery, VariationQuery,
+};
 use crate::beam::{BeamScope, BoxClass};
 use crate::beam::{child_window, forward};
 use crate::camera::{Camera, RayTable};
@@ -447,10 +449,8 @@ fn pixel_ray(
     (class, scope, traced): (Option<BoxPixel>, Option<&BeamScope>, &[Traced]),
     r: usize,
 ) -> PixelRay {
-    let (x, y) = window.pixel(i);
+    let ray = ray_of_pixel(rays, window.pixel(i), class, traced, r);
     if let Some(traced) = octree_trace(traced, rays.count(), r) {
-        // The octree's ray `r` is this one: at the same stratified position.
-        let ray = rays.stratified(x, y, r);
         return match traced {
             Traced::NoRoot => PixelRay {
                 query: RayQuery {
@@ -482,7 +482,7 @@ fn pixel_ray(
     match class.map(|c| c.class) {
         Some(BoxClass::Hit { t_final }) => PixelRay {
             query: RayQuery {
-                ray: rays.centre(x, y),
+                ray,
                 window: t_final,
                 // A ray that is not searched needs no scope.
                 scope: if narrow { scope.cloned() } else { None },
@@ -508,14 +508,28 @@ fn pixel_ray(
                 _ => (child_window(class.as_ref()), None, None),
             };
             PixelRay {
-                query: RayQuery {
-                    ray: rays.stratified(x, y, r),
-                    window,
-                    scope,
-                },
+                query: RayQuery { ray, window, scope },
                 fallback,
             }
         }
+    }
+}
+
+/// Ray `r` of the pixel at `(x, y)` of box class `class` whose rays the octree `traced`,
+/// as [`pixel_ray`] makes it: the octree's ray `r` where it traced the pixel's rays (at the
+/// same stratified position), else a Hit box's central ray or stratified ray `r`.
+fn ray_of_pixel(
+    rays: &PixelRays,
+    (x, y): (u32, u32),
+    class: Option<BoxPixel>,
+    traced: &[Traced],
+    r: usize,
+) -> Ray {
+    match class.map(|c| c.class) {
+        Some(BoxClass::Hit { .. }) if octree_trace(traced, rays.count(), r).is_none() => {
+            rays.centre(x, y)
+        }
+        _ => rays.stratified(x, y, r),
     }
 }
 
@@ -559,6 +573,7 @@ pub(super) fn primary_rays(
     let pixel_rays = PixelRays::new(&scene.camera, rays, window);
     progress.begin(Pass::PrimaryRays.name(), u64::from(h));
     let mut c = PrimaryRayCounters::default();
+    let direct = q.direct_hits();
     let npix = window.len();
     let all_rays: usize = classes
         .par_iter()
@@ -667,10 +682,15 @@ pub(super) fn primary_rays(
                 RootResult::NoRoot => {}
             }
         }
-        // The shading points of the rays that meet (or may meet) a surface.
-        let hit_rays: Vec<usize> = (0..results.len())
-            .filter(|&j| !matches!(results[j], RootResult::NoRoot))
-            .collect();
+        // The shading points of the rays that meet (or may meet) a surface: those the
+        // backend leaves to the pass are made with the samples, the others asked for.
+        let root_of = |j: usize| match results[j] {
+            RootResult::Root { t, .. } | RootResult::Undecided { t } => Some(t),
+            RootResult::NoRoot => None,
+        };
+        let asked =
+            |j: usize| root_of(j).is_some_and(|t| direct.is_none() || !DirectHits::applies(t));
+        let hit_rays: Vec<usize> = (0..results.len()).filter(|&j| asked(j)).collect();
         let hit_queries: Vec<HitQuery> = hit_rays
             .par_iter()
             .map(|&j| {
@@ -678,28 +698,33 @@ pub(super) fn primary_rays(
                 HitQuery {
                     ray,
                     scope,
-                    t: match results[j] {
-                        RootResult::Root { t, .. } | RootResult::Undecided { t } => t,
-                        RootResult::NoRoot => unreachable!("only rays that met a surface"),
-                    },
+                    t: root_of(j).expect("only rays that met a surface"),
                 }
             })
             .collect();
         let hits = q.hit_points(&hit_queries)?;
         c.search.add(&hits.search);
-        // The hit of ray `j` is `hits.values[hit_rank[j]]` when it has one.
+        // The answer for ray `j` is `hits.values[hit_rank[j]]` when it was asked for.
         let mut hit_rank = Vec::with_capacity(results.len());
         let mut rank = 0;
-        for r in &results {
+        for j in 0..results.len() {
             hit_rank.push(rank);
-            rank += usize::from(!matches!(r, RootResult::NoRoot));
+            rank += usize::from(asked(j));
         }
         for (&j, t) in hit_rays.iter().zip(&hits.cost) {
             ray_cost[j] += t;
         }
-        let hit_of = |j: usize| match results[j] {
-            RootResult::NoRoot => None,
-            _ => Some(hits.values[hit_rank[j]]),
+        let hit_of = |j: usize| {
+            let t = root_of(j)?;
+            match direct {
+                Some(d) if DirectHits::applies(t) => {
+                    let (p, r) = pixel_of(j);
+                    let traced = traces_of(classes[p], traced, p);
+                    let ray = ray_of_pixel(&pixel_rays, window.pixel(p), classes[p], traced, r);
+                    d.hit(&ray, t)
+                }
+                _ => Some(hits.values[hit_rank[j]]),
+            }
         };
         cost.extend((0..n).map(|k| ray_cost[first_ray[k]..first_ray[k + 1]].iter().sum::<f32>()));
         // Each pixel's samples: one per ray, in order. A Miss box's pixel has none: it is

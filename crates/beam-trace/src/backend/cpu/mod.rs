@@ -15,8 +15,8 @@ use glam::DVec3;
 use rayon::prelude::*;
 
 use super::query::{
-    Answers, BeamQuery, CellQuery, Classified, HitQuery, QueryKind, RayQuery, SegmentQuery,
-    ShadeBatch, SoftAnswers, Support, VariationQuery,
+    Answers, BeamQuery, CellQuery, Classified, DirectHits, HitQuery, QueryKind, RayQuery,
+    SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use super::traits::{Backend, Prepared, Queries};
 use crate::aa::{LightSource, shading_variation};
@@ -136,6 +136,10 @@ impl Queries for CpuQueries<'_> {
         Ok(self.map(queries, self.plan.narrow_hits, |ev, q, c| {
             self.hit(ev, &q.ray, q.t, q.scope.as_ref(), c)
         }))
+    }
+
+    fn direct_hits(&self) -> Option<DirectHits> {
+        CpuQueries::direct_hits(self)
     }
 
     fn shading_variation(&self, queries: &[VariationQuery]) -> Result<Answers<f64>, Error> {

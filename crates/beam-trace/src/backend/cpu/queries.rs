@@ -9,7 +9,7 @@ use interval_core::Interval;
 use rayon::prelude::*;
 
 use crate::backend::query::Answers;
-use crate::backend::query::{BeamQuery, CellQuery, Classified};
+use crate::backend::query::{BeamQuery, CellQuery, Classified, DirectHits};
 use crate::beam::{
     BeamScope, BoxClass, Extent, Inherited, child_window, evaluate_box_within, forward,
 };
@@ -483,20 +483,22 @@ impl CpuQueries<'_> {
             t.inf()
         };
         let point = ray.at(tm);
-        Hit {
-            t,
-            point,
-            to_eye: (-ray.dir).normalize_or_zero(),
-            leaf: if ev.geo.single_leaf() {
-                0
-            } else {
-                match self.grid.as_ref().and_then(|g| g.leaf_candidates_at(point)) {
-                    Some(c) => ev.geo.leaf_among(&c, point),
-                    None => ev.geo.leaf_at(point),
-                }
-            } as u32,
-            normal: -ray.dir.normalize_or_zero(),
-        }
+        let leaf = if ev.geo.single_leaf() {
+            0
+        } else {
+            match self.grid.as_ref().and_then(|g| g.leaf_candidates_at(point)) {
+                Some(c) => ev.geo.leaf_among(&c, point),
+                None => ev.geo.leaf_at(point),
+            }
+        };
+        Hit::on_ray(ray, t, tm, leaf as u32)
+    }
+
+    /// The hits made without a query: where the scene has one leaf surface and no mesh and
+    /// the plan does not narrow hits, [`hit`](Self::hit) evaluates nothing.
+    pub(super) fn direct_hits(&self) -> Option<DirectHits> {
+        (self.meshes.is_none() && !self.plan.narrow_hits && self.scene.geometry.leaves().len() == 1)
+            .then_some(DirectHits { leaf: 0 })
     }
 
     /// The parameter of `ray`'s shading point inside the root enclosure `t`
