@@ -5,7 +5,7 @@
 
 use std::hash::{Hash, Hasher};
 
-use rustc_hash::{FxHashMap, FxHashSet, FxHasher};
+use rustc_hash::{FxHashMap, FxHasher};
 
 use super::Tape;
 use crate::error::Error;
@@ -41,8 +41,8 @@ struct Pruned {
 #[derive(Clone, Debug, Default)]
 pub struct PruneCache {
     entries: FxHashMap<(usize, u64), Pruned>,
-    /// The pruned tapes made, by content.
-    interned: FxHashSet<Tape>,
+    /// The pruned tapes made, by the hash of their content.
+    interned: FxHashMap<u64, Tape>,
     held: usize,
     hits: u64,
     misses: u64,
@@ -74,19 +74,22 @@ impl PruneCache {
             return Ok(e.pruned.clone());
         }
         self.misses += 1;
-        let pruned = tape.simplify(choices)?;
+        let interned = &mut self.interned;
+        let pruned = tape.pruned_with(choices, |c, var_count| match interned.get(&c.hash) {
+            Some(same) if same.has_parts(c, var_count) => same.clone(),
+            _ => {
+                // A new formula (or, rarely, another of the same hash, which then takes
+                // its place).
+                let made = Tape::of_parts(c, var_count);
+                interned.insert(c.hash, made.clone());
+                made
+            }
+        })?;
         let size = tape.len() + pruned.len();
         if self.held + size > HELD_INSTRS {
             self.clear();
         }
         self.held += size;
-        let pruned = match self.interned.get(&pruned) {
-            Some(same) => same.clone(),
-            None => {
-                self.interned.insert(pruned.clone());
-                pruned
-            }
-        };
         let entry = Pruned {
             parent: tape.clone(),
             choices: choices.into(),

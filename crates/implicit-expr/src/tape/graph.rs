@@ -83,12 +83,12 @@ impl Tape {
     /// constants), computed on first use and kept.
     pub(crate) fn content_hash(&self) -> u64 {
         *self.0.content_hash.get_or_init(|| {
-            let mut h = rustc_hash::FxHasher::default();
-            self.var_count().hash(&mut h);
-            self.ssa_outputs().hash(&mut h);
-            self.ssa().hash(&mut h);
-            self.consts().hash(&mut h);
-            h.finish()
+            super::regalloc::content_hash(
+                self.var_count() as u32,
+                self.ssa_outputs(),
+                self.ssa(),
+                self.consts(),
+            )
         })
     }
 }

@@ -159,21 +159,37 @@ impl Tape {
         var_count: u32,
         choice: impl Fn(usize) -> Choice,
     ) -> Self {
-        let c = regalloc::compile(ssa, consts, outputs, choice);
+        regalloc::compile((ssa, consts, outputs, var_count), choice, |c| {
+            Self::of_parts(&c, var_count)
+        })
+    }
+
+    /// A tape of its own holding `c`'s parts.
+    pub(in crate::tape) fn of_parts(c: &regalloc::Compiled<'_>, var_count: u32) -> Self {
         Tape(Arc::new(TapeData {
-            ssa: c.ssa,
-            ssa_outputs: c.ssa_outputs,
-            consts: c.consts,
-            instrs: c.instrs,
-            outputs: c.outputs,
+            ssa: c.ssa.to_vec(),
+            ssa_outputs: c.ssa_outputs.to_vec(),
+            consts: c.consts.to_vec(),
+            instrs: c.instrs.to_vec(),
+            outputs: c.outputs.to_vec(),
             reg_count: c.reg_count,
             var_count,
             choice_count: c.choice_count,
-            choice_index: c.choice_index,
+            choice_index: c.choice_index.to_vec(),
             continuous_everywhere: std::sync::OnceLock::new(),
             jit: crate::jit::Slot::default(),
-            content_hash: std::sync::OnceLock::new(),
+            content_hash: std::sync::OnceLock::from(c.hash),
         }))
+    }
+
+    /// Whether this tape has `c`'s content (what [`PartialEq`] compares) with `var_count`
+    /// variable slots.
+    pub(in crate::tape) fn has_parts(&self, c: &regalloc::Compiled<'_>, var_count: u32) -> bool {
+        self.content_hash() == c.hash
+            && self.0.var_count == var_count
+            && self.ssa_outputs() == c.ssa_outputs
+            && self.ssa() == c.ssa
+            && self.consts() == c.consts
     }
 
     /// The register instructions, in evaluation order.

@@ -9,6 +9,7 @@
 //! evaluators alike (their values lie inside the intervals that decided the choice).
 
 use super::Tape;
+use super::regalloc::{Compiled, compile};
 use crate::error::Error;
 use crate::number::Choice;
 
@@ -19,6 +20,17 @@ impl Tape {
     /// Returns this tape itself (a cheap clone) when no choice is decided, and an error when
     /// `choices` does not have one entry per `min`/`max`.
     pub fn simplify(&self, choices: &[Choice]) -> Result<Tape, Error> {
+        self.pruned_with(choices, Tape::of_parts)
+    }
+
+    /// [`simplify`](Self::simplify), where the pruned tape is made by `keep` from its
+    /// parts and variable count (or found among tapes made before: a pruning that arrives
+    /// at a formula made before then allocates nothing).
+    pub(super) fn pruned_with(
+        &self,
+        choices: &[Choice],
+        keep: impl FnOnce(&Compiled<'_>, u32) -> Tape,
+    ) -> Result<Tape, Error> {
         if choices.len() != self.choice_count() {
             return Err(Error::Unsupported(format!(
                 "choice trace has {} entries, the tape has {} min/max operations",
@@ -29,12 +41,11 @@ impl Tape {
         if choices.iter().all(|&c| c == Choice::Both) {
             return Ok(self.clone());
         }
-        Ok(Tape::compiled(
-            self.ssa(),
-            self.consts(),
-            self.ssa_outputs(),
-            self.var_count() as u32,
+        let var_count = self.var_count() as u32;
+        Ok(compile(
+            (self.ssa(), self.consts(), self.ssa_outputs(), var_count),
             |i| self.choice_index(i).map_or(Choice::Both, |k| choices[k]),
+            |c| keep(&c, var_count),
         ))
     }
 }

@@ -29,19 +29,50 @@ pub(super) fn is_choice(op: &SsaOp) -> bool {
     matches!(op.op, Opcode::Binary(BinaryOp::Min | BinaryOp::Max))
 }
 
-/// A compiled tape's parts: the SSA list (constants first), its constants and outputs, the
-/// register instructions (one per non-constant SSA operation, in the same order), the
-/// output registers, the register count, the number of `min`/`max` operations and each SSA
-/// operation's index among them ([`NO_CHOICE`] for the others).
-pub(super) struct Compiled {
-    pub(super) ssa: Vec<SsaOp>,
-    pub(super) consts: Vec<Constant>,
-    pub(super) ssa_outputs: Vec<u32>,
-    pub(super) instrs: Vec<Instr>,
-    pub(super) outputs: Vec<u32>,
+/// A compiled tape's parts, in the buffers of the thread's [`Scratch`]: the SSA list
+/// (constants first), its constants and outputs, the register instructions (one per
+/// non-constant SSA operation, in the same order), the output registers, the register
+/// count, the number of `min`/`max` operations, each SSA operation's index among them
+/// ([`NO_CHOICE`] for the others), and the hash of the content (see [`content_hash`]).
+pub(super) struct Compiled<'a> {
+    pub(super) ssa: &'a [SsaOp],
+    pub(super) consts: &'a [Constant],
+    pub(super) ssa_outputs: &'a [u32],
+    pub(super) instrs: &'a [Instr],
+    pub(super) outputs: &'a [u32],
     pub(super) reg_count: u32,
     pub(super) choice_count: u32,
-    pub(super) choice_index: Vec<u32>,
+    pub(super) choice_index: &'a [u32],
+    pub(super) hash: u64,
+}
+
+/// The hash of what two tapes must share to be equal (variable count, outputs, operations,
+/// constants), one word per operation.
+pub(super) fn content_hash(
+    var_count: u32,
+    ssa_outputs: &[u32],
+    ssa: &[SsaOp],
+    consts: &[Constant],
+) -> u64 {
+    use std::hash::{Hash, Hasher};
+    let mut h = rustc_hash::FxHasher::default();
+    h.write_u32(var_count);
+    ssa_outputs.hash(&mut h);
+    h.write_usize(ssa.len());
+    for op in ssa {
+        let code = match op.op {
+            Opcode::Var => 0,
+            Opcode::Const => 1,
+            Opcode::Copy => 2,
+            Opcode::Pown => 3,
+            Opcode::Unary(u) => 16 + u as u64,
+            Opcode::Binary(b) => 128 + b as u64,
+        };
+        h.write_u64(code << 32 | u64::from(op.a));
+        h.write_u32(op.b);
+    }
+    consts.hash(&mut h);
+    h.finish()
 }
 
 /// The [`Compiled::choice_index`] of an operation that is not a `min` or `max`.
@@ -49,14 +80,29 @@ pub(super) const NO_CHOICE: u32 = u32::MAX;
 
 /// The register tape of the values of `ssa` that `outputs` depend on, where `choice(i)` tells
 /// which argument the operation at position `i` takes when it is a decided `min`/`max`
-/// (it is forwarded to that argument) and is [`Choice::Both`] otherwise.
-pub(super) fn compile(
-    ssa: &[SsaOp],
-    consts: &[Constant],
-    outputs: &[u32],
+/// (it is forwarded to that argument) and is [`Choice::Both`] otherwise, handed to `keep`
+/// in the thread's buffers (a tape is made of it only where `keep` makes one: a pruning
+/// that arrives at a formula made before allocates nothing).
+pub(super) fn compile<R>(
+    (ssa, consts, outputs, var_count): (&[SsaOp], &[Constant], &[u32], u32),
     choice: impl Fn(usize) -> Choice,
-) -> Compiled {
-    SCRATCH.with_borrow_mut(|scratch| scratch.compile(ssa, consts, outputs, choice))
+    keep: impl FnOnce(Compiled<'_>) -> R,
+) -> R {
+    SCRATCH.with_borrow_mut(|scratch| {
+        let (reg_count, choice_count) = scratch.compile(ssa, consts, outputs, choice);
+        let out = &scratch.out;
+        keep(Compiled {
+            ssa: &out.ssa,
+            consts: &out.consts,
+            ssa_outputs: &out.ssa_outputs,
+            instrs: &out.instrs,
+            outputs: &out.outputs,
+            reg_count,
+            choice_count,
+            choice_index: &out.choice_index,
+            hash: content_hash(var_count, &out.ssa_outputs, &out.ssa, &out.consts),
+        })
+    })
 }
 
 /// A value not (yet) live.
@@ -80,6 +126,19 @@ struct Scratch {
     /// The output operations, last first: SSA arguments as input positions, and the
     /// instruction with working registers and `CONST`-marked constant registers.
     emitted: Vec<(SsaOp, Instr)>,
+    /// The tape made last.
+    out: Output,
+}
+
+/// The parts of the tape [`Scratch::compile`] made last (see [`Compiled`]).
+#[derive(Default)]
+struct Output {
+    ssa: Vec<SsaOp>,
+    consts: Vec<Constant>,
+    ssa_outputs: Vec<u32>,
+    instrs: Vec<Instr>,
+    outputs: Vec<u32>,
+    choice_index: Vec<u32>,
 }
 
 thread_local! {
@@ -93,7 +152,7 @@ impl Scratch {
         in_consts: &[Constant],
         in_outputs: &[u32],
         choice: impl Fn(usize) -> Choice,
-    ) -> Compiled {
+    ) -> (u32, u32) {
         let n = ssa.len();
         self.reg.clear();
         self.reg.resize(n, UNASSIGNED);
@@ -103,7 +162,8 @@ impl Scratch {
         }
         self.free.clear();
         self.emitted.clear();
-        let mut consts = Vec::new();
+        let mut consts = std::mem::take(&mut self.out.consts);
+        consts.clear();
         let mut working = 0u32;
         let mut reg_of = |p: u32, reg: &mut [u32], free: &mut Vec<u32>| -> u32 {
             let p = p as usize;
@@ -194,21 +254,23 @@ impl Scratch {
         self.finish(consts, working, choice_count, in_outputs)
     }
 
-    /// Puts the operations emitted last-first in order: constants first in the SSA list and
-    /// in registers `0..consts.len()`, working registers after them.
+    /// Puts the operations emitted last-first in order, into [`Scratch::out`]: constants
+    /// first in the SSA list and in registers `0..consts.len()`, working registers after
+    /// them. Returns the register count and the number of `min`/`max` operations.
     fn finish(
-        &self,
+        &mut self,
         consts: Vec<Constant>,
         working: u32,
         choice_count: u32,
         in_outputs: &[u32],
-    ) -> Compiled {
+    ) -> (u32, u32) {
         let nc = consts.len() as u32;
         let m = self.emitted.len() as u32;
         let reg = |r: u32| if r & CONST != 0 { r & !CONST } else { r + nc };
+        let pos = &self.pos;
         // The final SSA position of input value `p`.
         let position = |mut p: u32| loop {
-            let v = self.pos[p as usize];
+            let v = pos[p as usize];
             if v & CONST != 0 {
                 return v & !CONST;
             }
@@ -218,18 +280,21 @@ impl Scratch {
             }
             return nc + (m - 1 - v);
         };
-        let mut ssa: Vec<SsaOp> = Vec::with_capacity((nc + m) as usize);
-        ssa.extend((0..nc).map(|c| SsaOp {
+        let out = &mut self.out;
+        out.consts = consts;
+        out.ssa.clear();
+        out.ssa.extend((0..nc).map(|c| SsaOp {
             op: Opcode::Const,
             a: c,
             b: 0,
         }));
-        let mut instrs = Vec::with_capacity(m as usize);
-        let mut choice_index = vec![NO_CHOICE; (nc + m) as usize];
+        out.instrs.clear();
+        out.choice_index.clear();
+        out.choice_index.resize((nc + m) as usize, NO_CHOICE);
         let mut choices = 0;
         for &(op, ins) in self.emitted.iter().rev() {
             if is_choice(&op) {
-                choice_index[ssa.len()] = choices;
+                out.choice_index[out.ssa.len()] = choices;
                 choices += 1;
             }
             let mut op = op;
@@ -244,21 +309,15 @@ impl Scratch {
                 op.b = position(op.b);
                 ins.b = reg(ins.b);
             }
-            ssa.push(op);
-            instrs.push(ins);
+            out.ssa.push(op);
+            out.instrs.push(ins);
         }
-        Compiled {
-            ssa,
-            consts,
-            ssa_outputs: in_outputs.iter().map(|&o| position(o)).collect(),
-            instrs,
-            outputs: in_outputs
-                .iter()
-                .map(|&o| reg(self.reg[o as usize]))
-                .collect(),
-            reg_count: nc + working,
-            choice_count,
-            choice_index,
-        }
+        out.ssa_outputs.clear();
+        out.ssa_outputs
+            .extend(in_outputs.iter().map(|&o| position(o)));
+        out.outputs.clear();
+        out.outputs
+            .extend(in_outputs.iter().map(|&o| reg(self.reg[o as usize])));
+        (nc + working, choice_count)
     }
 }
