@@ -5,7 +5,6 @@
 use std::time::Instant;
 
 use glam::DVec3;
-use rayon::prelude::*;
 
 use super::output::RenderOutput;
 use super::piece::{Piece, PieceShadows};
@@ -15,7 +14,6 @@ use crate::backend::{Backend, Routed, Routing};
 use crate::error::Error;
 use crate::plan::{Pass, PixelBeams, Plan, Primary};
 use crate::progress::Progress;
-use crate::sample::Coverage;
 use crate::scene::Scene;
 use crate::stats::PassStats;
 use crate::window::{Window, window_grid};
@@ -151,11 +149,6 @@ impl<'a> Pipeline<'a> {
                 (samples, cost)
             }
         };
-        let coverage: Vec<Coverage> = (0..samples.len())
-            .into_par_iter()
-            .map(|p| Coverage::of(samples.pixel(p)))
-            .collect();
-
         if plan.runs(Pass::Normals) {
             passes.push(shading::normals(q, scene, &mut samples, progress)?);
         } else {
@@ -195,19 +188,19 @@ impl<'a> Pipeline<'a> {
             passes.push(PassStats::skipped(Pass::SoftShadows.name()));
         }
 
-        let (colors, stats) = shading::shading(q, scene, plan.runs(Pass::Shading), &samples, &vis)?;
-        passes.push(stats);
+        let shaded = shading::shading(q, scene, plan.runs(Pass::Shading), &samples, &vis)?;
+        passes.push(shaded.stats);
 
         Ok(Piece {
             window: *window,
-            colors,
+            colors: shaded.colors,
             // In place: the two records have the same layout, so the map reuses the
             // classes' memory instead of mapping fresh pages for every pixel.
             classes: classes
                 .into_iter()
                 .map(|c| c.map(|c| (c.class, c.edge)))
                 .collect(),
-            coverage,
+            coverage: shaded.coverage,
             cost,
             shadows,
             passes,

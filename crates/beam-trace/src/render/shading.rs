@@ -9,7 +9,7 @@ use crate::backend::{Queries, ShadeBatch, ShadeLight, ShadeSample};
 use crate::error::Error;
 use crate::plan::Pass;
 use crate::progress::Progress;
-use crate::sample::Hit;
+use crate::sample::{Coverage, Hit};
 use crate::scene::Scene;
 use crate::stats::PassStats;
 use crate::stats::counters::{NormalCounters, ShadingCounters};
@@ -51,16 +51,27 @@ pub(super) fn normals(
     Ok(PassStats::of(Pass::Normals, t0.elapsed(), &c))
 }
 
-/// Each pixel's colour: the weighted sum of its samples' Phong colours under the lights'
-/// visible fractions `vis` (sample-major, light-minor; the flat material colour when the
-/// scene has no lights, and the pass does not run: `lit` is false).
+/// What the shading pass gives each pixel, and the pass's statistics.
+pub(super) struct Shaded {
+    /// The colour.
+    pub(super) colors: Vec<[f32; 3]>,
+    /// The proven bounds on the share of its area whose rays meet a surface.
+    pub(super) coverage: Vec<Coverage>,
+    /// The pass's statistics.
+    pub(super) stats: PassStats,
+}
+
+/// Each pixel's colour and coverage: the colour is the weighted sum of its samples' Phong
+/// colours under the lights' visible fractions `vis` (sample-major, light-minor; the flat
+/// material colour when the scene has no lights, and the pass does not run: `lit` is
+/// false); the coverage is [`Coverage::of`] its samples, found in the same pass over them.
 pub(super) fn shading(
     q: &dyn Queries,
     scene: &Scene,
     lit: bool,
     pixels: &Pixels,
     vis: &[f32],
-) -> Result<(Vec<[f32; 3]>, PassStats), Error> {
+) -> Result<Shaded, Error> {
     let t0 = Instant::now();
     let nl = scene.lights.len();
     let samples = &pixels.samples;
@@ -122,7 +133,9 @@ pub(super) fn shading(
             scene.material_of(hit.leaf).color
         }
     };
-    let image = (0..pixels.len())
+    // Each pixel's colour, and its coverage from the same samples in the same pass over
+    // them.
+    let (image, coverage): (Vec<[f32; 3]>, Vec<Coverage>) = (0..pixels.len())
         .into_par_iter()
         .map(|p| {
             let mut acc = [0f32; 3];
@@ -138,13 +151,14 @@ pub(super) fn shading(
                 }
                 wsum += s.weight;
             }
-            if wsum > 0.0 {
+            let color = if wsum > 0.0 {
                 acc.map(|a| a / wsum)
             } else {
                 scene.background
-            }
+            };
+            (color, Coverage::of(pixels.pixel(p)))
         })
-        .collect();
+        .unzip();
     let stats = if lit {
         let c = ShadingCounters {
             shaded_samples: colors.len() as u64,
@@ -153,5 +167,9 @@ pub(super) fn shading(
     } else {
         PassStats::skipped(Pass::Shading.name())
     };
-    Ok((image, stats))
+    Ok(Shaded {
+        colors: image,
+        coverage,
+        stats,
+    })
 }
