@@ -32,12 +32,13 @@ impl Hit {
     /// The hit of `ray` at the parameter `tm` inside its root enclosure `t`, shaded by
     /// leaf `leaf`, before the normals pass: its normal faces the eye until then.
     pub fn on_ray(ray: &Ray, t: Interval<f64>, tm: f64, leaf: u32) -> Hit {
+        let to_eye = (-ray.dir).normalize_or_zero();
         Hit {
             t,
             point: ray.at(tm),
-            to_eye: (-ray.dir).normalize_or_zero(),
+            to_eye,
             leaf,
-            normal: -ray.dir.normalize_or_zero(),
+            normal: to_eye,
         }
     }
 
