@@ -157,8 +157,9 @@ pub enum Traced {
 
 /// How a range of a traced ray came out.
 enum Step {
-    /// No root in it.
-    Rejected,
+    /// No root in it; `positive_end`: `g > 0` is proven at its end (its enclosure was
+    /// positive; an empty one, `g` undefined there, proves no sign).
+    Rejected { positive_end: bool },
     /// The first root is in it (see [`Traced::First`]).
     Found(Interval<f64>, Option<BeamScope>),
     /// Neither could be proven from the parameter it holds on (a graze, a jump, a range too
@@ -620,7 +621,8 @@ impl Search<'_> {
     }
 
     /// The ray of pixel `(x, y)` through its position `(ox, oy)` searched from `from` (no
-    /// ray of the pixel meets the surface before it) to the end of the tile's range:
+    /// ray of the pixel meets the surface before it; where `from_positive`, `g > 0` there on
+    /// every ray of the pixel) to the end of the tile's range:
     /// through the region of each restriction of the chain in turn, innermost first, then
     /// with the whole `g`, within [`TRACE_BUDGET`] evaluations. `spread` is the pixel's
     /// spread of directions.
@@ -628,7 +630,7 @@ impl Search<'_> {
         &mut self,
         (x, y): (u32, u32),
         (ox, oy): (f64, f64),
-        from: f64,
+        (from, from_positive): (f64, bool),
         spread: f64,
     ) -> Traced {
         let ray = self.cam.ray(f64::from(x) + ox, f64::from(y) + oy);
@@ -639,7 +641,7 @@ impl Search<'_> {
             return Traced::Clear { until: from };
         }
         let budget = self.counters.g_evals + TRACE_BUDGET;
-        let mut start = from;
+        let (mut start, mut start_positive) = (from, from_positive);
         for level in (0..=self.chain.len()).rev() {
             let (end, tape) = match level {
                 0 => (self.range.sup(), None),
@@ -652,8 +654,9 @@ impl Search<'_> {
                 continue;
             }
             let window = Interval::new_unchecked(start, end);
-            match self.trace_range(&beam, window, tape.as_ref(), (spread, budget, 1)) {
-                Step::Rejected => start = end,
+            let traced = (start_positive, (spread, budget, 1));
+            match self.trace_range(&beam, window, tape.as_ref(), traced) {
+                Step::Rejected { positive_end } => (start, start_positive) = (end, positive_end),
                 Step::Found(t, scope) => return Traced::First { t, scope },
                 Step::Stuck(until) => return Traced::Clear { until },
             }
@@ -674,7 +677,7 @@ impl Search<'_> {
         beam: &Beam,
         t: Interval<f64>,
         tape: Option<&Tape>,
-        (spread, budget, depth): (f64, u64, u32),
+        (start_positive, (spread, budget, depth)): (bool, (f64, u64, u32)),
     ) -> Step {
         if self.counters.g_evals >= budget {
             return Step::Stuck(t.inf());
@@ -682,7 +685,9 @@ impl Search<'_> {
         self.g.set_interval_beam(beam, tape);
         let gt = self.enclosure(t);
         if gt.is_empty() || gt.inf() > 0.0 {
-            return Step::Rejected;
+            return Step::Rejected {
+                positive_end: !gt.is_empty(),
+            };
         }
         if gt.sup() < 0.0 {
             // Inside right after rejected ranges: a jump, or a root at `inf t` that needs
@@ -697,7 +702,7 @@ impl Search<'_> {
         if t.wid() <= leaf
             && extent.holds(t.inf())
             && extent.holds(t.sup())
-            && inclusion_test(&mut *self.g, t, self.counters)
+            && self.includes_root(t, start_positive)
         {
             let scope = tape.map(|tape| BeamScope {
                 tape: tape.clone(),
@@ -719,10 +724,24 @@ impl Search<'_> {
             tape.cloned()
         };
         let below = (spread, budget, depth + 1);
-        match self.trace_range(beam, near, inner.as_ref(), below) {
-            Step::Rejected => self.trace_range(beam, far, inner.as_ref(), below),
+        match self.trace_range(beam, near, inner.as_ref(), (start_positive, below)) {
+            Step::Rejected { positive_end } => {
+                self.trace_range(beam, far, inner.as_ref(), (positive_end, below))
+            }
             step => step,
         }
+    }
+
+    /// The inclusion test of a traced ray's range `t` (`g` continuous over it, with
+    /// opposite signs at its ends), where `start_positive` says that `g > 0` is proven at
+    /// `inf t` already (a range before it was rejected as positive, or the first cell's
+    /// near face): then only its end is evaluated.
+    fn includes_root(&mut self, t: Interval<f64>, start_positive: bool) -> bool {
+        if !start_positive {
+            return inclusion_test(&mut *self.g, t, self.counters);
+        }
+        let mut ev = Eval::new(&mut *self.g, self.counters);
+        ev.continuous(t) && ev.at(t.sup()).sup() < 0.0
     }
 
     /// The tape set pruned to `t` on the beam set (by the choices of the evaluation just
@@ -834,7 +853,7 @@ impl Search<'_> {
                         (0..self.traced.len())
                             .map(|k| {
                                 let at = self.traced[k];
-                                self.trace_ray((r.x0, r.y0), at, t.inf(), spread)
+                                self.trace_ray((r.x0, r.y0), at, (t.inf(), near_positive), spread)
                             })
                             .collect()
                     } else {
