@@ -690,7 +690,15 @@ pub(super) fn primary_rays(
         };
         let asked =
             |j: usize| root_of(j).is_some_and(|t| direct.is_none() || !DirectHits::applies(t));
-        let hit_rays: Vec<usize> = (0..results.len()).filter(|&j| asked(j)).collect();
+        // The rays asked about, and each ray's rank among them (where its answer is).
+        let mut hit_rays: Vec<usize> = Vec::new();
+        let mut hit_rank = Vec::with_capacity(results.len());
+        for j in 0..results.len() {
+            hit_rank.push(hit_rays.len());
+            if asked(j) {
+                hit_rays.push(j);
+            }
+        }
         let hit_queries: Vec<HitQuery> = hit_rays
             .par_iter()
             .map(|&j| {
@@ -704,13 +712,6 @@ pub(super) fn primary_rays(
             .collect();
         let hits = q.hit_points(&hit_queries)?;
         c.search.add(&hits.search);
-        // The answer for ray `j` is `hits.values[hit_rank[j]]` when it was asked for.
-        let mut hit_rank = Vec::with_capacity(results.len());
-        let mut rank = 0;
-        for j in 0..results.len() {
-            hit_rank.push(rank);
-            rank += usize::from(asked(j));
-        }
         for (&j, t) in hit_rays.iter().zip(&hits.cost) {
             ray_cost[j] += t;
         }
@@ -723,6 +724,7 @@ pub(super) fn primary_rays(
                     let ray = ray_of_pixel(&pixel_rays, window.pixel(p), classes[p], traced, r);
                     d.hit(&ray, t)
                 }
+                // Asked about: its answer is at its rank.
                 _ => Some(hits.values[hit_rank[j]]),
             }
         };

@@ -135,7 +135,7 @@ pub(super) fn shading(
     };
     // Each pixel's colour, and its coverage from the same samples in the same pass over
     // them.
-    let (image, coverage): (Vec<[f32; 3]>, Vec<Coverage>) = (0..pixels.len())
+    let (pixel_colors, coverage): (Vec<[f32; 3]>, Vec<Coverage>) = (0..pixels.len())
         .into_par_iter()
         .map(|p| {
             let mut acc = [0f32; 3];
@@ -168,7 +168,7 @@ pub(super) fn shading(
         PassStats::skipped(Pass::Shading.name())
     };
     Ok(Shaded {
-        colors: image,
+        colors: pixel_colors,
         coverage,
         stats,
     })

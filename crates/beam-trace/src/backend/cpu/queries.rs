@@ -463,6 +463,11 @@ impl CpuQueries<'_> {
         scope: Option<&BeamScope>,
         c: &mut RootCounters,
     ) -> Hit {
+        // Where the record follows from `t` alone, it is the one a primary pass makes
+        // without asking (one rule for both).
+        if let Some(hit) = self.direct_hits().and_then(|d| d.hit(ray, t)) {
+            return hit;
+        }
         // A triangle crossed inside the enclosure is taken as the hit (where an implicit
         // surface may also be, the proof is `t` either way).
         if let Some(m) = &self.meshes
