@@ -19,7 +19,11 @@
 //! beams: a pixel then counts as covered where the surface has more than half of its
 //! weight, instead of where its centre's ray meets it), `--isa baseline|best` (the
 //! instruction set of our evaluators' loops, see `interval_core::isa`: the best this CPU
-//! has, the default, or the baseline of its architecture), `--stats`
+//! has, the default, or the baseline of its architecture), `--warm` (let each of our renders
+//! find the tapes compiled by the renders before it: by default the codes kept for equal
+//! tapes are forgotten before each of our timed runs, `implicit_expr::jit::forget_shared`,
+//! so that every run compiles its tapes as the first render of a process does, as fidget
+//! compiles its pruned tapes in every run), `--stats`
 //! (print our render's statistics: the time and counters of each pass), `--images DIR`
 //! (write `DIR/MODEL-SIZE.png`, the silhouettes compared: white where both renderers hit,
 //! red where only ours does, blue where only fidget's JIT does, and our screen box
@@ -81,7 +85,7 @@ use interval_core::isa::{self, Isa};
 
 const USAGE: &str = "usage: render3d_compare [--sizes 512,1024] [--threads 2] [--runs 3] \
 [--distance 100000] [--precision f64|f32] [--primary screen-rays|octree|screen-boxes] [--isa baseline|best] \
-[--stats] [--images DIR] [MODEL.vm ...]";
+[--warm] [--stats] [--images DIR] [MODEL.vm ...]";
 
 struct Options {
     sizes: Vec<u32>,
@@ -91,6 +95,7 @@ struct Options {
     precision: String,
     primary: String,
     isa: Isa,
+    warm: bool,
     stats: bool,
     images: Option<PathBuf>,
     files: Vec<PathBuf>,
@@ -106,6 +111,7 @@ fn parse_args() -> Result<Option<Options>, String> {
         precision: "f64".into(),
         primary: "screen-rays".into(),
         isa: isa::detected(),
+        warm: false,
         stats: false,
         images: None,
         files: Vec::new(),
@@ -154,6 +160,7 @@ fn parse_args() -> Result<Option<Options>, String> {
                     v => return Err(format!("--isa {v}: baseline or best")),
                 }
             }
+            "--warm" => o.warm = true,
             "--stats" => o.stats = true,
             "--images" => o.images = Some(PathBuf::from(value("--images")?)),
             "-h" | "--help" => {
@@ -391,14 +398,19 @@ fn run() -> Result<(), String> {
          ours: beam_trace::render, eye (0, 0, {d}) looking at the origin, up +y, fov 2·atan(1/{d}) = {:.5}°, \
          one ray per pixel centre, no light (primary visibility only), {} intervals, evaluator loops for {}; \
          at depth z the view is scaled by {d}/({d} - z), at most {:.4} px off at the border of a {}² image.\n\
-         {} threads for each renderer; times: best of {} runs (median in brackets).\n",
+         {} threads for each renderer; times: best of {} runs (median in brackets); {}.\n",
         2.0 * (1.0 / d).atan().to_degrees(),
         o.precision,
         isa.name(),
         *o.sizes.iter().max().unwrap_or(&0) as f64 / (2.0 * (d - 1.0)),
         o.sizes.iter().max().unwrap_or(&0),
         o.threads,
-        o.runs
+        o.runs,
+        if o.warm {
+            "our runs find the tapes compiled by the runs before them"
+        } else {
+            "each of our runs compiles its tapes afresh"
+        }
     );
     println!(
         "| model | ops | size | fidget VM s | fidget JIT s | ours s | ours / JIT | silhouette: ours vs JIT | VM vs JIT px | octree bound s | octree / JIT | JIT outside the bound px | bound only px | ours per pass (s) |"
@@ -411,9 +423,20 @@ fn run() -> Result<(), String> {
                 time(o.runs, || fidget_render(vm, size, &fidget_pool))?;
             let (jit_hits, jit_best, jit_med) =
                 time(o.runs, || fidget_render(jit, size, &fidget_pool))?;
-            let ((our_hits, out), our_best, our_med) =
-                time(o.runs, || ours_render(&scene, &ours_pool))?;
-            let octree = time(o.runs, || octree_bound(tape, size, &ours_pool));
+            // Each of our runs compiles its tapes afresh unless `--warm` (outside the time).
+            let cold = || {
+                if !o.warm {
+                    implicit_expr::jit::forget_shared();
+                }
+            };
+            let ((our_hits, out), our_best, our_med) = time(o.runs, || {
+                cold();
+                ours_render(&scene, &ours_pool)
+            })?;
+            let octree = time(o.runs, || {
+                cold();
+                octree_bound(tape, size, &ours_pool)
+            });
             let octree_cells = match &octree {
                 Ok((bound, best, med)) => {
                     let covered = bound.covered();

@@ -86,9 +86,12 @@ impl Pixels {
 /// Where the items of each owner start in a flat list where owner `k` has `counts[k]` items
 /// in turn, followed by the total: owner `k` owns `first[k]..first[k + 1]`.
 pub(super) fn offsets(counts: impl Iterator<Item = usize>) -> Vec<usize> {
-    let mut first = vec![0];
+    let mut first = Vec::with_capacity(counts.size_hint().0 + 1);
+    let mut sum = 0;
+    first.push(sum);
     for n in counts {
-        first.push(first[first.len() - 1] + n);
+        sum += n;
+        first.push(sum);
     }
     first
 }

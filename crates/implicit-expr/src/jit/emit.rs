@@ -15,6 +15,12 @@
 //! empty argument of `min`, `max` or a comparison) and restoring `mxcsr`. A raised flag
 //! tells the caller to evaluate with the interpreter instead, whose rules for empty sets
 //! and the limits at infinity apply there.
+//!
+//! The long operations (product, square, absolute value, square root, `not`, and the
+//! comparison behind a recorded choice) are assembled once, as the [`Runtime`]'s routines,
+//! and each code calls them through a table of their addresses in its pool: a code is a
+//! third to a half shorter than with every operation written out, and a render compiles
+//! thousands of codes, each into fresh executable memory.
 
 use interval_core::Interval;
 
@@ -28,7 +34,8 @@ use crate::tape::{Instr, Opcode, Tape};
 /// within a page, so no stack probe is needed).
 const MAX_SLOTS: usize = 240;
 
-// The pool: masks, `mxcsr`, the choice tables, then the constants.
+// The pool: masks, `mxcsr`, the choice tables, the routines' addresses, then the
+// constants.
 const SIGN_LO: u32 = 0;
 const SIGN_BOTH: u32 = 16;
 const ABS: u32 = 32;
@@ -39,7 +46,8 @@ const MAX_TABLE: u32 = 72;
 const ONE_HI: u32 = 80;
 const MINUS_ONE_LO: u32 = 96;
 const HI_LANE: u32 = 112;
-const CONSTS: u32 = 128;
+const ROUTINE_TABLE: u32 = 128;
+const CONSTS: u32 = ROUTINE_TABLE + 8 * ROUTINES as u32;
 
 /// Upward rounding (`RC = 10`), every exception masked, no flag, no flush to zero.
 const MXCSR_UP: u32 = 0x5F80;
@@ -61,6 +69,120 @@ const X6: Xmm = Xmm(6);
 /// in the high lane "some step (`not`) may jump".
 const PARTIAL: Xmm = Xmm(7);
 
+/// The operations assembled once, out of line ([`Runtime`]), in the order of their
+/// addresses in a code's pool.
+#[derive(Copy, Clone, Debug, PartialEq, Eq)]
+enum Routine {
+    /// `X0 = X0 · X1` ([`mul`]).
+    Mul,
+    /// `X0 = X0²`.
+    Sqr,
+    /// `X0 = |X0|`.
+    Abs,
+    /// `X0 = √X0` ([`sqrt`]).
+    Sqrt,
+    /// `X0 = not(X0)` ([`not`]).
+    Not,
+    /// `eax` = the mask `[a.hi ≤ b.lo, b.hi ≤ a.lo]` of `a = X0`, `b = X1`
+    /// ([`choice_mask`]).
+    ChoiceMask,
+}
+
+/// The number of routines.
+const ROUTINES: usize = 6;
+
+impl Routine {
+    const ALL: [Routine; ROUTINES] = [
+        Routine::Mul,
+        Routine::Sqr,
+        Routine::Abs,
+        Routine::Sqrt,
+        Routine::Not,
+        Routine::ChoiceMask,
+    ];
+
+    /// Assembles the routine's body (without its `ret`).
+    fn body(self, a: &mut Asm) {
+        match self {
+            Routine::Mul => mul(a),
+            Routine::Sqr => {
+                // [−mig, mag] · [mig, mag], rounded upward: [−RD(mig²), RU(mag²)].
+                abs(a);
+                a.rr(Sse::MovApd, X0, X2);
+                a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
+                a.rr(Sse::MulPd, X0, X2);
+            }
+            Routine::Abs => {
+                abs(a);
+                a.rr(Sse::MovApd, X0, X2);
+            }
+            Routine::Sqrt => sqrt(a),
+            Routine::Not => not(a),
+            Routine::ChoiceMask => choice_mask(a),
+        }
+    }
+
+    /// Calls the routine through its address in the pool.
+    fn call(self, a: &mut Asm) {
+        a.call_pool(ROUTINE_TABLE + 8 * self as u32);
+    }
+}
+
+/// The routines, assembled once into executable memory `M`, and their addresses.
+pub(super) struct Runtime<M> {
+    /// The memory that holds them (kept as long as the runtime, so for the whole process).
+    _mem: M,
+    entries: [u64; ROUTINES],
+}
+
+/// The routines placed by `place`, whose result gives the address of its first byte by
+/// `address`; `None` where `place` fails.
+pub(super) fn runtime<M>(
+    place: impl FnOnce(&[u8]) -> Option<M>,
+    address: impl Fn(&M) -> *const u8,
+) -> Option<Runtime<M>> {
+    let mut a = Asm::default();
+    let mut offsets = [0usize; ROUTINES];
+    for (r, offset) in Routine::ALL.iter().zip(&mut offsets) {
+        *offset = a.len();
+        r.body(&mut a);
+        a.ret();
+    }
+    let mut pool = Vec::with_capacity(CONSTS as usize);
+    pool_header(&mut pool, &[0; ROUTINES]);
+    let mem = place(a.finish(&pool))?;
+    let base = address(&mem) as u64;
+    Some(Runtime {
+        entries: offsets.map(|o| base + o as u64),
+        _mem: mem,
+    })
+}
+
+/// The pool's fixed part, up to [`CONSTS`]: the masks, `mxcsr`, the choice tables and the
+/// routines' addresses `entries`.
+fn pool_header(pool: &mut Vec<u8>, entries: &[u64; ROUTINES]) {
+    let pair = |pool: &mut Vec<u8>, lanes: [u64; 2]| {
+        for l in lanes {
+            pool.extend_from_slice(&l.to_le_bytes());
+        }
+    };
+    let (sign, one, minus_one) = ((-0.0f64).to_bits(), 1.0f64.to_bits(), (-1.0f64).to_bits());
+    for lanes in [[sign, 0], [sign, sign], [!sign, !sign], [0, 0]] {
+        pair(pool, lanes);
+    }
+    pool.extend_from_slice(&MXCSR_UP.to_le_bytes());
+    pool.extend_from_slice(&MIN_CHOICES);
+    pool.extend_from_slice(&MAX_CHOICES);
+    pool.resize(ONE_HI as usize, 0);
+    for lanes in [[0, one], [minus_one, 0], [0, u64::MAX]] {
+        pair(pool, lanes);
+    }
+    for e in entries {
+        pool.extend_from_slice(&e.to_le_bytes());
+    }
+    debug_assert_eq!(pool.len(), CONSTS as usize);
+}
+
 /// Whether the compiled code handles `ins`.
 fn supported(ins: &Instr) -> bool {
     match ins.op {
@@ -77,28 +199,44 @@ fn supported(ins: &Instr) -> bool {
     }
 }
 
-thread_local! {
-    /// Each thread's assembler, its buffers kept from one code to the next.
-    static ASM: std::cell::RefCell<Asm> = std::cell::RefCell::new(Asm::default());
+/// A thread's buffers for compiling, kept from one code to the next.
+#[derive(Default)]
+struct Buffers {
+    asm: Asm,
+    pool: Vec<u8>,
+    /// For each register, the instruction that last wrote it ([`NEVER`]: none yet).
+    def: Vec<u32>,
+    /// For each instruction, whether its result must be stored ([`check_and_plan`]).
+    stored: Vec<bool>,
 }
+
+thread_local! {
+    static BUFFERS: std::cell::RefCell<Buffers> = std::cell::RefCell::new(Buffers::default());
+}
+
+/// No instruction wrote the register (yet).
+const NEVER: u32 = u32::MAX;
 
 /// The machine code of `tape`'s outputs, writing choice bytes where `traced`, handed
 /// to `place` (which copies it where it will run); `None` where the tape uses an operation
 /// the code generator lacks, or is too large for its frame.
-pub(super) fn compile<R>(
+pub(super) fn compile<M, R>(
     tape: &Tape,
     traced: bool,
+    runtime: &Runtime<M>,
     place: impl FnOnce(&[u8]) -> Option<R>,
 ) -> Option<R> {
-    ASM.with_borrow_mut(|a| {
-        a.clear();
-        let pool = assemble(a, tape, traced)?;
-        place(a.finish(&pool))
+    BUFFERS.with_borrow_mut(|b| {
+        b.asm.clear();
+        b.pool.clear();
+        assemble(b, tape, traced, &runtime.entries)?;
+        place(b.asm.finish(&b.pool))
     })
 }
 
-/// Assembles the code of `tape` into `a`; returns the constant pool.
-fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
+/// Assembles the code of `tape` into `b.asm` and its constant pool into `b.pool`, calling
+/// the routines at `entries`; `None` where the tape cannot be compiled.
+fn assemble(b: &mut Buffers, tape: &Tape, traced: bool, entries: &[u64; ROUTINES]) -> Option<()> {
     let nconst = tape.consts().len();
     let slots = tape.reg_count().saturating_sub(nconst);
     let outputs = tape.outputs();
@@ -106,32 +244,19 @@ fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
         || outputs.len() > MAX_OUTPUTS
         || tape.var_count() > MAX_VARS
         || slots > MAX_SLOTS
-        || !tape.instrs().iter().all(supported)
-        || !well_formed(tape)
+        || !check_and_plan(tape, &mut b.def, &mut b.stored)
     {
         return None;
     }
-    let mut pool = Vec::with_capacity(CONSTS as usize + 16 * nconst);
-    let pair = |pool: &mut Vec<u8>, lanes: [u64; 2]| {
-        for l in lanes {
-            pool.extend_from_slice(&l.to_le_bytes());
-        }
-    };
-    let (sign, one, minus_one) = ((-0.0f64).to_bits(), 1.0f64.to_bits(), (-1.0f64).to_bits());
-    for lanes in [[sign, 0], [sign, sign], [!sign, !sign], [0, 0]] {
-        pair(&mut pool, lanes);
-    }
-    pool.extend_from_slice(&MXCSR_UP.to_le_bytes());
-    pool.extend_from_slice(&MIN_CHOICES);
-    pool.extend_from_slice(&MAX_CHOICES);
-    pool.resize(ONE_HI as usize, 0);
-    for lanes in [[0, one], [minus_one, 0], [0, u64::MAX]] {
-        pair(&mut pool, lanes);
-    }
-    debug_assert_eq!(pool.len(), CONSTS as usize);
+    let (a, pool, stored) = (&mut b.asm, &mut b.pool, &b.stored);
+    // A code is about 30 bytes per instruction (a product, with its loads and store).
+    a.reserve(96 + 40 * tape.instrs().len());
+    pool.reserve(CONSTS as usize + 16 * nconst);
+    pool_header(pool, entries);
     for c in tape.consts() {
         let (lo, hi) = <Interval<f64> as Number>::constant(c).bounds()?;
-        pair(&mut pool, [(-lo).to_bits(), hi.to_bits()]);
+        pool.extend_from_slice(&(-lo).to_bits().to_le_bytes());
+        pool.extend_from_slice(&hi.to_bits().to_le_bytes());
     }
 
     let reg = |r: u32| -> Mem {
@@ -153,11 +278,10 @@ fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
         a.lea_rcx_pool(MIN_TABLE);
     }
     let instrs = tape.instrs();
-    let stored = stores_needed(instrs, outputs);
     // The register whose value `X0` holds: the previous instruction's output.
     let mut in_x0 = None;
     let mut choice = 0i32;
-    for (ins, &store) in instrs.iter().zip(&stored) {
+    for (ins, &store) in instrs.iter().zip(stored) {
         let load = |a: &mut Asm, x: Xmm, r: u32| {
             if in_x0 == Some(r) {
                 if x != X0 {
@@ -215,66 +339,59 @@ fn assemble(a: &mut Asm, tape: &Tape, traced: bool) -> Option<Vec<u8>> {
     a.ldmxcsr(Mem::Stack(0));
     a.add_rsp(frame);
     a.ret();
-    Some(pool)
+    Some(())
 }
 
-/// Whether every register the tape reads is a constant or written before, every output
-/// register a working one, and every variable slot one of the tape's: what the frame and
-/// the variables buffer hold (the register allocator makes no other tapes).
-fn well_formed(tape: &Tape) -> bool {
+/// Checks that the code generator handles every instruction of `tape` ([`supported`]),
+/// that every register it reads is a constant or written before, every output register
+/// a working one and every variable slot one of the tape's (what the frame and the
+/// variables buffer hold: the register allocator makes no other tapes), and marks in
+/// `stored` each instruction whose result must be stored to its register: where it is
+/// read later than by the next instruction (which takes it from `X0`), or is an output
+/// read after the last instruction from memory (all but the first output: `X0` holds the
+/// first). One pass; `def` is a buffer.
+fn check_and_plan(tape: &Tape, def: &mut Vec<u32>, stored: &mut Vec<bool>) -> bool {
     let (nconst, nregs) = (tape.consts().len(), tape.reg_count());
-    let mut written = vec![false; nregs];
-    let readable = |w: &[bool], r: u32| (r as usize) < nconst || w.get(r as usize) == Some(&true);
-    for ins in tape.instrs() {
-        let ok = match ins.op {
-            Opcode::Var => (ins.a as usize) < tape.var_count(),
-            Opcode::Const | Opcode::Copy | Opcode::Unary(_) => readable(&written, ins.a),
-            Opcode::Binary(_) => readable(&written, ins.a) && readable(&written, ins.b),
-            Opcode::Pown => false,
-        };
+    let instrs = tape.instrs();
+    def.clear();
+    def.resize(nregs, NEVER);
+    stored.clear();
+    stored.resize(instrs.len(), false);
+    // Reads register `r` at instruction `at`: false where it holds nothing yet.
+    let mut read = |def: &[u32], r: u32, at: usize| -> bool {
+        let r = r as usize;
+        if r < nconst {
+            return true;
+        }
+        match def.get(r) {
+            Some(&d) if d != NEVER => {
+                if d as usize + 1 != at {
+                    stored[d as usize] = true;
+                }
+                true
+            }
+            _ => false,
+        }
+    };
+    for (j, ins) in instrs.iter().enumerate() {
+        let ok = supported(ins)
+            && match ins.op {
+                Opcode::Var => (ins.a as usize) < tape.var_count(),
+                Opcode::Const | Opcode::Copy | Opcode::Unary(_) => read(def, ins.a, j),
+                Opcode::Binary(_) => read(def, ins.a, j) && read(def, ins.b, j),
+                Opcode::Pown => false,
+            };
         let out = ins.out as usize;
         if !ok || out < nconst || out >= nregs {
             return false;
         }
-        written[out] = true;
+        def[out] = j as u32;
     }
-    tape.outputs().iter().all(|&o| readable(&written, o))
-}
-
-/// Whether each instruction's result must be stored to its register: where it is read
-/// later than by the next instruction (which takes it from `X0`), or is an output read
-/// after the last instruction from memory (all but the first output: `X0` is used for
-/// the first).
-fn stores_needed(instrs: &[Instr], outputs: &[u32]) -> Vec<bool> {
-    const NONE: usize = usize::MAX;
-    // The instruction that last wrote each register.
-    let mut def: Vec<usize> = Vec::new();
-    let mut far = vec![false; instrs.len()];
-    let read = |def: &Vec<usize>, far: &mut Vec<bool>, r: u32, at: usize| {
-        let d = def.get(r as usize).copied().unwrap_or(NONE);
-        if d != NONE && d + 1 != at {
-            far[d] = true;
-        }
-    };
-    for (j, ins) in instrs.iter().enumerate() {
-        match ins.op {
-            Opcode::Var | Opcode::Pown => {}
-            Opcode::Const | Opcode::Copy | Opcode::Unary(_) => read(&def, &mut far, ins.a, j),
-            Opcode::Binary(_) => {
-                read(&def, &mut far, ins.a, j);
-                read(&def, &mut far, ins.b, j);
-            }
-        }
-        let o = ins.out as usize;
-        if def.len() <= o {
-            def.resize(o + 1, NONE);
-        }
-        def[o] = j;
-    }
-    for (i, &o) in outputs.iter().enumerate() {
-        read(&def, &mut far, o, instrs.len() + i);
-    }
-    far
+    let end = instrs.len();
+    tape.outputs()
+        .iter()
+        .enumerate()
+        .all(|(i, &o)| read(def, o, end + i))
 }
 
 /// `X0 = op(X0)`; uses `X1` to `X5`.
@@ -282,19 +399,10 @@ fn unary(a: &mut Asm, op: UnaryOp) {
     match op {
         // [−(−hi), −lo]: the lanes swapped.
         UnaryOp::Neg => a.swap(X0),
-        UnaryOp::Abs => {
-            abs(a);
-            a.rr(Sse::MovApd, X0, X2);
-        }
-        UnaryOp::Sqr => {
-            // [−mig, mag] · [mig, mag], rounded upward: [−RD(mig²), RU(mag²)].
-            abs(a);
-            a.rr(Sse::MovApd, X0, X2);
-            a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
-            a.rr(Sse::MulPd, X0, X2);
-        }
-        UnaryOp::Sqrt => sqrt(a),
-        UnaryOp::Not => not(a),
+        UnaryOp::Abs => Routine::Abs.call(a),
+        UnaryOp::Sqr => Routine::Sqr.call(a),
+        UnaryOp::Sqrt => Routine::Sqrt.call(a),
+        UnaryOp::Not => Routine::Not.call(a),
         _ => unreachable!("checked by `supported`"),
     }
 }
@@ -393,7 +501,7 @@ fn binary(a: &mut Asm, op: BinaryOp) {
             a.rr(Sse::MaxPd, X0, X1);
             a.rr(Sse::MovSd, X0, X2);
         }
-        BinaryOp::Mul => mul(a),
+        BinaryOp::Mul => Routine::Mul.call(a),
         _ => unreachable!("checked by `supported`"),
     }
 }
@@ -425,8 +533,17 @@ fn mul(a: &mut Asm) {
 }
 
 /// Writes choice byte `index` of a `min` (`table` 0) or `max` (`table` 4) of `X0`, `X1`:
-/// the table entry for the mask `[a.hi ≤ b.lo, b.hi ≤ a.lo]`. Uses `X3`, `X4`.
+/// the table entry for the mask `[a.hi ≤ b.lo, b.hi ≤ a.lo]` ([`Routine::ChoiceMask`]).
+/// Uses `X3`, `X4`.
 fn record_choice(a: &mut Asm, table: i8, index: i32) {
+    Routine::ChoiceMask.call(a);
+    a.load_table_byte(table);
+    a.store_choice(index);
+}
+
+/// `eax` = the mask `[a.hi ≤ b.lo, b.hi ≤ a.lo]` of `a = X0`, `b = X1` (bit 0, bit 1).
+/// Uses `X3`, `X4`.
+fn choice_mask(a: &mut Asm) {
     a.rr(Sse::MovApd, X3, X0);
     a.rr(Sse::UnpckHPd, X3, X1); // [a.hi, b.hi]
     a.rr(Sse::MovApd, X4, X0);
@@ -435,6 +552,4 @@ fn record_choice(a: &mut Asm, table: i8, index: i32) {
     a.rm(Sse::XorPd, X4, Mem::Pool(SIGN_BOTH)); // [b.lo, a.lo]
     a.cmppd(X3, X4, Cmp::Le);
     a.movmskpd_eax(X3);
-    a.load_table_byte(table);
-    a.store_choice(index);
 }

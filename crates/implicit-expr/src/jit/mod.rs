@@ -5,7 +5,8 @@
 //! indirect jump, loading the operands) and, for a tight directed-rounded bound, an
 //! error-free transformation with its checks: about 60 machine instructions for an interval
 //! sum. The compiled code of a tape is straight-line SSE2, each interval operation a few
-//! instructions under upward rounding (see `emit` for how each bound is made), with the
+//! instructions under upward rounding (see `emit` for how each bound is made), the longer
+//! ones (product, square, root) calls of routines assembled once per process, with the
 //! same bounds as the interpreter's arithmetic. [`Evaluator`](crate::Evaluator)s use it
 //! for their plain, traced, definedness- and continuity-checked and all-outputs
 //! evaluations of a tape once it has been evaluated [`COMPILE_AFTER`] times, so that tapes
@@ -118,7 +119,7 @@ impl Code {
         #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
         {
             Some(Self {
-                mem: emit::compile(tape, traced, memory::ExecMemory::new)?,
+                mem: emit::compile(tape, traced, runtime()?, memory::ExecMemory::new)?,
                 choices: if traced { tape.choice_count() } else { 0 },
             })
         }
@@ -165,6 +166,16 @@ impl Code {
     }
 }
 
+/// The routines every code calls ([`emit::Runtime`]), assembled at the first compilation;
+/// `None` where executable memory cannot be had.
+#[cfg(all(target_arch = "x86_64", target_os = "linux"))]
+fn runtime() -> Option<&'static emit::Runtime<memory::ExecMemory>> {
+    static RUNTIME: OnceLock<Option<emit::Runtime<memory::ExecMemory>>> = OnceLock::new();
+    RUNTIME
+        .get_or_init(|| emit::runtime(memory::ExecMemory::new, memory::ExecMemory::as_ptr))
+        .as_ref()
+}
+
 /// Codes kept by tape content at most ([`SHARED`]); the table is emptied when full (the
 /// codes live on in the tapes that hold them).
 const SHARED_MAX: usize = 4096;
@@ -199,6 +210,15 @@ fn rounding_honoured() -> bool {
         let mut out = [[0.0; 2]; MAX_OUTPUTS];
         code.run(&vars, &mut [], &mut out).is_some() && out[0] == [1.0, 1.0f64.next_up()]
     })
+}
+
+/// Forgets the codes kept for equal tapes, so that the tapes made from now on are compiled
+/// afresh (after [`COMPILE_AFTER`] evaluations each), as in the first render of a process:
+/// what a benchmark calls before each timed render to time that first render again rather
+/// than one that finds its tapes compiled by the renders before it. Tapes that hold a code
+/// keep it.
+pub fn forget_shared() {
+    SHARED.lock().unwrap_or_else(|e| e.into_inner()).clear();
 }
 
 /// The code of `tape` from [`SHARED`] where an equal tape's is kept there (only where the

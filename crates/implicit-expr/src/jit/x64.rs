@@ -277,6 +277,22 @@ impl Asm {
         self.bytes(&[0x83, 0xE0, 0x01, 0x83, 0xE1, 0x03, 0xD1, 0xE1, 0x09, 0xC8]);
     }
 
+    /// `call [rip + …]`: a call to the address at pool byte `pool`.
+    pub(super) fn call_pool(&mut self, pool: u32) {
+        self.bytes(&[0xFF]);
+        self.modrm_mem(2, Mem::Pool(pool), 0);
+    }
+
+    /// Makes room for `n` more bytes of code.
+    pub(super) fn reserve(&mut self, n: usize) {
+        self.code.reserve(n);
+    }
+
+    /// The number of bytes assembled so far.
+    pub(super) fn len(&self) -> usize {
+        self.code.len()
+    }
+
     /// `ret`.
     pub(super) fn ret(&mut self) {
         self.bytes(&[0xC3]);
