@@ -13,6 +13,7 @@
 //! together again.
 
 mod batches;
+mod buffers;
 mod fingerprint;
 mod hard_shadows;
 mod images;

@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use super::buffers;
 use super::images::shadow_class_image;
 use super::output::{RenderOutput, ShadowMaps};
 use crate::beam::BoxClass;
@@ -200,7 +201,7 @@ fn gather(
     {
         check_piece(&piece, (width, height), soft, nl)?;
         let shadows = piece.shadows.unwrap_or_else(|| PieceShadows {
-            classes: vec![None; npix],
+            classes: buffers::filled(npix, None),
             fractions: Vec::new(),
             lower: Vec::new(),
             upper: Vec::new(),

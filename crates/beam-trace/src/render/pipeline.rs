@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use glam::DVec3;
 
+use super::buffers;
 use super::output::RenderOutput;
 use super::piece::{Piece, PieceShadows};
 use super::scopes::PixelScopes;
@@ -101,7 +102,11 @@ impl<'a> Pipeline<'a> {
             (classes, scopes, traced)
         } else {
             passes.push(PassStats::skipped(Pass::ScreenBoxes.name()));
-            (vec![None; npix], PixelScopes::none(npix), Vec::new())
+            (
+                buffers::filled(npix, None),
+                PixelScopes::none(npix),
+                Vec::new(),
+            )
         };
 
         let (mut samples, cost) = match plan.primary {

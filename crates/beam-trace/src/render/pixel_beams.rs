@@ -21,6 +21,7 @@ use interval_core::Interval;
 use rayon::prelude::*;
 
 use super::batches::{PixelSamples, ROWS_PER_BATCH, RowBatch, row_batches};
+use super::buffers;
 use super::pixels::{Pixels, offsets};
 use super::primary::PixelClasses;
 use super::scopes::PixelScopes;
@@ -224,7 +225,7 @@ pub(super) fn pixel_beams(
     let mut c = PixelBeamCounters::default();
     let npix = window.len();
     let mut pixels = Pixels::new();
-    let mut cost: Vec<f32> = Vec::with_capacity(npix);
+    let mut cost: Vec<f32> = buffers::with_room(npix);
     for RowBatch { rows, first, n } in row_batches(w, h, ROWS_PER_BATCH) {
         let mut pixel_cost = vec![0f32; n];
         // With anti-aliasing a Hit pixel's own beam is classified inside its box's

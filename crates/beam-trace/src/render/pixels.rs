@@ -6,6 +6,7 @@ use std::ops::Range;
 
 use rayon::prelude::*;
 
+use super::buffers;
 use crate::sample::Sample;
 
 /// The samples of every pixel, in pixel order.
@@ -28,10 +29,10 @@ impl Pixels {
 
     /// No pixel yet, with room for `pixels` pixels of `samples` samples in all.
     pub(super) fn with_capacity(pixels: usize, samples: usize) -> Self {
-        let mut first = Vec::with_capacity(pixels + 1);
+        let mut first = buffers::with_room(pixels + 1);
         first.push(0);
         Pixels {
-            samples: Vec::with_capacity(samples),
+            samples: buffers::with_room(samples),
             first,
         }
     }

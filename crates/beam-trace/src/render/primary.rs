@@ -7,6 +7,7 @@ use interval_core::Interval;
 use rayon::prelude::*;
 
 use super::batches::{PixelSamples, RAY_BATCH_PIXELS, RowBatch, row_batches};
+use super::buffers;
 use super::pixels::{self, Pixels, owners};
 use super::scopes::PixelScopes;
 use crate::backend::{
@@ -172,8 +173,8 @@ fn octree(
     // `OCTREE_TILE` from the window's corner, row by row.
     let (corner, width) = (window.rect(), window.width());
     let columns = width.div_ceil(OCTREE_TILE) as usize;
-    let mut classes: PixelClasses = Vec::new();
-    let mut of = Vec::new();
+    let mut classes: PixelClasses = buffers::with_room(window.len());
+    let mut of = buffers::with_room(window.len());
     (0..window.len())
         .into_par_iter()
         .map(|i| {
@@ -217,7 +218,7 @@ fn screen_boxes(
     let cam = &scene.camera;
     let t0 = Instant::now();
     progress.begin(Pass::ScreenBoxes.name(), window.len() as u64);
-    let mut classes: PixelClasses = vec![None; window.len()];
+    let mut classes: PixelClasses = buffers::filled(window.len(), None);
     let mut scopes = PixelScopes::none(window.len());
     let mut c = ScreenBoxCounters::default();
     // With anti-aliasing, the Hit boxes of more than one pixel whose shading is judged
@@ -580,7 +581,7 @@ pub(super) fn primary_rays(
         .map(|class| ray_count(*class, pixel_rays.count()))
         .sum();
     let mut pixels = Pixels::with_capacity(npix, all_rays);
-    let mut cost: Vec<f32> = Vec::with_capacity(npix);
+    let mut cost: Vec<f32> = buffers::with_room(npix);
     for RowBatch { rows, first, n } in row_batches(w, h, RAY_BATCH_PIXELS / w.max(1)) {
         // The rays of every pixel of the batch, built in parallel; pixel `k` owns the rays
         // `first_ray[k]..first_ray[k + 1]` of the flat batch.

@@ -2,6 +2,7 @@
 //! of a box share its scope, so each pixel holds only the index of its box's scope (4
 //! bytes a pixel, where a scope of its own took 32, most of them empty).
 
+use super::buffers;
 use crate::beam::BeamScope;
 
 /// Each pixel's scope (`None` for a Miss box's pixels, and where the box handed none on).
@@ -20,7 +21,7 @@ impl PixelScopes {
     /// `pixels` pixels, none with a scope yet.
     pub(super) fn none(pixels: usize) -> Self {
         Self {
-            of: vec![Self::NONE; pixels],
+            of: buffers::filled(pixels, Self::NONE),
             scopes: Vec::new(),
         }
     }

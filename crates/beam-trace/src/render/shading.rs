@@ -4,6 +4,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
+use super::buffers;
 use super::pixels::Pixels;
 use crate::backend::{Queries, ShadeBatch, ShadeLight, ShadeSample};
 use crate::error::Error;
@@ -135,7 +136,9 @@ pub(super) fn shading(
     };
     // Each pixel's colour, and its coverage from the same samples in the same pass over
     // them.
-    let (pixel_colors, coverage): (Vec<[f32; 3]>, Vec<Coverage>) = (0..pixels.len())
+    let mut pixel_colors: Vec<[f32; 3]> = buffers::with_room(pixels.len());
+    let mut coverage: Vec<Coverage> = buffers::with_room(pixels.len());
+    (0..pixels.len())
         .into_par_iter()
         .map(|p| {
             let mut acc = [0f32; 3];
@@ -158,7 +161,7 @@ pub(super) fn shading(
             };
             (color, Coverage::of(pixels.pixel(p)))
         })
-        .unzip();
+        .unzip_into_vecs(&mut pixel_colors, &mut coverage);
     let stats = if lit {
         let c = ShadingCounters {
             shaded_samples: colors.len() as u64,

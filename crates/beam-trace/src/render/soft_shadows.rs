@@ -4,6 +4,7 @@
 
 use std::time::Instant;
 
+use super::buffers;
 use super::pixels::Pixels;
 use crate::backend::Queries;
 use crate::error::Error;
@@ -56,7 +57,7 @@ pub(super) fn soft_shadows(
     let offset = SHADOW_OFFSET * scene.diagonal();
     let name = plan.shadow_method.to_string();
     let npix = pixels.len();
-    let mut classes: Vec<Option<ShadowClass>> = vec![None; npix];
+    let mut classes: Vec<Option<ShadowClass>> = buffers::filled(npix, None);
     let mut per_light = Vec::new();
     let mut maps: Vec<LightMaps> = Vec::new();
     let mut total = SoftShadowCounters::default();
