@@ -12,7 +12,10 @@
 //! Ours runs in `f32` (sound intervals, like for like with fidget's `f32`) and `f64`, with
 //! the tiles (64, 16, 4) and the example's default tiles (128, 32, 8, fidget's VM tiles); fidget uses
 //! its defaults (VM: 128, 32, 8; JIT: 128, 16). Times are the best and the median of
-//! `--runs` renders after one warm-up render.
+//! `--runs` renders after one warm-up render. Before each of our renders the codes kept for
+//! equal tapes are forgotten (`implicit_expr::jit::forget_shared`, outside the time), so
+//! that each compiles its tapes as a process's first render does, as fidget compiles its
+//! pruned tapes in every render; `--warm` lets them find the tapes compiled before.
 
 use std::process::ExitCode;
 use std::time::{Duration, Instant};
@@ -30,6 +33,7 @@ struct Options {
     size: usize,
     threads: usize,
     runs: usize,
+    warm: bool,
     files: Vec<(String, String)>,
 }
 
@@ -38,6 +42,7 @@ fn parse_args() -> Result<Options, String> {
         size: 1024,
         threads: 2,
         runs: 5,
+        warm: false,
         files: Vec::new(),
     };
     let mut args = std::env::args().skip(1);
@@ -50,6 +55,7 @@ fn parse_args() -> Result<Options, String> {
             "--size" => o.size = num("--size")?,
             "--threads" => o.threads = num("--threads")?,
             "--runs" => o.runs = num("--runs")?.max(1),
+            "--warm" => o.warm = true,
             path => {
                 let text = std::fs::read_to_string(path)
                     .map_err(|e| format!("cannot read {path}: {e}"))?;
@@ -67,11 +73,13 @@ fn parse_args() -> Result<Options, String> {
 }
 
 /// Best and median of `runs` timed calls of `f`, after one warm-up call whose result is
-/// returned.
-fn time<R>(runs: usize, mut f: impl FnMut() -> R) -> (R, Duration, Duration) {
+/// returned; `before` runs untimed before each call.
+fn time<R>(runs: usize, before: impl Fn(), mut f: impl FnMut() -> R) -> (R, Duration, Duration) {
+    before();
     let first = f();
     let mut times: Vec<Duration> = (0..runs)
         .map(|_| {
+            before();
             let t = Instant::now();
             std::hint::black_box(f());
             t.elapsed()
@@ -128,8 +136,16 @@ fn run() -> Result<(), String> {
             .map_err(|e| e.to_string())?,
     );
     println!(
-        "{}x{} pixels over [-1, 1]², {} threads for every renderer, best / median of {} runs\n",
-        o.size, o.size, o.threads, o.runs
+        "{}x{} pixels over [-1, 1]², {} threads for every renderer, best / median of {} runs; {}\n",
+        o.size,
+        o.size,
+        o.threads,
+        o.runs,
+        if o.warm {
+            "our renders find the tapes compiled by the renders before them"
+        } else {
+            "each of our renders compiles its tapes afresh"
+        }
     );
     for (name, text) in &o.files {
         let e = Expr::from_vm(name, text).map_err(|err| format!("{name}: {err}"))?;
@@ -154,7 +170,12 @@ fn run() -> Result<(), String> {
                 tiles: tiles.to_vec(),
                 ..Settings::square(o.size)
             };
-            time(o.runs, || {
+            let cold = || {
+                if !o.warm {
+                    implicit_expr::jit::forget_shared();
+                }
+            };
+            time(o.runs, cold, || {
                 ours_pool.install(|| {
                     if f32 {
                         render2d::render::<f32>(&e.tape, &s)
@@ -166,10 +187,16 @@ fn run() -> Result<(), String> {
                 })
             })
         };
-        let (vm_img, vm_best, vm_med) =
-            time(o.runs, || fidget_render(vm.clone(), o.size, &fidget_pool));
-        let (jit_img, jit_best, jit_med) =
-            time(o.runs, || fidget_render(jit.clone(), o.size, &fidget_pool));
+        let (vm_img, vm_best, vm_med) = time(
+            o.runs,
+            || {},
+            || fidget_render(vm.clone(), o.size, &fidget_pool),
+        );
+        let (jit_img, jit_best, jit_med) = time(
+            o.runs,
+            || {},
+            || fidget_render(jit.clone(), o.size, &fidget_pool),
+        );
         let (ref64, r64_best, r64_med) = ours(&[64, 16, 4], false);
         let reference: Vec<bool> = ref64.pixels.iter().map(|p| p.is_inside()).collect();
         let rows: Vec<(String, String, Duration, Duration, usize)> = vec![
