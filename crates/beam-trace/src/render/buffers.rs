@@ -8,10 +8,11 @@
 //! for 32 MiB), and a 2 MiB page costs a sixth of that for the same bytes (2.4 ms). On
 //! Linux, where transparent huge pages are given on request (`madvise`, the usual default)
 //! or always, [`with_room`] asks for them on the whole 2 MiB pages inside a large buffer;
-//! elsewhere, or where they are off, it is `Vec::with_capacity`. A first render of a
-//! process maps all of these afresh: 1024 × 1024 renders of the CSG models with two
-//! threads took 7 to 16 % less time (`docs/expr-benchmarks.md`); renders that find
-//! memory freed by earlier ones in the allocator take the same time.
+//! elsewhere, or where they are off, it is `Vec::with_capacity` (where free memory is
+//! fragmented, the kernel compacts it or gives small pages, as its `defrag` setting says).
+//! A first render of a process maps all of these afresh: 1024 × 1024 renders of the CSG
+//! models with two threads took 7 to 16 % less time (`docs/expr-benchmarks.md`); renders
+//! that find memory freed by earlier ones in the allocator take the same time.
 
 /// Buffers smaller than this are left as the allocator makes them (a huge page is 2 MiB).
 const LARGE: usize = 4 << 20;
