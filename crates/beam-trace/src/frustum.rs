@@ -533,14 +533,15 @@ impl Search<'_> {
     /// first `p` of `sup t` and `sup t + w·2^k` (`k ≤` [`LOOK_AHEAD`], `w` the length of
     /// `t`) where the sign has changed for every ray since `inf t` (known
     /// positive there where `near_positive`), with `g` continuous up to `p` and both ends
-    /// inside the scene bounds. The probes start one before the one at which the tile's last
-    /// passing leaf stopped ([`Search::look_from`]): neighbouring leaves lie about as deep
-    /// below the surface, and where every ray is inside only several leaf lengths past the
-    /// leaf (a pixel on a sphere's flank) the nearer probes would be spent in vain, or give
-    /// the look-ahead up too soon (on the CSG models 3 to 13 % fewer evaluations and more
-    /// leaves passing; a probe's proof is the same whichever probes came before it). Each probe is made with the innermost restriction whose
-    /// region holds it (the whole `g` only without any), so the probes reach as far as the
-    /// leaf's depth needs, each made once. Where `g > 0` at `inf t` and a probe's upper
+    /// inside the scene bounds. The probes start one before the one at which the tile's
+    /// last passing leaf stopped ([`Search::look_from`]): neighbouring leaves lie about as
+    /// deep below the surface, and where every ray is inside only several leaf lengths past
+    /// the leaf (a pixel on a sphere's flank) the nearer probes would be spent in vain, or
+    /// give the look-ahead up too soon (on the CSG models 3 to 13 % fewer evaluations and
+    /// more leaves passing; a probe's proof is the same whichever probes came before it).
+    /// Each probe is made with the innermost restriction whose region holds it (the whole
+    /// `g` only without any), so the probes reach as far as the leaf's depth needs, each
+    /// made once. Where `g > 0` at `inf t` and a probe's upper
     /// bound is no lower than the last one's (a ray that passes the surface by), or would
     /// still be positive at the last probe if it kept falling at the rate it fell since the
     /// last one, the probes stop: the leaf is left undecided (this decides nothing wrongly,

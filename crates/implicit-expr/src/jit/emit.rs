@@ -249,7 +249,8 @@ fn assemble(b: &mut Buffers, tape: &Tape, traced: bool, entries: &[u64; ROUTINES
         return None;
     }
     let (a, pool, stored) = (&mut b.asm, &mut b.pool, &b.stored);
-    // A code is about 30 bytes per instruction (a product, with its loads and store).
+    // Room for the code at once: a call of a routine with its loads and store takes about
+    // 30 bytes, a recorded `min` about 40; the prologue and epilogue less than 96.
     a.reserve(96 + 40 * tape.instrs().len());
     pool.reserve(CONSTS as usize + 16 * nconst);
     pool_header(pool, entries);
