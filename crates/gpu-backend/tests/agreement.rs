@@ -95,6 +95,9 @@ fn suite() -> Vec<(String, Scene)> {
         "minkowski:beam:3",
         "stochastic:16",
         "certified:0.1:64",
+        // No refinement: the light's quadrants screened by rejection beams before the
+        // segments.
+        "certified:1:1024:64",
     ] {
         out.push((method.to_string(), scene(method)));
     }

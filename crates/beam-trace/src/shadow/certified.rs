@@ -22,7 +22,13 @@
 //! The estimate that shades the point is `lo` plus, for each part left undecided, its area
 //! times the share of stratified shadow segments into it found free: each part's share is
 //! an unbiased estimate of its visible part (jittered stratified samples are uniform over
-//! the part), and lies in `[0, area]`, so the estimate never leaves `[lo, hi]`.
+//! the part), and lies in `[0, area]`, so the estimate never leaves `[lo, hi]`. Before the
+//! segments, a part that would get at least [`SCREEN_MIN_SEGMENTS`] of them is *screened*:
+//! its quadrants' beams are searched with the rejection test alone (no inclusion test, no
+//! mean-value form: about one segment's cost each), each rejected quadrant is proven
+//! visible (added to `lo`, no segment spent on it), and the others share the part's
+//! segments. A penumbra point whose light the occluder covers only partly thus spends its
+//! segments where the shadow is.
 //!
 //! Every question is a beam or a segment, asked level by level, so the method runs in
 //! batched rounds ([`super::rounds`]) on any backend: one round per level and one for the
@@ -48,6 +54,16 @@ pub const MAX_LEVEL: u32 = 10;
 /// fewest that estimate inside a bound of width 0.5 as well as 64 stratified samples do
 /// over the whole light.
 pub const ESTIMATE_SEGMENTS: u32 = 32;
+
+/// An undecided part that would get at least this many of the estimate's segments has its
+/// quadrants screened by rejection beams first (each quadrant then has at least 4). On
+/// `scenes/soft-shadows.toml` at 128 × 96, `certified:1:1024:64`: 11,764 screening beams
+/// (a fifth of the quadrants proven visible) save 63,884 of 211,752 segments; the time
+/// 0.45 → 0.44 × `stochastic:64`'s and the RMSE 0.00551 → 0.00492 (`stochastic:64`:
+/// 0.00523). Screening again inside screened quadrants (down to 16 parts) cost 17 % more
+/// time. With tolerances below 1 and the default 32 segments it takes about the same time
+/// and narrows the mean bound (`certified:0.5` 62,764 → 43,642 ppm).
+pub const SCREEN_MIN_SEGMENTS: u32 = 16;
 
 /// The certified method.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
@@ -149,6 +165,8 @@ struct Refined {
     hi: f64,
     /// Undecided parts.
     open: Vec<Part>,
+    /// Beams searched so far.
+    used: u32,
 }
 
 impl Certified {
@@ -202,7 +220,7 @@ impl Certified {
                 || !kept.is_empty()
             {
                 open.extend(kept);
-                return Refined { lo, hi, open };
+                return Refined { lo, hi, open, used };
             }
             if affordable < open.len() {
                 // The last round the budget allows: the first parts are split, the others
@@ -211,6 +229,42 @@ impl Certified {
             }
             asked = open.iter().flat_map(Part::quadrants).collect();
         }
+    }
+
+    /// Screens the undecided parts of `r` that would get at least [`SCREEN_MIN_SEGMENTS`]
+    /// segments, where the budget of beams allows and none is at [`MAX_LEVEL`]: each quadrant of such a part whose
+    /// beam the rejection test proves free is added to `lo`; the others stay undecided, to
+    /// be estimated from the part's segments (see the module documentation).
+    fn screen(
+        &self,
+        occluders: &mut dyn Occluders,
+        q: &ShadowQuery,
+        r: &mut Refined,
+        work: &mut ShadowWork,
+    ) {
+        let parts = r.open.len() as u32;
+        let beams = 4 * parts;
+        if parts == 0
+            || self.segments / parts < SCREEN_MIN_SEGMENTS
+            || r.used.saturating_add(beams) > self.budget
+            || r.open.iter().any(|p| p.level >= MAX_LEVEL)
+        {
+            return;
+        }
+        r.used += beams;
+        let mut open = Vec::with_capacity(r.open.len() * 4);
+        for quadrant in r.open.iter().flat_map(Part::quadrants) {
+            work.sub_beams += 1;
+            let patch = quadrant.covering_patch(&q.light);
+            match occluders.beam(q.origin, &patch, quadrant.start(), false, &mut work.root) {
+                BoxClass::Miss => r.lo += quadrant.area(),
+                class => open.push(Part {
+                    outer: Some(class),
+                    ..quadrant
+                }),
+            }
+        }
+        r.open = open;
     }
 }
 
@@ -262,7 +316,8 @@ impl ShadowMethod for Certified {
         work: &mut ShadowWork,
     ) -> LightVisibility {
         work.queries += 1;
-        let r = self.refine(occluders, q, work);
+        let mut r = self.refine(occluders, q, work);
+        self.screen(occluders, q, &mut r, work);
         let fraction = estimate(occluders, q, (&r, self.segments), work);
         // Outward to f32 (exact for the dyadic areas of at most `MAX_LEVEL` levels).
         let bound = Interval::new_unchecked(r.lo, r.hi).cast::<f32>();
