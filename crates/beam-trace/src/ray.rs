@@ -324,6 +324,8 @@ pub struct BeamEval {
     /// The widest box of points over which an `f64` enclosure holding 0 is narrowed by
     /// the mean-value form (`None`: never; [`BeamEval::set_centred_fallback`]).
     centred_fallback: Option<f64>,
+    /// [`BeamEval::centred_record`].
+    centred_record: (u64, u64),
 }
 
 /// A parameter interval as a double-double interval (exact).
@@ -366,6 +368,7 @@ impl BeamEval {
             point: RayEvaluator::new(f, &[]).expect("scene functions have no parameters"),
             centred: None,
             centred_fallback: None,
+            centred_record: (0, 0),
         }
     }
 
@@ -380,6 +383,14 @@ impl BeamEval {
     /// rarely decides anything, hence the limit. `None` (the default): never.
     pub fn set_centred_fallback(&mut self, widest: Option<f64>) {
         self.centred_fallback = widest;
+    }
+
+    /// How many `f64` enclosures holding 0 the mean-value form was tried on since the
+    /// evaluator was made ([`BeamEval::set_centred_fallback`]), and how many of them it
+    /// decided (their sign proven): a caller may stop asking for it where it decides
+    /// nothing.
+    pub fn centred_record(&self) -> (u64, u64) {
+        self.centred_record
     }
 
     /// `natural`, the `f64` enclosure of `g` over the beam set for `t`, narrowed by the
@@ -414,17 +425,21 @@ impl BeamEval {
         let forms = self
             .centred
             .get_or_insert_with(|| Box::new(Centred::new(&tape)));
+        self.centred_record.0 += 1;
         // First with the gradient of an enclosing piece (the one this piece was cut from):
         // a form that decides the sign decides it as this piece's own gradient would (that
         // form lies inside this one), without computing it.
-        if let Some(c) = forms.enclose_f64_reused(&tape, &points) {
-            let both = meet(natural, c);
-            if crate::root::search::excludes_zero(both) {
-                return both;
-            }
-        }
-        let centred = forms.enclose_f64(&tape, &points, continuous);
-        centred.map_or(natural, |c| meet(natural, c))
+        let reused = forms
+            .enclose_f64_reused(&tape, &points)
+            .map(|c| meet(natural, c));
+        let decided = match reused {
+            Some(both) if crate::root::search::excludes_zero(both) => both,
+            _ => forms
+                .enclose_f64(&tape, &points, continuous)
+                .map_or(natural, |c| meet(natural, c)),
+        };
+        self.centred_record.1 += u64::from(crate::root::search::excludes_zero(decided));
+        decided
     }
 
     /// The box of the points of the beam set, for the parameters `t`.

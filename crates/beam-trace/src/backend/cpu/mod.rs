@@ -34,7 +34,7 @@ use crate::shadow::hard::{Visibility, segment_visibility};
 use crate::shadow::{ShadowQuery, ShadowSpec, ShadowWork};
 use crate::stats::PassStats;
 use crate::stats::counters::GridCounters;
-use occluders::SceneOccluders;
+use occluders::{SceneOccluders, ThinForms};
 
 /// Soft-shadow queries per run handed to a method together
 /// ([`ShadowMethod::visibility_run`](crate::shadow::ShadowMethod::visibility_run)): as many
@@ -244,7 +244,11 @@ impl Queries for CpuQueries<'_> {
                 || self.evals(),
                 |ev, run| {
                     let mut work = ShadowWork::default();
-                    let mut occluders = SceneOccluders { queries: self, ev };
+                    let mut occluders = SceneOccluders {
+                        queries: self,
+                        ev,
+                        thin_forms: ThinForms::default(),
+                    };
                     (method.visibility_run(&mut occluders, run, &mut work), work)
                 },
             )

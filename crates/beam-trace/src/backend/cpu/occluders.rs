@@ -27,19 +27,63 @@ use crate::shadow::{BeamStart, Occluders, Occlusion, Patch, ShaftTriangle};
 const CENTRED_PIECES: f64 = 64.0;
 
 /// Shadow beams narrower than this (the largest width of their directions over the length
-/// of the longest, about radians) keep the natural enclosure: over a thin beam it is
-/// seldom loose enough for the form to pay for its gradient. Measured on
+/// of the longest, about radians) try the mean-value form only while it decides enough of
+/// their pieces ([`ThinForms`]): over a thin beam the natural enclosure is often tight
+/// (a sphere, a rod), and the form's gradient is then paid for nothing. Measured on
 /// `scenes/soft-shadows.toml` at 128 × 96, the soft-shadow pass of `certified:0.5`,
-/// `certified:0.25` and `certified:0.1` took 1.8, 4.1 and 9.2 s with this limit, 1.7, 4.7
-/// and 12.3 s without one (every beam), 1.9, 5.8 and 8.2 s with 0.03, and 7.4, 9.0 and 11.9
-/// s with no mean-value form at all.
+/// `certified:0.25` and `certified:0.1` took 1.8, 4.1 and 9.2 s with this limit and no
+/// thin beam trying, 1.7, 4.7 and 12.3 s with every beam trying, 1.9, 5.8 and 8.2 s with
+/// 0.03, and 7.4, 9.0 and 11.9 s with no mean-value form at all (before the finer pieces
+/// of the certified parts).
 const CENTRED_MIN_SPREAD: f64 = 0.01;
+
+/// Whether `beam` is no thinner than [`CENTRED_MIN_SPREAD`] (NaN, a beam without length,
+/// counts as thin).
+fn is_wide(beam: &Beam) -> bool {
+    beam.angular_spread() >= CENTRED_MIN_SPREAD
+}
+
+/// Thin shadow beams (see [`CENTRED_MIN_SPREAD`]) of a run of queries try the mean-value
+/// form for their first `THIN_TRIAL` tries, and after that while it decides at least one
+/// in [`THIN_SHARE`] of them.
+const THIN_TRIAL: u64 = 256;
+
+/// See [`THIN_TRIAL`].
+const THIN_SHARE: u64 = 20;
+
+/// What the mean-value form did for the thin shadow beams of the run of queries one
+/// [`SceneOccluders`] answers (fixed places of the batch: the same whatever the threads).
+/// On `scenes/soft-shadows.toml` it decides about a third of the pieces of the torus'
+/// penumbra it is tried on, and proves the parts grazing it that the natural enclosure
+/// leaves undecided at any depth; on `scenes/thin-occluder.toml` (rods and a floor, whose
+/// natural enclosures are tight) none of 630 k tries, which doubled the pass.
+#[derive(Clone, Copy, Debug, Default)]
+pub(super) struct ThinForms {
+    tries: u64,
+    decided: u64,
+}
+
+impl ThinForms {
+    /// Whether the next thin beam tries the form.
+    fn worth_trying(&self) -> bool {
+        self.tries < THIN_TRIAL || self.decided * THIN_SHARE >= self.tries
+    }
+
+    /// Adds what a thin beam's search did: the evaluator's
+    /// [`centred_record`](crate::ray::BeamEval::centred_record) before and after it.
+    fn add(&mut self, before: (u64, u64), after: (u64, u64)) {
+        self.tries += after.0 - before.0;
+        self.decided += after.1 - before.1;
+    }
+}
 
 /// The scene's occluders as the shadow methods see them: the CPU queries and one thread's
 /// evaluators.
 pub(super) struct SceneOccluders<'q, 'a, 'e> {
     pub(super) queries: &'q CpuQueries<'a>,
     pub(super) ev: &'e mut Evals,
+    /// What the mean-value form did for thin beams in this run.
+    pub(super) thin_forms: ThinForms,
 }
 
 impl Occluders for SceneOccluders<'_, '_, '_> {
@@ -97,8 +141,9 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         c: &mut RootCounters,
     ) -> BoxClass {
         let (beam, settings) = self.light_beam(from, light, start);
-        self.queries
-            .shadow_beam(self.ev, &beam, (start, inclusion), &settings, c)
+        self.with_thin_forms(&beam, |q, ev, forms| {
+            q.shadow_beam(ev, &beam, (start, inclusion, forms), &settings, c)
+        })
     }
 
     fn triangles(&mut self, from: &IBox, light: &Patch) -> Vec<ShaftTriangle> {
@@ -156,12 +201,31 @@ impl Occluders for SceneOccluders<'_, '_, '_> {
         c: &mut RootCounters,
     ) -> BoxClass {
         let (beam, settings) = self.light_beam(from, light, start);
-        self.queries
-            .shadow_beam_implicit(self.ev, &beam, (start, inclusion), &settings, c)
+        self.with_thin_forms(&beam, |q, ev, forms| {
+            q.shadow_beam_implicit(ev, &beam, (start, inclusion, forms), &settings, c)
+        })
     }
 }
 
 impl SceneOccluders<'_, '_, '_> {
+    /// `search` (a shadow beam's, told whether the beam may try the mean-value form) for
+    /// `beam`: a wide beam may, a thin one as [`ThinForms`] says, and what the form did for
+    /// it is added there.
+    fn with_thin_forms(
+        &mut self,
+        beam: &Beam,
+        search: impl FnOnce(&CpuQueries<'_>, &mut Evals, bool) -> BoxClass,
+    ) -> BoxClass {
+        if is_wide(beam) {
+            return search(self.queries, self.ev, true);
+        }
+        let before = self.ev.geo.beam.centred_record();
+        let class = search(self.queries, self.ev, self.thin_forms.worth_trying());
+        self.thin_forms
+            .add(before, self.ev.geo.beam.centred_record());
+        class
+    }
+
     /// The shadow beam from `from` over `light`, and its search settings (finer for
     /// [`BeamStart::Finer`], [`inner_beam_settings`]).
     fn light_beam(&self, from: DVec3, light: &Patch, start: BeamStart) -> (Beam, BeamSettings) {
@@ -236,7 +300,13 @@ impl CpuQueries<'_> {
             };
             let settings = shadow_beam_settings(&self.plan.beam, diagonal, centre, &patch);
             !matches!(
-                self.shadow_beam(ev, &beam, (BeamStart::At(start), true), &settings, c),
+                self.shadow_beam(
+                    ev,
+                    &beam,
+                    (BeamStart::At(start), true, is_wide(&beam)),
+                    &settings,
+                    c
+                ),
                 BoxClass::Undecided { .. }
             )
         })
@@ -264,17 +334,19 @@ impl CpuQueries<'_> {
     /// A shadow beam (rays `origin + t·dir` to the light at `t = 1`) searched for
     /// `t ∈ [start, 1]` through the grid's non-empty cells with `settings`:
     /// [`BoxClass::Miss`] proves that no ray meets a surface there; with `inclusion`,
-    /// [`BoxClass::Hit`] that every ray does; else [`BoxClass::Undecided`].
+    /// [`BoxClass::Hit`] that every ray does; else [`BoxClass::Undecided`]. With `forms`
+    /// and `inclusion`, pieces whose natural enclosure is loose try the mean-value form
+    /// ([`CENTRED_PIECES`]).
     pub(super) fn shadow_beam(
         &self,
         ev: &mut Evals,
         beam: &Beam,
-        (start, inclusion): (BeamStart, bool),
+        (start, inclusion, forms): (BeamStart, bool, bool),
         settings: &BeamSettings,
         c: &mut RootCounters,
     ) -> BoxClass {
         let window = Interval::new_unchecked(start.at(), 1.0);
-        let implicit = self.shadow_beam_implicit(ev, beam, (start, inclusion), settings, c);
+        let implicit = self.shadow_beam_implicit(ev, beam, (start, inclusion, forms), settings, c);
         match &self.meshes {
             Some(m) => m.shadow_beam(implicit, beam, window, inclusion),
             None => implicit,
@@ -286,7 +358,7 @@ impl CpuQueries<'_> {
         &self,
         ev: &mut Evals,
         beam: &Beam,
-        (start, inclusion): (BeamStart, bool),
+        (start, inclusion, forms): (BeamStart, bool, bool),
         settings: &BeamSettings,
         c: &mut RootCounters,
     ) -> BoxClass {
@@ -296,13 +368,11 @@ impl CpuQueries<'_> {
         }
         ev.geo.beam.set_beam(beam);
         // A beam asked to prove both ways (free or blocked) is decided by the mean-value
-        // form where the natural enclosure is loose ([`CENTRED_PIECES`],
-        // [`CENTRED_MIN_SPREAD`]).
-        let spread = beam.angular_spread();
+        // form where the natural enclosure is loose ([`CENTRED_PIECES`]).
         let widest = self.scene.geometry.diagonal() / CENTRED_PIECES;
         ev.geo
             .beam
-            .set_centred_fallback((inclusion && spread >= CENTRED_MIN_SPREAD).then_some(widest));
+            .set_centred_fallback((inclusion && forms).then_some(widest));
         let bounds = self.scene.geometry.bounds();
         let extent = Extent {
             beam,
@@ -319,5 +389,27 @@ impl CpuQueries<'_> {
         };
         ev.geo.beam.set_centred_fallback(None);
         class
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn thin_beams_stop_trying_a_form_that_decides_nothing() {
+        let mut record = ThinForms::default();
+        assert!(record.worth_trying());
+        // The trial: tried whatever it decides.
+        record.add((0, 0), (THIN_TRIAL - 1, 0));
+        assert!(record.worth_trying());
+        record.add((0, 0), (1, 0));
+        assert!(!record.worth_trying());
+        // Deciding one in `THIN_SHARE` of the tries keeps it tried.
+        let mut record = ThinForms::default();
+        record.add((5, 2), (5 + THIN_SHARE * THIN_TRIAL, 2 + THIN_TRIAL));
+        assert!(record.worth_trying());
+        record.add((0, 0), (1, 0));
+        assert!(!record.worth_trying());
     }
 }
