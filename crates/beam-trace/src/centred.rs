@@ -140,7 +140,7 @@ impl Centred {
             }
         };
         for i in 0..3 {
-            acc = acc + slope[i] * (b[i] - Interval::new_unchecked(m[i], m[i]));
+            acc = acc + slope[i].mul_sign_cases(b[i] - Interval::new_unchecked(m[i], m[i]));
         }
         (!acc.is_empty()).then_some(acc)
     }

@@ -350,6 +350,14 @@ fn primitives_known_values() {
     // 0 · ∞ = 0.
     assert_eq!(0.0f64.mul_down(f64::INFINITY), 0.0);
     assert_eq!(f32::NEG_INFINITY.mul_up(-0.0), 0.0);
+    // A zero factor gives exactly 0 both ways (whatever the other's sign or size); a NaN
+    // factor stays NaN.
+    for x in [-3.5f64, 1e-310, f64::MAX, f64::NEG_INFINITY, 0.0, -0.0] {
+        for (a, b) in [(x, 0.0), (0.0, x), (x, -0.0), (-0.0, x)] {
+            assert_eq!((a.mul_down(b), a.mul_up(b)), (0.0, 0.0), "{a} · {b}");
+        }
+    }
+    assert!(0.0f64.mul_down(f64::NAN).is_nan() && f64::NAN.mul_up(-0.0).is_nan());
     // One-ulp brackets of inexact results.
     assert_eq!(1.0f64.div_up(3.0), 1.0f64.div_down(3.0).next_up());
     assert_eq!(2.0f64.sqrt_up(), 2.0f64.sqrt_down().next_up());

@@ -426,6 +426,10 @@ impl Float for f64 {
         let (p, e) = two_prod(self, b);
         if p.abs() >= PROD_EXACT_MIN && p.abs() <= f64::MAX {
             down_by_sign(p, e)
+        } else if (self == 0.0 || b == 0.0) && !self.is_nan() && !b.is_nan() {
+            // Exact (an infinite factor too: `0 · ∞ = 0` in interval arithmetic), and
+            // frequent enough (derivatives of constants) to stay out of the cold path.
+            0.0
         } else {
             mul_slow(self, b).0
         }
@@ -442,6 +446,10 @@ impl Float for f64 {
         let (p, e) = two_prod(self, b);
         if p.abs() >= PROD_EXACT_MIN && p.abs() <= f64::MAX {
             up_by_sign(p, e)
+        } else if (self == 0.0 || b == 0.0) && !self.is_nan() && !b.is_nan() {
+            // Exact (an infinite factor too: `0 · ∞ = 0` in interval arithmetic), and
+            // frequent enough (derivatives of constants) to stay out of the cold path.
+            0.0
         } else {
             mul_slow(self, b).1
         }
