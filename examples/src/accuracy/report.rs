@@ -268,9 +268,11 @@ stochastic stratum: a sample either misses it (an error of the strip's share) or
 misses some of the shadow altogether (column *missed shadow*). Every sub-beam that touches \
 it counts as wholly blocked, which draws the shadow as discrete bands; a beam method never \
 misses a shadow, since a fraction of 1 from it is a proof.
-- **Proofs.** Only the beam methods prove lit points (their first beam over the whole \
-light) and only the Minkowski methods prove umbra; the stochastic method proves nothing, \
-its fraction is an estimate.";
+- **Proofs.** The beam, Minkowski and certified methods prove lit points (their first beam \
+over the whole light); the Minkowski and certified methods also prove umbra, and the \
+certified method bounds every point's fraction (column *largest certified bound width*) \
+with an unbiased estimate inside the bound; the stochastic method proves nothing, its \
+fraction is an estimate.";
 
 /// The data-driven part of the reading: cheapest settings, the variants' cost, the
 /// contradictions.

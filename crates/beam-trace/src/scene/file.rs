@@ -354,7 +354,8 @@ impl Scene {
     /// [`FromStr`]), `undecided_depth` (0 to 8), `rays_per_undecided` and `rays_per_pixel`
     /// (square numbers 1 to 256),
     /// `t_final_width` (positive), `grid` (0 to 256; 0: no grid), `shadows`,
-    /// `shadow_method` (see [`ShadowSpec`](crate::shadow::ShadowSpec); default `beam:7`),
+    /// `shadow_method` (see [`ShadowSpec`](crate::shadow::ShadowSpec); default
+    /// `certified:1:1024:64`),
     /// `precision` (`"f64"` or `"f32"`, see [`Precision`](crate::ray::Precision); default
     /// `"f64"`).
     ///
