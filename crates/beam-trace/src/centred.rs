@@ -28,6 +28,9 @@ use crate::ibox::IBox;
 /// and `d = 0`, so that `g = f(c + 0·0) = f(c)`.
 const RAY_SLOTS: usize = 7;
 
+/// The slots of `t` and `d` in a ray tape, 0 in the forms.
+const RAY_ZERO_SLOTS: [u32; 4] = [3, 4, 5, 6];
+
 /// The evaluators of the centred form of one ray tape at a time. Owns its scratch space.
 #[derive(Clone, Debug)]
 pub struct Centred {
@@ -47,6 +50,10 @@ pub struct Centred {
     /// with the reused gradient that does not decide is followed by one with the piece's
     /// own gradient at the same centre.
     last_centre: Option<(Tape, [f64; 3], Interval<f64>)>,
+    /// The last ray tape given, and the same with `t` and `d` fixed at 0
+    /// ([`Tape::with_zero_vars`]): the forms evaluate that one (its first operations,
+    /// `c + 0·0`, folded away).
+    folded: Option<(Tape, Tape)>,
 }
 
 /// A gradient enclosure of a tape's function over a box, where the function was proven
@@ -73,6 +80,20 @@ impl Centred {
             centre64_vars: vec![Interval::ZERO; RAY_SLOTS],
             last: None,
             last_centre: None,
+            folded: None,
+        }
+    }
+
+    /// `tape` with the ray's `t` and `d` fixed at 0, as the forms evaluate it (kept for the
+    /// last tape given).
+    fn folded(&mut self, tape: &Tape) -> Tape {
+        match &self.folded {
+            Some((t, f)) if t.ptr_eq(tape) => f.clone(),
+            _ => {
+                let f = tape.with_zero_vars(&RAY_ZERO_SLOTS);
+                self.folded = Some((tape.clone(), f.clone()));
+                f
+            }
         }
     }
 
@@ -89,7 +110,8 @@ impl Centred {
             return None;
         }
         let m = Self::centre(b)?;
-        self.grad.set_tape(tape);
+        let folded = self.folded(tape);
+        self.grad.set_tape(&folded);
         for (i, (v, &x)) in self.grad_vars.iter_mut().zip(b).enumerate() {
             *v = Grad::var(x, i);
         }
@@ -130,7 +152,8 @@ impl Centred {
         let mut acc = match &self.last_centre {
             Some((t, at, v)) if t.ptr_eq(tape) && *at == m => *v,
             _ => {
-                self.centre64.set_tape(tape);
+                let folded = self.folded(tape);
+                self.centre64.set_tape(&folded);
                 for (v, &c) in self.centre64_vars.iter_mut().zip(&m) {
                     *v = Interval::new_unchecked(c, c);
                 }
@@ -184,7 +207,8 @@ impl Centred {
     /// (`f` not proven continuous on `b`, `b` empty or unbounded, a slope undefined).
     pub fn enclose(&mut self, tape: &Tape, b: &IBox) -> Option<DdInterval> {
         let (m, slope) = self.slope(tape, b, false)?;
-        self.centre.set_tape(tape);
+        let folded = self.folded(tape);
+        self.centre.set_tape(&folded);
         for (v, &c) in self.centre_vars.iter_mut().zip(&m) {
             *v = DdInterval::point(c);
         }

@@ -14,6 +14,7 @@ pub mod cache;
 mod graph;
 mod prune;
 mod regalloc;
+mod zero_vars;
 
 use std::sync::Arc;
 
