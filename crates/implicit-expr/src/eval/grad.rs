@@ -58,6 +58,15 @@ pub trait GradScalar: Number {
     /// The derivative of `min(a, b)` (or `max` when `is_max`) given the arguments'
     /// derivatives: the taken branch's, or the hull of both where undecided.
     fn select(a: Self, b: Self, da: Self, db: Self, is_max: bool) -> Self;
+
+    /// `s · d`, a slope times a derivative component: the product by default. Where many
+    /// components are 0 (a value that depends on some of the variables only, as most of
+    /// a sum of squares), a type may answer those without multiplying, with the same
+    /// value.
+    #[inline(always)]
+    fn scale(s: Self, d: Self) -> Self {
+        mul(s, d)
+    }
 }
 
 macro_rules! point_grad_scalar {
@@ -110,6 +119,17 @@ impl<T: Float> GradScalar for Interval<T> {
         }
     }
 
+    /// `[0, 0]` where `d` is `[0, 0]` and `s` is not empty (`s · 0 = 0` for every real
+    /// `s`, unbounded ones included), without the product's directed roundings.
+    #[inline(always)]
+    fn scale(s: Self, d: Self) -> Self {
+        if d.inf() == T::ZERO && d.sup() == T::ZERO && !s.is_empty() {
+            Interval::ZERO
+        } else {
+            mul(s, d)
+        }
+    }
+
     #[inline(always)]
     fn select(a: Self, b: Self, da: Self, db: Self, is_max: bool) -> Self {
         let (_, choice) = if is_max {
@@ -151,7 +171,7 @@ impl<N: GradScalar> Grad<N> {
     fn chain(self, v: N, slope: N) -> Self {
         Self {
             v,
-            d: each!(|i| N::binary(BinaryOp::Mul, slope, self.d[i])),
+            d: each!(|i| N::scale(slope, self.d[i])),
         }
     }
 }
@@ -233,7 +253,7 @@ impl<N: GradScalar> Number for Grad<N> {
         let d = match op {
             BinaryOp::Add => each!(|i| add(a.d[i], b.d[i])),
             BinaryOp::Sub => each!(|i| sub(a.d[i], b.d[i])),
-            BinaryOp::Mul => each!(|i| add(mul(a.v, b.d[i]), mul(b.v, a.d[i]))),
+            BinaryOp::Mul => each!(|i| add(N::scale(a.v, b.d[i]), N::scale(b.v, a.d[i]))),
             BinaryOp::Div => {
                 // (da - (a/b) db) / b
                 each!(|i| div(sub(a.d[i], mul(v, b.d[i])), b.v))
