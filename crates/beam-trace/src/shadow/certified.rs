@@ -1,22 +1,21 @@
 //! Certified soft shadows: the visible fraction of an area light proven to lie in a bound
 //! `[lo, hi]`, refined until `hi − lo` is at most a tolerance, with an estimate inside it.
 //!
-//! The light is subdivided as a quadtree over its parameters `(u, v)`, level by level
-//! (every part of a level has the same area, so the largest undecided parts are always
-//! split first). For each part a shadow beam from the point over the part is searched with
-//! the rejection and inclusion tests:
+//! The light is subdivided as a quadtree over its parameters `(u, v)`, largest undecided
+//! parts first, in rounds: each round splits as many of them as should bring the bound to
+//! the tolerance ([`DECIDED_SHARE`]), the others wait. For each part a shadow beam from
+//! the point over the part is searched with the rejection and inclusion tests:
 //!
 //! * **rejected** ([`BoxClass::Miss`]): no segment from the point to the part meets a
 //!   surface, so the whole part is visible: its area is added to `lo`;
 //! * **included** ([`BoxClass::Hit`]): every segment meets a surface between the point and
 //!   the light (a proven sign change of a continuous `g` on every ray of the beam), so the
 //!   whole part is hidden: its area is taken from `hi`;
-//! * **undecided**: split into four at the next level, each searched from where the part's
-//!   beam cleared every ray.
+//! * **undecided**: split into four at the next level (when a round comes to it), each
+//!   searched from where the part's beam cleared every ray.
 //!
-//! The refinement stops when `hi − lo ≤ tolerance`, or when the next level would exceed the
-//! per-point budget of beams (only as many undecided parts are split as the budget allows,
-//! the bound then stays wider than the tolerance and is reported as it is), or at
+//! The refinement stops when `hi − lo ≤ tolerance`, or when the per-point budget of beams
+//! is spent (the bound then stays wider than the tolerance and is reported as it is), or at
 //! [`MAX_LEVEL`]. Areas are dyadic, so `lo` and `hi` are exact sums.
 //!
 //! The estimate that shades the point is `lo` plus, for each part left undecided, its area
@@ -54,6 +53,16 @@ pub const MAX_LEVEL: u32 = 10;
 /// fewest that estimate inside a bound of width 0.5 as well as 64 stratified samples do
 /// over the whole light.
 pub const ESTIMATE_SEGMENTS: u32 = 32;
+
+/// The share of a part's area that splitting it is expected to decide: a smooth boundary
+/// crossing a part leaves about half its quadrants undecided (on `scenes/soft-shadows.toml`
+/// 48 to 60 % of the parts tested at levels 2 to 6 were decided). A round splits the
+/// largest undecided parts, only as many as should bring the bound to the tolerance
+/// (`certified:0.05`: sub-beams 265,880 → 212,104 and interval evaluations 11.7 M → 8.8 M
+/// against splitting every undecided part of a level, every pixel still certified; the
+/// mean bound width 4,451 → 5,585 ppm); expecting a quarter saved 2 % more beams in more
+/// rounds, expecting twice as much 10 % fewer.
+const DECIDED_SHARE: f64 = 0.5;
 
 /// An undecided part that would get at least this many of the estimate's segments has its
 /// quadrants screened by rejection beams first (each quadrant then has at least 4). On
@@ -179,12 +188,11 @@ impl Certified {
     ) -> Refined {
         let tolerance = self.tolerance.value();
         let (mut lo, mut hi) = (0.0f64, 1.0f64);
-        // Undecided parts the budget did not let split.
-        let mut kept: Vec<Part> = Vec::new();
+        // Undecided parts, largest first.
+        let mut open: Vec<Part> = Vec::new();
         let mut asked = vec![Part::WHOLE];
         let mut used = 0u32;
         loop {
-            let mut open = Vec::new();
             for part in &asked {
                 used += 1;
                 if part.level == 0 {
@@ -201,6 +209,7 @@ impl Certified {
                             work.umbra_proofs += 1;
                         }
                     }
+                    // One level below every part still open: the order stays largest first.
                     BoxClass::Undecided { .. } => open.push(Part {
                         outer: Some(class),
                         ..*part
@@ -210,30 +219,27 @@ impl Certified {
                     work.initial_occluded += 1;
                 }
             }
-            // Parts the budget lets the next level split.
+            let need = (hi - lo) - tolerance;
             let affordable = (self.budget.saturating_sub(used) / 4) as usize;
             let deepest = open.first().is_some_and(|p| p.level >= MAX_LEVEL);
-            if open.is_empty()
-                || hi - lo <= tolerance
-                || deepest
-                || affordable == 0
-                || !kept.is_empty()
-            {
-                open.extend(kept);
+            if open.is_empty() || need <= 0.0 || deepest || affordable == 0 {
                 return Refined { lo, hi, open, used };
             }
-            if affordable < open.len() {
-                // The last round the budget allows: the first parts are split, the others
-                // stay as they are (the bound is then wider than the tolerance).
-                kept = open.split_off(affordable);
+            // The largest parts are split, as many as should bring the bound to the
+            // tolerance (and at least one): the others wait for the next round.
+            let mut split = 0;
+            let mut expected = 0.0;
+            while split < open.len().min(affordable) && expected < need {
+                expected += open[split].area() * DECIDED_SHARE;
+                split += 1;
             }
-            asked = open.iter().flat_map(Part::quadrants).collect();
+            asked = open.drain(..split).flat_map(|p| p.quadrants()).collect();
         }
     }
 
     /// Screens the undecided parts of `r` that would get at least [`SCREEN_MIN_SEGMENTS`]
-    /// segments, where the budget of beams allows and none is at [`MAX_LEVEL`]: each quadrant of such a part whose
-    /// beam the rejection test proves free is added to `lo`; the others stay undecided, to
+    /// segments, where the budget of beams allows and none is at [`MAX_LEVEL`]: each
+    /// quadrant of such a part whose beam the rejection test proves free is added to `lo`; the others stay undecided, to
     /// be estimated from the part's segments (see the module documentation).
     fn screen(
         &self,
