@@ -53,10 +53,10 @@ const THIN_SHARE: u64 = 20;
 
 /// What the mean-value form did for the thin shadow beams of the run of queries one
 /// [`SceneOccluders`] answers (fixed places of the batch: the same whatever the threads).
-/// On `scenes/soft-shadows.toml` it decides 29 % of the pieces of the torus
-/// penumbra it is tried on, and proves the parts grazing it that the natural enclosure
-/// leaves undecided at any depth; on `scenes/thin-occluder.toml` (rods and a floor, whose
-/// natural enclosures are tight) none of 630 k tries, which doubled the pass.
+/// On `scenes/soft-shadows.toml` it decides 29 % of the pieces of the torus penumbra it
+/// is tried on, and proves the parts grazing it that the natural enclosure leaves
+/// undecided at any depth; on `scenes/thin-occluder.toml` (rods and a floor, whose natural
+/// enclosures are tight) none of 630 k tries, which doubled the pass.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct ThinForms {
     tries: u64,
