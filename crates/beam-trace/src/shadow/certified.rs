@@ -62,7 +62,7 @@ pub const ESTIMATE_SEGMENTS: u32 = 32;
 /// against splitting every undecided part of a level, every pixel still certified; the
 /// mean bound width 4,451 → 5,585 ppm); expecting a quarter saved 2 % more beams in more
 /// rounds, expecting twice as much 10 % fewer.
-const DECIDED_SHARE: f64 = 0.5;
+pub const DECIDED_SHARE: f64 = 0.5;
 
 /// An undecided part that would get at least this many of the estimate's segments has its
 /// quadrants screened by rejection beams first (each quadrant then has at least 4). On
