@@ -219,19 +219,23 @@ impl Certified {
                     work.initial_occluded += 1;
                 }
             }
+            // The largest parts are split, as many as should bring the bound to the
+            // tolerance (and at least one), none at `MAX_LEVEL`: the others wait for the
+            // next round.
             let need = (hi - lo) - tolerance;
             let affordable = (self.budget.saturating_sub(used) / 4) as usize;
-            let deepest = open.first().is_some_and(|p| p.level >= MAX_LEVEL);
-            if open.is_empty() || need <= 0.0 || deepest || affordable == 0 {
-                return Refined { lo, hi, open, used };
-            }
-            // The largest parts are split, as many as should bring the bound to the
-            // tolerance (and at least one): the others wait for the next round.
             let mut split = 0;
             let mut expected = 0.0;
-            while split < open.len().min(affordable) && expected < need {
+            while need > 0.0
+                && split < open.len().min(affordable)
+                && open[split].level < MAX_LEVEL
+                && expected < need
+            {
                 expected += open[split].area() * DECIDED_SHARE;
                 split += 1;
+            }
+            if split == 0 {
+                return Refined { lo, hi, open, used };
             }
             asked = open.drain(..split).flat_map(|p| p.quadrants()).collect();
         }

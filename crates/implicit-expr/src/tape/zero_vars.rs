@@ -22,6 +22,11 @@ impl Tape {
     /// factor is a variable or a 0 as well, which every point defines (`x · 0` is not 0
     /// where `x` is undefined). The variable slots stay as they are; this tape itself
     /// (a cheap clone) where nothing folds.
+    ///
+    /// Equal means: the same intervals, and the same forward-mode gradients with respect to
+    /// variables not in `slots` (those in `slots` must be constants of the differentiation:
+    /// `x · y` at `x = 0` folds to `x`, whose derivative in `x` is not `y`'s); a point
+    /// evaluation may give a zero of the other sign (`x · t` with `x < 0`).
     pub fn with_zero_vars(&self, slots: &[u32]) -> Tape {
         let ssa = self.ssa();
         let mut zero = vec![false; ssa.len()];
