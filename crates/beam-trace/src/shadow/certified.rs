@@ -29,9 +29,9 @@
 //! segments. A penumbra point whose light the occluder covers only partly thus spends its
 //! segments where the shadow is.
 //!
-//! Every question is a beam or a segment, asked level by level, so the method runs in
-//! batched rounds ([`super::rounds`]) on any backend: one round per level and one for the
-//! segments.
+//! Every question is a beam or a segment, asked a round of the refinement at a time, so the
+//! method runs in batched rounds ([`super::rounds`]) on any backend: one per round of the
+//! refinement, one for the screening and one for the segments.
 
 use super::hard::Visibility;
 use super::method::{BeamStart, LightVisibility, Occluders, ShadowMethod, ShadowQuery, ShadowWork};
@@ -209,7 +209,8 @@ impl Certified {
                             work.umbra_proofs += 1;
                         }
                     }
-                    // One level below every part still open: the order stays largest first.
+                    // No larger than any part still open (the parts split were the
+                    // largest): the order stays largest first.
                     BoxClass::Undecided { .. } => open.push(Part {
                         outer: Some(class),
                         ..*part
@@ -243,8 +244,9 @@ impl Certified {
 
     /// Screens the undecided parts of `r` that would get at least [`SCREEN_MIN_SEGMENTS`]
     /// segments, where the budget of beams allows and none is at [`MAX_LEVEL`]: each
-    /// quadrant of such a part whose beam the rejection test proves free is added to `lo`; the others stay undecided, to
-    /// be estimated from the part's segments (see the module documentation).
+    /// quadrant of such a part whose beam the rejection test proves free is added to `lo`;
+    /// the others stay undecided, to be estimated from the part's segments (see the module
+    /// documentation).
     fn screen(
         &self,
         occluders: &mut dyn Occluders,
