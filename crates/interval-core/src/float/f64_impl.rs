@@ -136,15 +136,23 @@ fn add_nonfinite(a: f64, b: f64, s: f64) -> (f64, f64) {
     }
 }
 
+/// Whether `a · b` is exactly 0 both ways: a zero factor and no NaN (an infinite factor
+/// too: `0 · ∞ = 0` in interval arithmetic). The fast path's callers ask it before the cold
+/// path: the gradients' derivatives of constants multiply zeros all the time.
+#[inline(always)]
+fn zero_product(a: f64, b: f64) -> bool {
+    (a == 0.0 || b == 0.0) && !a.is_nan() && !b.is_nan()
+}
+
 /// Directed bounds of `a · b` outside the fast path: NaN, zeros, infinities, overflow and
 /// products near or below the subnormal range.
 #[cold]
 fn mul_slow(a: f64, b: f64) -> (f64, f64) {
+    if zero_product(a, b) {
+        return (0.0, 0.0);
+    }
     if a.is_nan() || b.is_nan() {
         return (f64::NAN, f64::NAN);
-    }
-    if a == 0.0 || b == 0.0 {
-        return (0.0, 0.0);
     }
     let p = a * b;
     if p.is_infinite() {
@@ -426,9 +434,7 @@ impl Float for f64 {
         let (p, e) = two_prod(self, b);
         if p.abs() >= PROD_EXACT_MIN && p.abs() <= f64::MAX {
             down_by_sign(p, e)
-        } else if (self == 0.0 || b == 0.0) && !self.is_nan() && !b.is_nan() {
-            // Exact (an infinite factor too: `0 · ∞ = 0` in interval arithmetic), and
-            // frequent enough (derivatives of constants) to stay out of the cold path.
+        } else if zero_product(self, b) {
             0.0
         } else {
             mul_slow(self, b).0
@@ -446,9 +452,7 @@ impl Float for f64 {
         let (p, e) = two_prod(self, b);
         if p.abs() >= PROD_EXACT_MIN && p.abs() <= f64::MAX {
             up_by_sign(p, e)
-        } else if (self == 0.0 || b == 0.0) && !self.is_nan() && !b.is_nan() {
-            // Exact (an infinite factor too: `0 · ∞ = 0` in interval arithmetic), and
-            // frequent enough (derivatives of constants) to stay out of the cold path.
+        } else if zero_product(self, b) {
             0.0
         } else {
             mul_slow(self, b).1
