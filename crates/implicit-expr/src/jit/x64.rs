@@ -128,159 +128,158 @@ const RDI: u8 = 7;
 const RDX: u8 = 2;
 
 impl Asm {
-    fn bytes(&mut self, b: &[u8]) {
-        self.code.extend_from_slice(b);
+    /// Appends `b`; a fixed number of bytes, so that the copy is a few stores.
+    #[inline(always)]
+    fn put<const N: usize>(&mut self, b: [u8; N]) {
+        self.code.extend_from_slice(&b);
     }
 
     fn disp32(&mut self, d: i32) {
-        self.bytes(&d.to_le_bytes());
+        self.put(d.to_le_bytes());
     }
 
-    /// ModRM (and SIB, displacement) for register field `reg` and memory operand `m`;
-    /// `imm` is the number of immediate bytes that follow (for RIP-relative ends).
-    fn modrm_mem(&mut self, reg: u8, m: Mem, imm: usize) {
+    /// `head` (prefix and opcode bytes), then ModRM (and SIB, displacement) for register
+    /// field `reg` and memory operand `m`; `imm` is the immediate byte that follows, if
+    /// any (a RIP-relative displacement counts from the instruction's end). Each form is
+    /// written as one fixed run of bytes: a code is assembled from thousands of these.
+    #[inline(always)]
+    fn mem_form<const H: usize>(&mut self, head: [u8; H], reg: u8, m: Mem, imm: Option<u8>) {
         let reg = (reg & 7) << 3;
-        // `[base + disp8]` (mod 01) where the displacement fits, else `[base + disp32]`.
-        let based = |asm: &mut Self, base: u8, d: i32| {
-            let sib: &[u8] = if base == RSP { &[0x24] } else { &[] };
-            match i8::try_from(d) {
-                Ok(d8) => {
-                    asm.bytes(&[0x40 | reg | base]);
-                    asm.bytes(sib);
-                    asm.bytes(&[d8 as u8]);
-                }
-                Err(_) => {
-                    asm.bytes(&[0x80 | reg | base]);
-                    asm.bytes(sib);
-                    asm.disp32(d);
+        self.put(head);
+        // `[base + disp8]` (mod 01) where the displacement fits, else `[base + disp32]`;
+        // `rsp` as a base needs a SIB byte.
+        match m {
+            Mem::Stack(d) | Mem::Vars(d) | Mem::Out(d) => {
+                let base = match m {
+                    Mem::Stack(_) => RSP,
+                    Mem::Vars(_) => RDI,
+                    _ => RDX,
+                };
+                match (i8::try_from(d), base == RSP) {
+                    (Ok(d8), true) => self.put([0x40 | reg | base, 0x24, d8 as u8]),
+                    (Ok(d8), false) => self.put([0x40 | reg | base, d8 as u8]),
+                    (Err(_), true) => {
+                        let [a, b, c, e] = d.to_le_bytes();
+                        self.put([0x80 | reg | base, 0x24, a, b, c, e]);
+                    }
+                    (Err(_), false) => {
+                        let [a, b, c, e] = d.to_le_bytes();
+                        self.put([0x80 | reg | base, a, b, c, e]);
+                    }
                 }
             }
-        };
-        match m {
-            Mem::Stack(d) => based(self, RSP, d),
-            Mem::Vars(d) => based(self, RDI, d),
-            Mem::Out(d) => based(self, RDX, d),
             Mem::Pool(p) => {
-                self.bytes(&[reg | 0x05]);
-                let at = self.code.len();
-                self.disp32(0);
+                let at = self.code.len() + 1;
+                self.put([reg | 0x05, 0, 0, 0, 0]);
                 self.fixups.push(Fixup {
                     at,
-                    end: at + 4 + imm,
+                    end: at + 4 + usize::from(imm.is_some()),
                     pool: p,
                 });
             }
+        }
+        if let Some(i) = imm {
+            self.put([i]);
         }
     }
 
     /// `op dst, src` between registers.
     pub(super) fn rr(&mut self, op: Sse, dst: Xmm, src: Xmm) {
         let (p, o) = op.encoding();
-        self.bytes(&[p, 0x0F, o, 0xC0 | (dst.0 << 3) | src.0]);
+        self.put([p, 0x0F, o, 0xC0 | (dst.0 << 3) | src.0]);
         if let Some(i) = op.imm() {
-            self.bytes(&[i]);
+            self.put([i]);
         }
     }
 
     /// `op dst, [m]`.
     pub(super) fn rm(&mut self, op: Sse, dst: Xmm, m: Mem) {
         let (p, o) = op.encoding();
-        self.bytes(&[p, 0x0F, o]);
-        let imm = op.imm();
-        self.modrm_mem(dst.0, m, usize::from(imm.is_some()));
-        if let Some(i) = imm {
-            self.bytes(&[i]);
-        }
+        self.mem_form([p, 0x0F, o], dst.0, m, op.imm());
     }
 
     /// `movupd [m], src`.
     pub(super) fn store(&mut self, m: Mem, src: Xmm) {
-        self.bytes(&[0x66, 0x0F, 0x11]);
-        self.modrm_mem(src.0, m, 0);
+        self.mem_form([0x66, 0x0F, 0x11], src.0, m, None);
     }
 
     /// `shufpd x, x, 1`: the two lanes swapped.
     pub(super) fn swap(&mut self, x: Xmm) {
-        self.bytes(&[0x66, 0x0F, 0xC6, 0xC0 | (x.0 << 3) | x.0, 1]);
+        self.put([0x66, 0x0F, 0xC6, 0xC0 | (x.0 << 3) | x.0, 1]);
     }
 
     /// `cmppd dst, src, pred` (both lanes).
     pub(super) fn cmppd(&mut self, dst: Xmm, src: Xmm, pred: Cmp) {
-        self.bytes(&[0x66, 0x0F, 0xC2, 0xC0 | (dst.0 << 3) | src.0, pred as u8]);
+        self.put([0x66, 0x0F, 0xC2, 0xC0 | (dst.0 << 3) | src.0, pred as u8]);
     }
 
     /// `cmpsd dst, src, pred` (low lane).
     pub(super) fn cmpsd(&mut self, dst: Xmm, src: Xmm, pred: Cmp) {
-        self.bytes(&[0xF2, 0x0F, 0xC2, 0xC0 | (dst.0 << 3) | src.0, pred as u8]);
+        self.put([0xF2, 0x0F, 0xC2, 0xC0 | (dst.0 << 3) | src.0, pred as u8]);
     }
 
     /// `movmskpd eax, x`.
     pub(super) fn movmskpd_eax(&mut self, x: Xmm) {
-        self.bytes(&[0x66, 0x0F, 0x50, 0xC0 | x.0]);
+        self.put([0x66, 0x0F, 0x50, 0xC0 | x.0]);
     }
 
     /// `movmskpd ecx, x`.
     pub(super) fn movmskpd_ecx(&mut self, x: Xmm) {
-        self.bytes(&[0x66, 0x0F, 0x50, 0xC8 | x.0]);
+        self.put([0x66, 0x0F, 0x50, 0xC8 | x.0]);
     }
 
     /// `movzx eax, byte [rcx + rax + disp]`: a byte of the table `rcx` points at.
     pub(super) fn load_table_byte(&mut self, disp: i8) {
-        self.bytes(&[0x0F, 0xB6, 0x44, 0x01, disp as u8]);
+        self.put([0x0F, 0xB6, 0x44, 0x01, disp as u8]);
     }
 
     /// `mov byte [rsi + disp], al`: a choice byte.
     pub(super) fn store_choice(&mut self, disp: i32) {
-        self.bytes(&[0x88, 0x86]);
+        self.put([0x88, 0x86]);
         self.disp32(disp);
     }
 
     /// `lea rcx, [rip + …]`: `rcx` at pool byte `pool`.
     pub(super) fn lea_rcx_pool(&mut self, pool: u32) {
-        self.bytes(&[0x48, 0x8D]);
-        self.modrm_mem(1, Mem::Pool(pool), 0);
+        self.mem_form([0x48, 0x8D], 1, Mem::Pool(pool), None);
     }
 
     /// `sub rsp, n`.
     pub(super) fn sub_rsp(&mut self, n: i32) {
-        self.bytes(&[0x48, 0x81, 0xEC]);
+        self.put([0x48, 0x81, 0xEC]);
         self.disp32(n);
     }
 
     /// `add rsp, n`.
     pub(super) fn add_rsp(&mut self, n: i32) {
-        self.bytes(&[0x48, 0x81, 0xC4]);
+        self.put([0x48, 0x81, 0xC4]);
         self.disp32(n);
     }
 
     /// `ldmxcsr [m]`.
     pub(super) fn ldmxcsr(&mut self, m: Mem) {
-        self.bytes(&[0x0F, 0xAE]);
-        self.modrm_mem(2, m, 0);
+        self.mem_form([0x0F, 0xAE], 2, m, None);
     }
 
     /// `stmxcsr [m]`.
     pub(super) fn stmxcsr(&mut self, m: Mem) {
-        self.bytes(&[0x0F, 0xAE]);
-        self.modrm_mem(3, m, 0);
+        self.mem_form([0x0F, 0xAE], 3, m, None);
     }
 
     /// `mov eax, [rsp + disp]`.
     pub(super) fn load_eax_stack(&mut self, disp: i32) {
-        self.bytes(&[0x8B]);
-        self.modrm_mem(0, Mem::Stack(disp), 0);
+        self.mem_form([0x8B], 0, Mem::Stack(disp), None);
     }
 
     /// `eax = (eax & 1) | ((ecx & 3) << 1)`.
     pub(super) fn merge_flags(&mut self) {
         // and eax, 1; and ecx, 3; shl ecx, 1; or eax, ecx
-        self.bytes(&[0x83, 0xE0, 0x01, 0x83, 0xE1, 0x03, 0xD1, 0xE1, 0x09, 0xC8]);
+        self.put([0x83, 0xE0, 0x01, 0x83, 0xE1, 0x03, 0xD1, 0xE1, 0x09, 0xC8]);
     }
 
     /// `call [rip + …]`: a call to the address at pool byte `pool`.
     pub(super) fn call_pool(&mut self, pool: u32) {
-        self.bytes(&[0xFF]);
-        self.modrm_mem(2, Mem::Pool(pool), 0);
+        self.mem_form([0xFF], 2, Mem::Pool(pool), None);
     }
 
     /// Makes room for `n` more bytes of code.
@@ -295,7 +294,7 @@ impl Asm {
 
     /// `ret`.
     pub(super) fn ret(&mut self) {
-        self.bytes(&[0xC3]);
+        self.put([0xC3]);
     }
 
     /// Empties the buffers (keeping their memory) for the next code.
