@@ -267,3 +267,72 @@ fn octree_images_are_the_screen_boxes_images() {
         }
     }
 }
+
+/// [`check_first_cells`] on a cluster of balls joined by `min` (a molecule of the CSG
+/// benchmarks, small): the cells prune the formula to the balls near them, and the leaves
+/// on the balls' flanks probe, and the silhouettes' rays are traced, past the ranges of
+/// their cells with the look-behinds of the cells 16 pixels wide (`frustum`'s
+/// `BEHIND_SIDE`), which must hold wherever they are used.
+#[test]
+fn first_cells_hold_in_a_cluster_of_balls() {
+    let view = Ball {
+        centre: [0.0, 0.0, 0.0],
+        r: 1.0,
+        eye: [0.4, 0.7, 6.0],
+        size: 128,
+        fov: 30.0,
+    };
+    // A 4 x 3 lattice of balls of different sizes, staggered in depth.
+    let balls: Vec<Ball> = (0..12)
+        .map(|i| {
+            let (col, row) = (f64::from(i % 4), f64::from(i / 4));
+            Ball {
+                centre: [
+                    -1.05 + 0.7 * col,
+                    -0.7 + 0.7 * row,
+                    0.35 * ((i * 7 % 5) as f64 - 2.0),
+                ],
+                r: 0.22 + 0.03 * f64::from(i % 3),
+                ..view
+            }
+        })
+        .collect();
+    let formula = balls
+        .iter()
+        .map(|b| {
+            let [cx, cy, cz] = b.centre;
+            format!(
+                "sqrt((x - {cx:?})^2 + (y - {cy:?})^2 + (z - {cz:?})^2) - {:?}",
+                b.r
+            )
+        })
+        .reduce(|a, b| format!("min({a}, {b})"))
+        .expect("balls");
+    let text = format!(
+        "[camera]\neye = [0.4, 0.7, 6.0]\nlook_at = [0.0, 0.0, 0.0]\nfov = 30.0\n\
+         width = 128\nheight = 128\n\n[[surfaces]]\nformula = \"{formula}\"\n\
+         bounds = [[-2.0, -2.0, -2.0], [2.0, 2.0, 2.0]]\n\n[render]\nprimary = \"octree\"\n"
+    );
+    let scene = Scene::from_toml(&text, "cluster.toml", None).unwrap_or_else(|e| panic!("{e}"));
+    let tiles: Vec<PixelRect> = (0..4)
+        .map(|k| PixelRect {
+            x0: 64 * (k % 2),
+            y0: 64 * (k / 2),
+            x1: 64 * (k % 2) + 64,
+            y1: 64 * (k / 2) + 64,
+        })
+        .collect();
+    let exact = |o, d| {
+        balls
+            .iter()
+            .filter_map(|b| b.exact_t(o, d))
+            .min_by(f64::total_cmp)
+    };
+    let n = check_first_cells(&scene, &tiles, exact);
+    assert!(n.covered > 3000, "the balls cover much of the view: {n:?}");
+    assert!(n.hits > 2000, "most of their pixels are proven hits: {n:?}");
+    assert!(
+        n.traced_miss > 0 && n.traced_hit > 0,
+        "the silhouettes' undecided pixels trace both ways: {n:?}"
+    );
+}
