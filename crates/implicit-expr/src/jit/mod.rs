@@ -288,6 +288,14 @@ impl Slot {
     }
 }
 
+impl Slot {
+    /// Counts the tape as evaluated [`COMPILE_AFTER`] times already, so that its next
+    /// evaluation compiles it (see [`Tape::expect_reuse`](crate::Tape::expect_reuse)).
+    pub(crate) fn expect_reuse(&self) {
+        self.evals.fetch_max(COMPILE_AFTER, Ordering::Relaxed);
+    }
+}
+
 /// Choice bytes as choices, into `trace` (cleared first).
 pub(crate) fn choices_into(bytes: &[u8], trace: &mut Vec<Choice>) {
     trace.clear();

@@ -352,6 +352,40 @@ fn an_equal_tape_takes_the_shared_code_at_once() {
     );
 }
 
+/// A tape said to be reused is compiled at its first evaluation, plain and traced, with
+/// the interpreter's results and choices; one not said to be is interpreted first.
+#[test]
+fn a_tape_expected_to_be_reused_is_compiled_at_once() {
+    // Formulas of this test only, so that no other test's code is shared with them.
+    let text = "max(min(sqrt(sqr(x) + sqr(y)) - 0.625, z - 0.375), 0.125 - z) * 0.75";
+    let vars = [iv(-0.5, 0.25), iv(0.125, 0.5), iv(0.5, 0.75)];
+    // The interpreter's results: a tape of the formula evaluated twice is not compiled.
+    let interpreted = tape_of(text);
+    let mut ev = Evaluator::<Interval<f64>>::new(&interpreted);
+    let want = ev.eval(&vars).unwrap();
+    let mut want_trace = Vec::new();
+    ev.eval_traced(&vars, &mut want_trace).unwrap();
+    assert!(interpreted.code(false).is_none() && interpreted.code(true).is_none());
+    assert!(want_trace.contains(&Choice::Left) || want_trace.contains(&Choice::Right));
+
+    let hot = tape_of(text);
+    hot.expect_reuse();
+    let mut ev = Evaluator::<Interval<f64>>::new(&hot);
+    assert_eq!(ev.eval(&vars).unwrap(), want);
+    assert!(
+        hot.code(false).is_some(),
+        "compiled at the first evaluation"
+    );
+    let mut trace = Vec::new();
+    assert_eq!(ev.eval_traced(&vars, &mut trace).unwrap(), want);
+    assert!(hot.code(true).is_some(), "the traced code too");
+    assert_eq!(trace, want_trace);
+
+    let cold = tape_of("max(min(sqrt(sqr(x) + sqr(y)) - 0.625, z - 0.375), 0.125 - z) * 0.25");
+    Evaluator::<Interval<f64>>::new(&cold).eval(&vars).unwrap();
+    assert!(cold.code(false).is_none(), "interpreted first");
+}
+
 /// A tape of several outputs (a formula and its gradient): every output compiled, each
 /// the interpreter's, through `eval_outputs` once the tape is compiled.
 #[test]

@@ -318,6 +318,16 @@ impl Tape {
         self.0.jit.code(self, traced)
     }
 
+    /// Says that this tape will be evaluated many more times: its machine code (where the
+    /// platform has a code generator, [`crate::jit`]) is compiled at its next interval
+    /// evaluation instead of after [`COMPILE_AFTER`](crate::jit::COMPILE_AFTER)
+    /// interpreted ones. A caller that knows a tape will serve many evaluations (a renderer's
+    /// tape for a large region, whose cells and rays inside it evaluate it) saves the
+    /// interpretations; the results are the same either way.
+    pub fn expect_reuse(&self) {
+        self.0.jit.expect_reuse();
+    }
+
     /// The identity of the shared tape (its address): equal for handles that
     /// [`ptr_eq`](Self::ptr_eq), and not reused while a handle lives.
     pub(crate) fn id(&self) -> usize {
