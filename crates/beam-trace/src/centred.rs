@@ -19,8 +19,10 @@
 //! enclosures of `min`, `max` and `abs` hold Clarke's generalised gradient; an unbounded
 //! slope (`√` at 0) makes the form unbounded, never wrong.
 
-use implicit_expr::{Evaluator, Grad, Tape};
+use implicit_expr::tape::cache::PruneCache;
+use implicit_expr::{Choice, Evaluator, Grad, Tape};
 use interval_core::{DdInterval, Interval};
+use rustc_hash::FxHashMap;
 
 use crate::ibox::IBox;
 
@@ -54,7 +56,24 @@ pub struct Centred {
     /// ([`Tape::with_zero_vars`]): the forms evaluate that one (its first operations,
     /// `c + 0·0`, folded away).
     folded: Option<(Tape, Tape)>,
+    /// The last folded tape's gradient tape ([`Centred::gradient_tape`]), `None` where it
+    /// has operations the code generator lacks (the slopes are then the forward-mode
+    /// evaluator's, `grad`), and its evaluator.
+    gradient: Option<(Tape, Option<Tape>)>,
+    slopes: Evaluator<Interval<f64>>,
+    /// Where the folded tape has `min` or `max`: its prunings to the boxes
+    /// ([`Centred::pruned_gradient_tape`]), their gradient tapes, and the evaluator and
+    /// choices of the traced evaluations that prune.
+    prunings: PruneCache,
+    pruned_gradients: FxHashMap<Tape, Option<Tape>>,
+    traced: Evaluator<Interval<f64>>,
+    choices: Vec<Choice>,
 }
+
+/// The gradient tapes of prunings kept at most ([`Centred::pruned_gradient_tape`]) before
+/// they are forgotten: a pass meets a few (one per branch of its occluders' `min` and
+/// `max`).
+const PRUNED_GRADIENTS: usize = 64;
 
 /// A gradient enclosure of a tape's function over a box, where the function was proven
 /// continuous.
@@ -81,7 +100,67 @@ impl Centred {
             last: None,
             last_centre: None,
             folded: None,
+            gradient: None,
+            slopes: Evaluator::new(tape),
+            prunings: PruneCache::new(),
+            pruned_gradients: FxHashMap::default(),
+            traced: Evaluator::new(tape),
+            choices: Vec::new(),
         }
+    }
+
+    /// The gradient tape of the folded tape `folded` pruned to the box `b` (by the
+    /// `min`/`max` choices of an interval evaluation over it), where every `min` and `max`
+    /// is decided there and the pruned tape is a polynomial: the gradient evaluator's
+    /// `min` and `max` take the decided branch's derivative, which the pruned tape's
+    /// gradient is, so its enclosures are the forward-mode evaluator's over `b`. `self.vars`
+    /// holds `b` in its first three slots.
+    fn pruned_gradient_tape(&mut self, folded: &Tape) -> Option<Tape> {
+        if folded.choice_count() == 0 {
+            return None;
+        }
+        self.traced.set_tape(folded);
+        self.traced
+            .eval_traced(&self.vars, &mut self.choices)
+            .ok()?;
+        let pruned = self.prunings.simplify(folded, &self.choices).ok()?;
+        if pruned.choice_count() > 0 {
+            return None;
+        }
+        if let Some(g) = self.pruned_gradients.get(&pruned) {
+            return g.clone();
+        }
+        if self.pruned_gradients.len() >= PRUNED_GRADIENTS {
+            self.pruned_gradients.clear();
+        }
+        let g = pruned.gradient_tape();
+        if let Some(g) = &g {
+            g.expect_reuse();
+        }
+        self.pruned_gradients.insert(pruned, g.clone());
+        g
+    }
+
+    /// The gradient tape of the folded tape `folded` ([`Tape::gradient_tape`]: its partial
+    /// derivatives by the box's slots `cx`, `cy`, `cz` as the outputs of one tape, where it
+    /// is a polynomial), kept for the last tape given. Its interval evaluation gives the
+    /// forward-mode evaluator's enclosures, and runs as machine code where the platform has
+    /// the code generator: the certified soft shadows spent most of their time in the
+    /// forward-mode interpreter. Whether there is one depends on the tape only, so the
+    /// results are the same on every platform.
+    fn gradient_tape(&mut self, folded: &Tape) -> Option<Tape> {
+        if let Some((t, g)) = &self.gradient
+            && t.ptr_eq(folded)
+        {
+            return g.clone();
+        }
+        let g = folded.gradient_tape();
+        if let Some(g) = &g {
+            // Evaluated at every slope of a pass: compiled at once.
+            g.expect_reuse();
+        }
+        self.gradient = Some((folded.clone(), g.clone()));
+        g
     }
 
     /// `tape` with the ray's `t` and `d` fixed at 0, as the forms evaluate it (kept for the
@@ -123,16 +202,29 @@ impl Centred {
                 return None;
             }
         }
-        let slope = self.grad.eval(&self.grad_vars).ok()?;
-        if slope.d.iter().any(|d| d.is_empty()) {
+        self.vars[..3].copy_from_slice(b);
+        let gradient = match self.gradient_tape(&folded) {
+            Some(g) => Some(g),
+            None => self.pruned_gradient_tape(&folded),
+        };
+        let d = match gradient {
+            Some(g) => {
+                self.slopes.set_tape(&g);
+                let mut d = [Interval::EMPTY; 3];
+                self.slopes.eval_outputs(&self.vars, &mut d).ok()?;
+                d
+            }
+            None => self.grad.eval(&self.grad_vars).ok()?.d,
+        };
+        if d.iter().any(|d| d.is_empty()) {
             return None;
         }
         self.last = Some(Slope {
             tape: tape.clone(),
             over: *b,
-            d: slope.d,
+            d,
         });
-        Some((m, slope.d))
+        Some((m, d))
     }
 
     /// The centre of `b`, where it is finite.
@@ -247,6 +339,61 @@ mod tests {
             seed ^= seed << 17;
             (seed >> 11) as f64 / (1u64 << 53) as f64
         }
+    }
+
+    /// The slopes are the forward-mode evaluator's, bit for bit, whichever way they are
+    /// computed: a polynomial's gradient tape, the gradient tape of a formula with `min`
+    /// and `max` pruned to the box (decided there), or the evaluator itself (undecided).
+    #[test]
+    fn slopes_are_the_forward_mode_evaluators() {
+        let formulas = [
+            "(x^2 + y^2 + z^2 + 0.4275)^2 - 1.96 * (x^2 + y^2)",
+            "min(x^2 + y^2 + z^2 - 0.64, max(y + 1.25, (x - 0.5)^2 - z))",
+            "max(min(x*y - z, 0.3 - x), -(y^2) + 0.1*z)",
+            "sqrt(x^2 + y^2 + 0.5) - z",
+        ];
+        let mut next = uniform(0x5eed_0f51_09e5);
+        let (mut paths, mut checked) = ([0usize; 2], 0);
+        for f in formulas {
+            let tape = ray_tape(f);
+            let mut c = Centred::new(&tape);
+            let folded = tape.with_zero_vars(&RAY_ZERO_SLOTS);
+            let mut grad = Evaluator::<Grad<Interval<f64>>>::new(&folded);
+            for _ in 0..300 {
+                let b = random_box(&mut next);
+                let mut vars = vec![Grad::constant_value(Interval::ZERO); RAY_SLOTS];
+                for (i, &x) in b.iter().enumerate() {
+                    vars[i] = Grad::var(x, i);
+                }
+                let want = grad.eval(&vars).expect("seven slots").d;
+                let Some((_, got)) = c.slope(&tape, &b, true) else {
+                    assert!(want.iter().any(|d| d.is_empty()), "{f} over {b:?}");
+                    continue;
+                };
+                // Which way: a gradient tape of the whole formula or of its pruning.
+                c.vars[..3].copy_from_slice(&b);
+                let whole = c.gradient_tape(&folded).is_some();
+                let pruned = !whole && c.pruned_gradient_tape(&folded).is_some();
+                paths[0] += usize::from(whole || pruned);
+                paths[1] += usize::from(!whole && !pruned);
+                // Bit for bit, a zero of either sign counted as one (`x + 0` is `+0` for
+                // both zeros).
+                let bits = |x: f64| (x + 0.0).to_bits();
+                for (w, g) in want.iter().zip(&got) {
+                    assert_eq!(
+                        (bits(w.inf()), bits(w.sup())),
+                        (bits(g.inf()), bits(g.sup())),
+                        "{f} over {b:?}: {want:?} against {got:?}"
+                    );
+                }
+                checked += 1;
+            }
+        }
+        assert!(checked > 1000, "{checked} boxes");
+        assert!(
+            paths[0] > 300 && paths[1] > 10,
+            "both ways are taken: {paths:?}"
+        );
     }
 
     /// A random box in `[-1.2, 1.5]³` of side at most 0.3, mostly much less.

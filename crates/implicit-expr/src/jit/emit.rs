@@ -25,10 +25,10 @@
 use interval_core::Interval;
 
 use super::x64::{Asm, Cmp, Mem, Sse, Xmm};
-use super::{MAX_OUTPUTS, MAX_VARS};
+use super::{MAX_OUTPUTS, MAX_VARS, supported};
 use crate::number::Number;
 use crate::op::{BinaryOp, UnaryOp};
-use crate::tape::{Instr, Opcode, Tape};
+use crate::tape::{Opcode, Tape};
 
 /// Working registers a compiled tape keeps on its stack frame at most (the frame stays
 /// within a page, so no stack probe is needed).
@@ -181,22 +181,6 @@ fn pool_header(pool: &mut Vec<u8>, entries: &[u64; ROUTINES]) {
         pool.extend_from_slice(&e.to_le_bytes());
     }
     debug_assert_eq!(pool.len(), CONSTS as usize);
-}
-
-/// Whether the compiled code handles `ins`.
-fn supported(ins: &Instr) -> bool {
-    match ins.op {
-        Opcode::Var | Opcode::Const | Opcode::Copy => true,
-        Opcode::Unary(op) => matches!(
-            op,
-            UnaryOp::Neg | UnaryOp::Abs | UnaryOp::Sqr | UnaryOp::Sqrt | UnaryOp::Not
-        ),
-        Opcode::Binary(op) => matches!(
-            op,
-            BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Min | BinaryOp::Max
-        ),
-        Opcode::Pown => false,
-    }
 }
 
 /// A thread's buffers for compiling, kept from one code to the next.

@@ -38,7 +38,8 @@ use std::sync::{Arc, Mutex, OnceLock};
 use rustc_hash::FxBuildHasher;
 
 use crate::number::Choice;
-use crate::tape::Tape;
+use crate::op::{BinaryOp, UnaryOp};
+use crate::tape::{Instr, Opcode, Tape};
 
 /// Evaluations of a tape (through any evaluator, counted on the tape) after which it is
 /// compiled.
@@ -294,6 +295,30 @@ impl Slot {
     pub(crate) fn expect_reuse(&self) {
         self.evals.fetch_max(COMPILE_AFTER, Ordering::Relaxed);
     }
+}
+
+/// Whether the compiled code handles `ins`.
+pub(crate) fn supported(ins: &Instr) -> bool {
+    match ins.op {
+        Opcode::Var | Opcode::Const | Opcode::Copy => true,
+        Opcode::Unary(op) => matches!(
+            op,
+            UnaryOp::Neg | UnaryOp::Abs | UnaryOp::Sqr | UnaryOp::Sqrt | UnaryOp::Not
+        ),
+        Opcode::Binary(op) => matches!(
+            op,
+            BinaryOp::Add | BinaryOp::Sub | BinaryOp::Mul | BinaryOp::Min | BinaryOp::Max
+        ),
+        Opcode::Pown => false,
+    }
+}
+
+/// Whether the code generator handles every operation, the outputs and the variables of
+/// `tape` (see [`Tape::has_code_ops`](crate::Tape::has_code_ops)), whatever the platform.
+pub(crate) fn handles(tape: &Tape) -> bool {
+    tape.outputs().len() <= MAX_OUTPUTS
+        && tape.var_count() <= MAX_VARS
+        && tape.instrs().iter().all(supported)
 }
 
 /// Choice bytes as choices, into `trace` (cleared first).

@@ -11,6 +11,7 @@
 //! tape valid inside a region from the `min`/`max` choices of an interval evaluation there.
 
 pub mod cache;
+mod forward;
 mod graph;
 mod prune;
 mod regalloc;
@@ -326,6 +327,16 @@ impl Tape {
     /// interpretations; the results are the same either way.
     pub fn expect_reuse(&self) {
         self.0.jit.expect_reuse();
+    }
+
+    /// Whether every operation of the tape is one the code generator of [`crate::jit`]
+    /// compiles (no division, general power or elementary function), with few enough
+    /// outputs and variables: on a platform with the generator its interval evaluation
+    /// then runs as machine code once compiled. The answer is the same on every platform,
+    /// so a caller that picks between two ways to a result by it gets the same results
+    /// everywhere.
+    pub fn has_code_ops(&self) -> bool {
+        crate::jit::handles(self)
     }
 
     /// The identity of the shared tape (its address): equal for handles that
