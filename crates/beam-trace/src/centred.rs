@@ -57,8 +57,8 @@ pub struct Centred {
     /// `c + 0·0`, folded away).
     folded: Option<(Tape, Tape)>,
     /// The last folded tape's gradient tape ([`Centred::gradient_tape`]), `None` where it
-    /// has operations the code generator lacks (the slopes are then the forward-mode
-    /// evaluator's, `grad`), and its evaluator.
+    /// is not a polynomial (the slopes then come from the gradient tape of its pruning to
+    /// the box, or from the forward-mode evaluator, `grad`), and its evaluator.
     gradient: Option<(Tape, Option<Tape>)>,
     slopes: Evaluator<Interval<f64>>,
     /// Where the folded tape has `min` or `max`: its prunings to the boxes

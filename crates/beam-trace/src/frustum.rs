@@ -548,7 +548,8 @@ struct Behind {
     /// The beam the restricted cell was evaluated over (its open pixels').
     beam: Beam,
     /// The look-behind once made: `None` before; `Some(None)` where it would not be
-    /// shorter than the tapes it stands for.
+    /// shorter than the tapes it stands for, or the cell's range reaches the end of the
+    /// tile's (nothing lies behind it).
     scope: Option<Option<BeamScope>>,
 }
 
@@ -714,7 +715,7 @@ impl Search<'_> {
             // itself was not rejected.
             return Traced::Clear { until: from };
         }
-        let budget = self.counters.g_evals + TRACE_BUDGET;
+        let mut budget = self.counters.g_evals + TRACE_BUDGET;
         let (mut start, mut start_positive) = (from, from_positive);
         // Past the range of the restriction with a look-behind, the look-behind's range
         // is searched with it first.
@@ -722,7 +723,13 @@ impl Search<'_> {
         for level in (0..=self.chain.len()).rev() {
             if behind.is_some_and(|at| level <= at) {
                 behind = None;
-                if let Some(s) = self.behind_scope().filter(|s| s.t.sup() > start) {
+                // Making the look-behind (once per cell) is not this ray's search: its
+                // evaluation does not count against the ray's budget, so that no ray's
+                // answer depends on whether it came first in its cell.
+                let made = self.counters.g_evals;
+                let scope = self.behind_scope();
+                budget += self.counters.g_evals - made;
+                if let Some(s) = scope.filter(|s| s.t.sup() > start) {
                     let window = Interval::new_unchecked(start, s.t.sup());
                     let traced = (start_positive, (spread, budget, 1));
                     match self.trace_range(&beam, window, Some(&s.tape), traced) {

@@ -103,7 +103,10 @@ impl Tape {
     /// Its interval evaluation makes the operations that [`Grad`](crate::Grad)'s makes
     /// (`Evaluator<Grad<Interval<f64>>>` over the same box, the slots 0 to 2 its variables,
     /// the others constants), less those with a structural 0 or 1, which change nothing: the
-    /// same enclosures of the partial derivatives, up to the sign of a zero bound. Every
+    /// same enclosures of the partial derivatives, up to the sign of a zero bound, wherever
+    /// the values are not empty (where one is, the gradient evaluator's components that
+    /// are structurally 0 are empty, the tape's `[0, 0]`; a polynomial over a bounded box
+    /// has no empty value). Every
     /// operation of it is one the code generator has ([`Tape::has_code_ops`]), so on a
     /// platform with the generator it runs as machine code once compiled.
     pub fn gradient_tape(&self) -> Option<Tape> {
@@ -134,10 +137,11 @@ impl Tape {
                 }
                 Opcode::Unary(UnaryOp::Sqr) => {
                     let v = w.push(op.op, value[a], 0);
-                    let (da, two) = (grad[a], w.constant(2));
+                    let da = grad[a];
                     if da == [D::Zero; 3] {
                         (v, da)
                     } else {
+                        let two = w.constant(2);
                         let slope = w.push(Opcode::Binary(BinaryOp::Mul), two, value[a]);
                         (v, da.map(|d| w.scale(slope, d)))
                     }
