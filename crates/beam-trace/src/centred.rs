@@ -75,6 +75,14 @@ pub struct Centred {
 /// `max`).
 const PRUNED_GRADIENTS: usize = 64;
 
+/// `tape`'s gradient tape ([`Tape::gradient_tape`]), marked to be compiled at its first
+/// evaluation: it is evaluated at every slope of a pass.
+fn compiled_gradient(tape: &Tape) -> Option<Tape> {
+    let g = tape.gradient_tape()?;
+    g.expect_reuse();
+    Some(g)
+}
+
 /// A gradient enclosure of a tape's function over a box, where the function was proven
 /// continuous.
 #[derive(Clone, Debug)]
@@ -133,10 +141,7 @@ impl Centred {
         if self.pruned_gradients.len() >= PRUNED_GRADIENTS {
             self.pruned_gradients.clear();
         }
-        let g = pruned.gradient_tape();
-        if let Some(g) = &g {
-            g.expect_reuse();
-        }
+        let g = compiled_gradient(&pruned);
         self.pruned_gradients.insert(pruned, g.clone());
         g
     }
@@ -154,11 +159,7 @@ impl Centred {
         {
             return g.clone();
         }
-        let g = folded.gradient_tape();
-        if let Some(g) = &g {
-            // Evaluated at every slope of a pass: compiled at once.
-            g.expect_reuse();
-        }
+        let g = compiled_gradient(folded);
         self.gradient = Some((folded.clone(), g.clone()));
         g
     }
@@ -190,19 +191,14 @@ impl Centred {
         }
         let m = Self::centre(b)?;
         let folded = self.folded(tape);
-        self.grad.set_tape(&folded);
-        for (i, (v, &x)) in self.grad_vars.iter_mut().zip(b).enumerate() {
-            *v = Grad::var(x, i);
-        }
+        self.vars[..3].copy_from_slice(b);
         if !continuous {
             self.value.set_tape(tape);
-            self.vars[..3].copy_from_slice(b);
             let (_, continuous) = self.value.eval_continuous(&self.vars).ok()?;
             if !continuous {
                 return None;
             }
         }
-        self.vars[..3].copy_from_slice(b);
         let gradient = match self.gradient_tape(&folded) {
             Some(g) => Some(g),
             None => self.pruned_gradient_tape(&folded),
@@ -214,7 +210,13 @@ impl Centred {
                 self.slopes.eval_outputs(&self.vars, &mut d).ok()?;
                 d
             }
-            None => self.grad.eval(&self.grad_vars).ok()?.d,
+            None => {
+                self.grad.set_tape(&folded);
+                for (i, (v, &x)) in self.grad_vars.iter_mut().zip(b).enumerate() {
+                    *v = Grad::var(x, i);
+                }
+                self.grad.eval(&self.grad_vars).ok()?.d
+            }
         };
         if d.iter().any(|d| d.is_empty()) {
             return None;

@@ -338,7 +338,7 @@ fn pixel_index(tile: PixelRect, x: u32, y: u32) -> usize {
 fn quadtree_nodes(tile: PixelRect) -> Option<usize> {
     // Halving a side of `n` pixels (the larger half first) reaches one pixel after
     // `ceil(log2 n)` splits.
-    let side = (tile.x1 - tile.x0).max(tile.y1 - tile.y0).max(1);
+    let side = tile.side().max(1);
     let depth = side.next_power_of_two().trailing_zeros();
     (depth <= MAX_DEPTH).then(|| (4usize.pow(depth + 1) - 1) / 3)
 }
@@ -953,8 +953,7 @@ impl Search<'_> {
         let shallow = t.wid() <= self.epsilon.max(across);
         let leaf = r.is_pixel() && shallow;
         // A block: a leaf, or a cell of a few pixels as shallow, tried as one leaf.
-        let side = (r.x1 - r.x0).max(r.y1 - r.y0);
-        let block = side <= BLOCK && shallow;
+        let block = r.side() <= BLOCK && shallow;
         if gt.sup() < 0.0 || block {
             let extent = Extent {
                 beam,
@@ -1012,8 +1011,7 @@ impl Search<'_> {
             });
             return false;
         }
-        let beam = *beam;
-        self.split(column, (&beam, t), (near_positive, shallow))
+        self.split(column, (*beam, t), (near_positive, shallow))
     }
 
     /// Searches each quadrant of `column` over `ranges` in turn (consecutive, nearest
@@ -1050,30 +1048,29 @@ impl Search<'_> {
     fn split(
         &mut self,
         column: &Column,
-        (beam, t): (&Beam, Interval<f64>),
+        (beam, t): (Beam, Interval<f64>),
         (near_positive, shallow): (bool, bool),
     ) -> bool {
         // The cells inside this one search with `g` pruned to it; where pruning decides
         // nothing, the tape keeps the wider region it holds for.
         let pushed = match self.pruned_to(t) {
             Some(tape) => {
+                let side = column.r.side();
+                if side >= HOT_SIDE {
+                    tape.expect_reuse();
+                }
+                if self.behind.is_none() && side <= BEHIND_SIDE {
+                    self.behind = Some(Behind {
+                        at: self.chain.len(),
+                        beam,
+                        scope: None,
+                    });
+                }
                 self.chain.push(BeamScope {
                     tape,
                     t,
                     escalated: false,
                 });
-                let r = column.r;
-                let side = (r.x1 - r.x0).max(r.y1 - r.y0);
-                if side >= HOT_SIDE {
-                    self.chain[self.chain.len() - 1].tape.expect_reuse();
-                }
-                if self.behind.is_none() && side <= BEHIND_SIDE {
-                    self.behind = Some(Behind {
-                        at: self.chain.len() - 1,
-                        beam: *beam,
-                        scope: None,
-                    });
-                }
                 true
             }
             None => false,

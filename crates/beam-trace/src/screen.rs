@@ -33,6 +33,11 @@ impl PixelRect {
         u64::from(self.x1 - self.x0) * u64::from(self.y1 - self.y0)
     }
 
+    /// The longer of its width and height, in pixels.
+    pub fn side(&self) -> u32 {
+        (self.x1 - self.x0).max(self.y1 - self.y0)
+    }
+
     /// Whether the rectangle is one pixel.
     pub fn is_pixel(&self) -> bool {
         self.x1 - self.x0 == 1 && self.y1 - self.y0 == 1

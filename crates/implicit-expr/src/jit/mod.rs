@@ -287,9 +287,7 @@ impl Slot {
         }
         cell.get_or_init(|| shared_code(tape, traced)).as_deref()
     }
-}
 
-impl Slot {
     /// Counts the tape as evaluated [`COMPILE_AFTER`] times already, so that its next
     /// evaluation compiles it (see [`Tape::expect_reuse`](crate::Tape::expect_reuse)).
     pub(crate) fn expect_reuse(&self) {
