@@ -29,7 +29,7 @@ pub struct Evaluator<N> {
 fn compiled<N: Number>(
     tape: &Tape,
     vars: &[N],
-    trace: Option<(&mut Vec<u8>, &mut Vec<Choice>)>,
+    (bytes, trace): (&mut Vec<u8>, Option<&mut Vec<Choice>>),
     out: &mut [[f64; 2]; MAX_OUTPUTS],
 ) -> Option<Flags> {
     if std::any::TypeId::of::<N>() != std::any::TypeId::of::<Interval<f64>>()
@@ -43,21 +43,20 @@ fn compiled<N: Number>(
         let (lo, hi) = (v as &dyn Any).downcast_ref::<Interval<f64>>()?.bounds()?;
         *x = [lo, hi];
     }
-    match trace {
-        Some((bytes, trace)) => {
-            bytes.resize(tape.choice_count(), 2);
-            let flags = code.run(&xs, bytes, out)?;
-            if !flags.defined() {
-                // As the interpreter: nothing may be pruned where the formula is undefined.
-                trace.clear();
-                trace.resize(tape.choice_count(), Choice::Both);
-            } else {
-                jit::choices_into(bytes, trace);
-            }
-            Some(flags)
+    // Traced code (also what serves a plain evaluation where the tape has it) writes a
+    // byte per choice.
+    bytes.resize(code.choices(), 2);
+    let flags = code.run(&xs, bytes, out)?;
+    if let Some(trace) = trace {
+        if !flags.defined() {
+            // As the interpreter: nothing may be pruned where the formula is undefined.
+            trace.clear();
+            trace.resize(tape.choice_count(), Choice::Both);
+        } else {
+            jit::choices_into(bytes, trace);
         }
-        None => code.run(&xs, &mut [], out),
     }
+    Some(flags)
 }
 
 /// `[lo, hi]` as `N`, where `N` is `Interval<f64>` (as in [`compiled`]).
@@ -72,7 +71,7 @@ fn number<N: Number>(b: [f64; 2]) -> Option<N> {
 fn compiled_first<N: Number>(
     tape: &Tape,
     vars: &[N],
-    trace: Option<(&mut Vec<u8>, &mut Vec<Choice>)>,
+    trace: (&mut Vec<u8>, Option<&mut Vec<Choice>>),
 ) -> Option<(N, Flags)> {
     let mut out = [[0.0f64; 2]; MAX_OUTPUTS];
     let flags = compiled(tape, vars, trace, &mut out)?;
@@ -143,7 +142,7 @@ impl<N: Number> Evaluator<N> {
     /// Returns an error when fewer values than the tape's variable slots are given.
     pub fn eval(&mut self, vars: &[N]) -> Result<N, Error> {
         self.check(vars)?;
-        if let Some((v, _)) = compiled_first(&self.tape, vars, None) {
+        if let Some((v, _)) = compiled_first(&self.tape, vars, (&mut self.choice_bytes, None)) {
             return Ok(v);
         }
         run::<N, false, NO_CHECK, NO_SIDE>(
@@ -197,7 +196,7 @@ impl<N: Number> Evaluator<N> {
     /// Returns an error when fewer values than the tape's variable slots are given.
     pub fn eval_continuous(&mut self, vars: &[N]) -> Result<(N, bool), Error> {
         self.check(vars)?;
-        if let Some((v, flags)) = compiled_first(&self.tape, vars, None) {
+        if let Some((v, flags)) = compiled_first(&self.tape, vars, (&mut self.choice_bytes, None)) {
             return Ok((
                 v,
                 flags.continuous() && v.value_decoration() >= Decoration::Dac,
@@ -257,7 +256,7 @@ impl<N: Number> Evaluator<N> {
         let mut buf = [[0.0f64; 2]; MAX_OUTPUTS];
         // `N` is `Interval<f64>` where the code ran, so every output converts.
         let n = self.tape.outputs().len();
-        if compiled(&self.tape, vars, None, &mut buf).is_some()
+        if compiled(&self.tape, vars, (&mut self.choice_bytes, None), &mut buf).is_some()
             && out
                 .iter_mut()
                 .zip(&buf[..n])
@@ -291,7 +290,7 @@ impl<N: Number> Evaluator<N> {
     pub fn eval_traced(&mut self, vars: &[N], trace: &mut Vec<Choice>) -> Result<N, Error> {
         self.check(vars)?;
         if let Some((v, _)) =
-            compiled_first(&self.tape, vars, Some((&mut self.choice_bytes, trace)))
+            compiled_first(&self.tape, vars, (&mut self.choice_bytes, Some(trace)))
         {
             return Ok(v);
         }
@@ -315,7 +314,7 @@ impl<N: Number> Evaluator<N> {
     ) -> Result<(N, bool), Error> {
         self.check(vars)?;
         if let Some((v, flags)) =
-            compiled_first(&self.tape, vars, Some((&mut self.choice_bytes, trace)))
+            compiled_first(&self.tape, vars, (&mut self.choice_bytes, Some(trace)))
         {
             // An empty result would have sent it to the interpreter.
             return Ok((v, flags.defined()));

@@ -131,6 +131,11 @@ impl Code {
         }
     }
 
+    /// The bytes of choices the code writes (none for untraced code).
+    pub(crate) fn choices(&self) -> usize {
+        self.choices
+    }
+
     /// The outputs at `vars` (`[lo, hi]` of each slot, the unused ones anything: the
     /// variables must be nonempty, the caller checks) into `out` (`[lo, hi]` of each output,
     /// in order), with the choices of every `min`/`max` in `trace` for traced code (which
@@ -254,6 +259,10 @@ fn shared_code(tape: &Tape, traced: bool) -> Option<Arc<Code>> {
 /// A tape's compiled code, made on demand: an equal tape's code where [`SHARED`] holds
 /// one at the first evaluation, else the evaluations counted until [`COMPILE_AFTER`], then
 /// the code of each kind compiled once (or found compiled for an equal tape meanwhile).
+/// A plain evaluation of a tape that has traced code runs that code (the same values and
+/// flags, with choice bytes the caller ignores): a renderer evaluates its pruned tapes
+/// traced where it may prune again and plain for its probes, and on `csg3d-2k` a quarter
+/// of the instructions compiled were second, plain codes of tapes compiled traced.
 #[derive(Debug, Default)]
 pub(crate) struct Slot {
     evals: AtomicU32,
@@ -273,6 +282,10 @@ impl Slot {
         if let Some(c) = cell.get() {
             return c.as_deref();
         }
+        if !traced && let Some(Some(c)) = self.traced.get() {
+            // The traced code computes the same values: no second code for the tape.
+            return Some(c);
+        }
         let evals = self.evals.load(Ordering::Relaxed);
         if evals < COMPILE_AFTER {
             self.evals.fetch_add(1, Ordering::Relaxed);
@@ -286,6 +299,13 @@ impl Slot {
             return None;
         }
         cell.get_or_init(|| shared_code(tape, traced)).as_deref()
+    }
+
+    /// Whether the tape has plain code, and traced code, of its own.
+    #[cfg(test)]
+    pub(crate) fn kinds(&self) -> (bool, bool) {
+        let made = |c: &OnceLock<Option<Arc<Code>>>| c.get().is_some_and(Option::is_some);
+        (made(&self.plain), made(&self.traced))
     }
 
     /// Counts the tape as evaluated [`COMPILE_AFTER`] times already, so that its next

@@ -386,6 +386,44 @@ fn a_tape_expected_to_be_reused_is_compiled_at_once() {
     assert!(cold.code(false).is_none(), "interpreted first");
 }
 
+/// Once a tape has traced code, its plain evaluations run that code (no second code is
+/// compiled for the tape), with the interpreter's values and flags: plain, continuity-
+/// checked and all-outputs evaluations, over boxes where the formula is defined and
+/// where a square root's argument reaches below 0.
+#[test]
+fn traced_code_serves_plain_evaluations() {
+    // Formulas of this test only, so that no other test's code is shared with them.
+    let text = "min(sqrt(x * y + 0.375) - 0.625, max(z - 0.875, sqr(x) - 0.25))";
+    let boxes = [
+        [iv(0.25, 0.5), iv(0.5, 1.0), iv(-0.5, 0.25)],
+        [iv(-1.0, 0.5), iv(0.5, 1.5), iv(0.0, 1.0)],
+        [iv(-2.0, -1.5), iv(1.0, 2.0), iv(-1.0, 1.0)],
+    ];
+    let hot = tape_of(text);
+    hot.expect_reuse();
+    let mut ev = Evaluator::<Interval<f64>>::new(&hot);
+    let mut trace = Vec::new();
+    ev.eval_traced(&boxes[0], &mut trace).unwrap();
+    assert_eq!(hot.code_kinds(), (false, true), "traced code first");
+    for vars in &boxes {
+        // The interpreter's: a tape of its own per box, evaluated fewer times than
+        // compiling takes.
+        let interpreted = tape_of(text);
+        let mut want = Evaluator::<Interval<f64>>::new(&interpreted);
+        assert_eq!(ev.eval(vars).unwrap(), want.eval(vars).unwrap());
+        assert_eq!(
+            ev.eval_continuous(vars).unwrap(),
+            want.eval_continuous(vars).unwrap()
+        );
+        let (mut got, mut expected) = ([Interval::EMPTY; 1], [Interval::EMPTY; 1]);
+        ev.eval_outputs(vars, &mut got).unwrap();
+        want.eval_outputs(vars, &mut expected).unwrap();
+        assert_eq!(got, expected);
+        assert_eq!(interpreted.code_kinds(), (false, false), "interpreted");
+    }
+    assert_eq!(hot.code_kinds(), (false, true), "no plain code compiled");
+}
+
 /// A tape of several outputs (a formula and its gradient): every output compiled, each
 /// the interpreter's, through `eval_outputs` once the tape is compiled.
 #[test]

@@ -319,6 +319,12 @@ impl Tape {
         self.0.jit.code(self, traced)
     }
 
+    /// Whether the tape has plain code, and traced code, of its own ([`crate::jit`]).
+    #[cfg(test)]
+    pub(crate) fn code_kinds(&self) -> (bool, bool) {
+        self.0.jit.kinds()
+    }
+
     /// Says that this tape will be evaluated many more times: its machine code (where the
     /// platform has a code generator, [`crate::jit`]) is compiled at its next interval
     /// evaluation instead of after [`COMPILE_AFTER`](crate::jit::COMPILE_AFTER)
