@@ -11,6 +11,9 @@ use beam_trace::screen::{PixelRect, stratified_offsets};
 use beam_trace::{Cpu, NoProgress, Plan, Scene, render};
 use glam::DVec3;
 
+/// The render table of the scenes of these tests: the frustum octree.
+const OCTREE: &str = "[render]\nprimary = \"octree\"";
+
 /// What [`check_first_cells`] counted: pixels with a first cell, traced rays that missed,
 /// that found their first root, that were left to the root finder, and proven hits.
 #[derive(Debug, Default)]
@@ -137,7 +140,7 @@ fn no_ray_meets_the_surface_before_its_first_cell() {
         size: 48,
         fov: 35.0,
     };
-    let scene = ball.scene("[render]\nprimary = \"octree\"");
+    let scene = ball.scene(OCTREE);
     let tiles = [
         PixelRect {
             x0: 0,
@@ -194,14 +197,16 @@ fn first_cells_hold_behind_a_step_in_depth() {
             b.r * b.r
         )
     };
-    let text = format!(
-        "[camera]\neye = [0.0, 0.0, 6.0]\nlook_at = [0.0, 0.0, 0.0]\nfov = 40.0\n\
-         width = 64\nheight = 64\n\n[[surfaces]]\nformula = \"min({}, {})\"\n\
-         bounds = [[-2.5, -2.5, -2.5], [2.5, 2.5, 2.5]]\n\n[render]\nprimary = \"octree\"\n",
-        ball(&near),
-        ball(&far)
+    // Seen from the eye looking at the origin.
+    let view = Ball {
+        centre: [0.0; 3],
+        ..near
+    };
+    let scene = view.view(
+        &format!("min({}, {})", ball(&near), ball(&far)),
+        ([-2.5; 3], [2.5; 3]),
+        OCTREE,
     );
-    let scene = Scene::from_toml(&text, "step.toml", None).unwrap_or_else(|e| panic!("{e}"));
     let tiles = [PixelRect {
         x0: 0,
         y0: 0,
@@ -308,12 +313,7 @@ fn first_cells_hold_in_a_cluster_of_balls() {
         })
         .reduce(|a, b| format!("min({a}, {b})"))
         .expect("balls");
-    let text = format!(
-        "[camera]\neye = [0.4, 0.7, 6.0]\nlook_at = [0.0, 0.0, 0.0]\nfov = 30.0\n\
-         width = 128\nheight = 128\n\n[[surfaces]]\nformula = \"{formula}\"\n\
-         bounds = [[-2.0, -2.0, -2.0], [2.0, 2.0, 2.0]]\n\n[render]\nprimary = \"octree\"\n"
-    );
-    let scene = Scene::from_toml(&text, "cluster.toml", None).unwrap_or_else(|e| panic!("{e}"));
+    let scene = view.view(&formula, ([-2.0; 3], [2.0; 3]), OCTREE);
     let tiles: Vec<PixelRect> = (0..4)
         .map(|k| PixelRect {
             x0: 64 * (k % 2),

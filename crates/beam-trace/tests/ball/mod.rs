@@ -20,20 +20,28 @@ impl Ball {
     /// twice its radius around it, and `tail` (tables such as `[render]` or `[[lights]]`)
     /// after it.
     pub fn scene(&self, tail: &str) -> Scene {
-        let ([cx, cy, cz], r, [ex, ey, ez]) = (self.centre, self.r, self.eye);
-        let (lo, hi) = (
+        let ([cx, cy, cz], r) = (self.centre, self.r);
+        let bounds = (
             [cx - 2.0 * r, cy - 2.0 * r, cz - 2.0 * r],
             [cx + 2.0 * r, cy + 2.0 * r, cz + 2.0 * r],
         );
+        let formula = format!(
+            "(x - {cx:?})^2 + (y - {cy:?})^2 + (z - {cz:?})^2 - {:?}",
+            r * r
+        );
+        self.view(&formula, bounds, tail)
+    }
+
+    /// A scene seen as this ball is (the camera at the eye looking at the centre, with the
+    /// field of view and image side), of the surface `formula` within `bounds` (lower and
+    /// upper corners), and `tail` after it.
+    pub fn view(&self, formula: &str, (lo, hi): ([f64; 3], [f64; 3]), tail: &str) -> Scene {
+        let ([cx, cy, cz], [ex, ey, ez]) = (self.centre, self.eye);
         let text = format!(
             "[camera]\neye = [{ex:?}, {ey:?}, {ez:?}]\nlook_at = [{cx:?}, {cy:?}, {cz:?}]\n\
              fov = {:?}\nwidth = {}\nheight = {}\n\n[[surfaces]]\n\
-             formula = \"(x - {cx:?})^2 + (y - {cy:?})^2 + (z - {cz:?})^2 - {:?}\"\n\
-             bounds = [{lo:?}, {hi:?}]\n\n{tail}\n",
-            self.fov,
-            self.size,
-            self.size,
-            r * r,
+             formula = \"{formula}\"\nbounds = [{lo:?}, {hi:?}]\n\n{tail}\n",
+            self.fov, self.size, self.size,
         );
         Scene::from_toml(&text, "ball.toml", None).unwrap_or_else(|e| panic!("{e}"))
     }
