@@ -18,7 +18,6 @@
 //! A tape with any other operation (`min`, `max`, `abs`, roots, quotients, powers, the
 //! elementary functions, whose derivatives select a branch or divide) has no such tape.
 
-use super::regalloc::compile;
 use super::{Opcode, SsaOp, Tape};
 use crate::constant::Constant;
 use crate::number::Choice;
@@ -168,11 +167,12 @@ impl Tape {
         }
         let out = grad[*self.ssa_outputs().first()? as usize];
         let outputs: Vec<u32> = out.iter().map(|&d| w.at(d)).collect();
-        let var_count = self.var_count() as u32;
-        Some(compile(
-            (&w.ssa, &w.consts, &outputs, var_count),
+        Some(Tape::compiled(
+            &w.ssa,
+            &w.consts,
+            &outputs,
+            self.var_count() as u32,
             |_| Choice::Both,
-            |c| Tape::of_parts(&c, var_count),
         ))
     }
 }
