@@ -39,25 +39,30 @@
 //! probes). A pixel without a first cell is a
 //! [`BoxClass::Miss`].
 //! Each cell that is split prunes `g` to the beam it was evaluated over (its open pixels')
-//! and `T` ([`RayFn::restrict`]) for the cells inside it (whose open pixels are among its
-//! own: pixels are only ever filled), so the deep cells evaluate a few instructions of a
-//! long formula; the restrictions of the cells holding a leaf are kept, and a probe past
-//! the region of the leaf's own is evaluated with the next one out, or first with the
-//! look-behind of the outermost cell at most 16 pixels wide holding the leaf (`g` pruned
-//! for that cell's beam over its range and as much again behind it, made when a probe or
-//! a traced ray first passes its range).
+//! and `T` ([`RayFn::restrict`]) for the cells inside it (whose open pixels and pending
+//! rays, below, are among its own: a pixel only ever goes from open to pending to done), so
+//! the deep cells evaluate a few instructions of a long formula; the restrictions of the
+//! cells holding a leaf are kept, and a probe past the region of the leaf's own is
+//! evaluated with the next one out, or first with the look-behind of the outermost cell at
+//! most 16 pixels wide holding the leaf (`g` pruned for that cell's beam over its range and
+//! as much again behind it, made when a probe first passes its range).
 //!
-//! A pixel whose first cell is undecided (its beam straddles the silhouette, or the
-//! inclusion test cannot place every ray's root) may have its rays traced on the spot
-//! ([`FirstCell::traced`]): each ray is searched from the cell on with the
-//! restrictions the search holds for the cells around it, innermost first, then with the
-//! whole `g` to the end of the tile's range, each range halved nearer half first and
-//! pruned for its halves. It ends rejected everywhere ([`Traced::NoRoot`]), or at a range
-//! no longer than the pixel's cross-section where the inclusion test places the ray's first
-//! root ([`Traced::First`]), or stuck (a graze, a jump, or a budget of evaluations spent:
-//! the renderer's root finder takes the ray over from where it is proven clear,
-//! [`Traced::Clear`]). A leaf right behind cells rejected as positive knows the sign at its near
-//! face and spends no evaluation on it.
+//! A pixel whose first cell is an undecided leaf (its beam straddles the silhouette, or the
+//! inclusion test cannot place every ray's root) may have its rays traced
+//! ([`FirstCell::traced`]): its rays at the stratified positions asked for are *pending*.
+//! Each is searched over the leaf's range by itself, the range halved nearer half first
+//! (pruned for its halves every third halving); one rejected there goes on with the octree:
+//! the cells after the leaf that hold its pixel are evaluated over the beam of their open
+//! pixels and their pending rays, so that a ray past a silhouette is searched in the cells,
+//! with the restrictions, of the neighbouring pixels whose columns go on behind it (rather
+//! than with the long restrictions of the wide cells around the leaf), and a cell one pixel
+//! wide and as shallow as a leaf searches each pending ray of its pixel by itself. A ray
+//! ends rejected everywhere to the end of the tile's range ([`Traced::NoRoot`]), or at a
+//! range where the inclusion test places its first root ([`Traced::First`]), or stuck (a
+//! graze, a jump, or a budget of evaluations spent in one cell: the renderer's root finder
+//! takes the ray over from where it is proven clear, [`Traced::Clear`]). A leaf right
+//! behind cells rejected as positive knows the sign at its near face and spends no
+//! evaluation on it.
 //!
 //! Against the screen box structure ([`crate::beam::evaluate_box_within`]), a cell costs one
 //! evaluation (a leaf that may hold the surface a few more for its inclusion test; no
@@ -69,7 +74,7 @@ use interval_core::Interval;
 
 use crate::beam::{BeamScope, BoxClass, Extent, inclusion_test};
 use crate::camera::{Camera, EdgeBeams};
-use crate::ibox::IBox;
+use crate::ibox::{IBox, hull};
 use crate::ray::{Beam, BeamEval, RayFn};
 use crate::root::RootCounters;
 use crate::root::search::{Eval, sign, sign_change};
@@ -128,11 +133,11 @@ const TRACE_DEPTH: i32 = 10;
 /// fourth).
 const TRACE_PRUNE_EVERY: u32 = 3;
 
-/// The evaluations a traced ray may spend before it is left to the root finder. Bisection
-/// finds a ray's first root or its absence in a few dozen evaluations where the pruned
-/// formulas are tight (the CSG models: 90 % of the rays in fewer than 16); where a ray runs
-/// long beside a surface it can take hundreds (the default scene: half of them more than
-/// 64), and the root finder's Newton steps are cheaper there.
+/// The evaluations a traced ray may spend in the range of one cell before it is left to the
+/// root finder. Bisection finds a ray's first root or its absence in a few dozen
+/// evaluations where the pruned formulas are tight (the CSG models: 90 % of the rays in
+/// fewer than 16); where a ray runs long beside a surface it can take hundreds (the default
+/// scene: half of them more than 64), and the root finder's Newton steps are cheaper there.
 const TRACE_BUDGET: u64 = 32;
 
 /// Where a pixel's surface may begin: the range `t` of its first cell (no ray of the pixel
@@ -155,8 +160,8 @@ pub struct FirstCell {
 }
 
 /// What the search of one of an undecided pixel's rays (through a position of the pixel,
-/// as [`Camera::ray`] makes it) proved from its first cell on, with the restrictions of the
-/// cells holding the pixel and the whole function past them.
+/// as [`Camera::ray`] makes it) proved from its first cell on, in the cells after it that
+/// hold the pixel, with their restrictions.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Traced {
     /// No root: the ray meets no surface (every range of it was rejected up to the end of
@@ -165,13 +170,15 @@ pub enum Traced {
     /// The ray's first root lies in `t`: every earlier range was rejected, `g` is
     /// continuous over `t` with opposite signs at its ends, both inside the scene bounds.
     First {
-        /// The range, no longer than the pixel's cross-section there (or `epsilon`).
+        /// The range: no longer than the pixel's cross-section there (or `epsilon`), or
+        /// where the inclusion test of a block of pixels placed every ray of the block's
+        /// open pixels and pending rays, that block's range.
         t: Interval<f64>,
         /// `g` pruned for the ray over a range holding `t`, its parameters `t`.
         scope: Option<BeamScope>,
     },
     /// No root before `until`; past it the search got stuck (a graze, a jump) or ran out of
-    /// its budget of evaluations (32) and the root finder takes the ray over.
+    /// its budget of evaluations in a cell (32) and the root finder takes the ray over.
     Clear {
         /// Where the part of the ray proven root-free ends.
         until: f64,
@@ -242,13 +249,14 @@ impl TileCells {
 pub struct Scratch {
     columns: Columns,
     filled: Filled,
+    pending: Pending,
 }
 
 /// The first cell of each pixel of `tile` that has one ([`TileCells`]), searched in the
 /// parameter range `range` (where the tile's beam lies in the scene bounds `bounds`), with `g` the scene
 /// function of the camera's beams; leaves are no longer than `epsilon` or the pixel's
 /// cross-section. With `traced_rays` more than 0, the rays of each pixel whose first cell
-/// is undecided, at the stratified positions of that many, are searched on from there
+/// is an undecided leaf, at the stratified positions of that many, are searched on from there
 /// ([`FirstCell::traced`]). Counts each cell's
 /// evaluation (and the inclusion tests', and the traced rays') in `counters.g_evals`.
 /// `scratch` is working memory (what it held before does not matter).
@@ -262,14 +270,16 @@ pub fn first_cells(
     let nodes = quadtree_nodes(tile).unwrap_or(0);
     scratch.columns.reset(nodes);
     scratch.filled.reset(tile, nodes);
+    let traced = if traced_rays == 0 {
+        Vec::new()
+    } else {
+        stratified_offsets(traced_rays)
+    };
+    scratch.pending.reset(tile.area() as usize, traced.len());
     let mut search = Search {
         g,
         cam,
-        traced: if traced_rays == 0 {
-            Vec::new()
-        } else {
-            stratified_offsets(traced_rays)
-        },
+        traced,
         beams: cam.edge_beams(tile),
         bounds,
         range,
@@ -278,6 +288,7 @@ pub fn first_cells(
         first: TileCells::default(),
         look_from: 0,
         filled: &mut scratch.filled,
+        pending: &mut scratch.pending,
         counters,
         chain: Vec::new(),
         columns: &mut scratch.columns,
@@ -362,48 +373,46 @@ impl Columns {
     }
 }
 
-/// Which pixels of a tile have their first cell: a bit per pixel, rows of 64-bit words,
-/// and per node of the tile's quadtree the number of its pixels marked through it or a
-/// node inside it.
+/// Which pixels of a tile have their first cell and which of those still have rays
+/// searched by the octree ([`Pending`]): two bits per pixel (rows of 64-bit words), and
+/// per node of the tile's quadtree the number of its pixels *done* (a first cell, no ray
+/// of theirs searched on) and *touched* (a first cell, rays searched on or not) through it
+/// or a node inside it. A pixel that is neither is *open*.
 #[derive(Default)]
 struct Filled {
     tile: PixelRect,
     words: usize,
-    bits: Vec<u64>,
-    counts: Vec<u32>,
+    done: Vec<u64>,
+    pending: Vec<u64>,
+    done_counts: Vec<u32>,
+    touched_counts: Vec<u32>,
 }
 
 impl Filled {
-    /// No pixel of `tile` filled, with counts for `nodes` nodes of its quadtree (0: none
+    /// Every pixel of `tile` open, with counts for `nodes` nodes of its quadtree (0: none
     /// kept, see [`MAX_DEPTH`]).
     fn reset(&mut self, tile: PixelRect, nodes: usize) {
         self.tile = tile;
         self.words = ((tile.x1 - tile.x0) as usize).div_ceil(64);
-        self.bits.clear();
-        self.bits
-            .resize(self.words * (tile.y1 - tile.y0) as usize, 0);
-        self.counts.clear();
-        self.counts.resize(nodes, 0);
+        let len = self.words * (tile.y1 - tile.y0) as usize;
+        for bits in [&mut self.done, &mut self.pending] {
+            bits.clear();
+            bits.resize(len, 0);
+        }
+        for counts in [&mut self.done_counts, &mut self.touched_counts] {
+            counts.clear();
+            counts.resize(nodes, 0);
+        }
     }
 
-    /// Marks the pixels of `r`, node `node` of the quadtree, that are not marked yet,
-    /// calling `each` with every one.
-    fn fill(&mut self, r: PixelRect, node: usize, mut each: impl FnMut(u32, u32)) {
-        let mut n = 0;
-        for (x, y) in r.pixels() {
-            if !self.get(x, y) {
-                self.set(x, y);
-                each(x, y);
-                n += 1;
-            }
-        }
-        if self.counts.is_empty() {
+    /// Adds `n` to the counts `counts` of node `node` and of every node holding it.
+    fn count(counts: &mut [u32], node: usize, n: u32) {
+        if counts.is_empty() || n == 0 {
             return;
         }
-        // The node and every node holding it.
         let mut k = node;
         loop {
-            self.counts[k] += n;
+            counts[k] += n;
             if k == 0 {
                 break;
             }
@@ -411,37 +420,77 @@ impl Filled {
         }
     }
 
-    /// Whether every pixel of `r`, node `node` of the quadtree, is marked: by the node's
+    /// Marks every pixel of `r`, node `node` of the quadtree, that is not done yet as done,
+    /// calling `each` with it and whether it had rays pending (else it was open).
+    fn fill(&mut self, r: PixelRect, node: usize, mut each: impl FnMut(u32, u32, bool)) {
+        let (mut opened, mut settled) = (0, 0);
+        for (x, y) in r.pixels() {
+            let (word, bit) = self.at(x, y);
+            if self.done[word] & bit != 0 {
+                continue;
+            }
+            let pending = self.pending[word] & bit != 0;
+            self.done[word] |= bit;
+            self.pending[word] &= !bit;
+            each(x, y, pending);
+            if pending {
+                settled += 1;
+            } else {
+                opened += 1;
+            }
+        }
+        Self::count(&mut self.done_counts, node, opened + settled);
+        Self::count(&mut self.touched_counts, node, opened);
+    }
+
+    /// Marks the open pixel `(x, y)`, node `node` of the quadtree, as having its first
+    /// cell with rays pending.
+    fn pend(&mut self, x: u32, y: u32, node: usize) {
+        let (word, bit) = self.at(x, y);
+        self.pending[word] |= bit;
+        Self::count(&mut self.touched_counts, node, 1);
+    }
+
+    /// Marks the pixel `(x, y)` with rays pending, node `node` of the quadtree, as done.
+    fn settle(&mut self, x: u32, y: u32, node: usize) {
+        let (word, bit) = self.at(x, y);
+        self.pending[word] &= !bit;
+        self.done[word] |= bit;
+        Self::count(&mut self.done_counts, node, 1);
+    }
+
+    /// Whether every pixel of `r`, node `node` of the quadtree, is done: by the node's
     /// count. A node is only asked about while no node holding it was filled whole (a
     /// filled node is not searched again, nor anything inside it), so the count of its
-    /// own fills and those inside it is all of its marked pixels.
+    /// own fills and those inside it is all of its pixels done.
     fn complete(&self, r: PixelRect, node: usize) -> bool {
-        match self.counts.get(node) {
+        match self.done_counts.get(node) {
             Some(&n) => u64::from(n) == r.area(),
             None => self.all(r),
         }
     }
 
-    /// Whether no pixel of `r`, node `node` of the quadtree, is marked: by the node's count
-    /// where it is kept (asked, as [`complete`](Self::complete), only of a node that no
-    /// node holding it was filled whole).
+    /// Whether every pixel of `r`, node `node` of the quadtree, is open: by the node's
+    /// count where it is kept (asked, as [`complete`](Self::complete), only of a node that
+    /// no node holding it was filled whole).
     fn untouched(&self, r: PixelRect, node: usize) -> bool {
-        match self.counts.get(node) {
+        match self.touched_counts.get(node) {
             Some(&n) => n == 0,
-            None => {
-                (r.y0..r.y1).all(|y| self.row_words(r, y).all(|(_, bits, mask)| bits & mask == 0))
-            }
+            None => (r.y0..r.y1).all(|y| {
+                self.row_words(r, y)
+                    .all(|(_, done, pending, mask)| (done | pending) & mask == 0)
+            }),
         }
     }
 
-    /// The smallest rectangle holding every pixel of `r` (inside the tile, not every one
-    /// marked) that is not marked: `r` itself where none is.
-    fn open(&self, r: PixelRect) -> PixelRect {
+    /// The smallest rectangle holding every open pixel of `r` (inside the tile, not every
+    /// one open); `None` where none is.
+    fn open(&self, r: PixelRect) -> Option<PixelRect> {
         let (mut lo, mut hi) = (usize::MAX, 0);
         let (mut top, mut bottom) = (u32::MAX, 0);
         for y in r.y0..r.y1 {
-            for (word, bits, mask) in self.row_words(r, y) {
-                let open = !bits & mask;
+            for (word, done, pending, mask) in self.row_words(r, y) {
+                let open = !(done | pending) & mask;
                 if open != 0 {
                     let base = word * 64;
                     lo = lo.min(base + open.trailing_zeros() as usize);
@@ -451,50 +500,75 @@ impl Filled {
                 }
             }
         }
-        if top == u32::MAX {
-            // Every pixel marked (not asked): the rectangle as it is.
-            return r;
-        }
-        PixelRect {
+        (top != u32::MAX).then(|| PixelRect {
             x0: self.tile.x0 + lo as u32,
             y0: top,
             x1: self.tile.x0 + hi as u32 + 1,
             y1: bottom + 1,
-        }
+        })
     }
 
-    /// Marks pixel `(x, y)`.
-    fn set(&mut self, x: u32, y: u32) {
-        let (row, col) = ((y - self.tile.y0) as usize, (x - self.tile.x0) as usize);
-        self.bits[row * self.words + col / 64] |= 1 << (col % 64);
+    /// The pixels of `r` with rays pending, row by row.
+    fn pending_in(&self, r: PixelRect) -> impl Iterator<Item = (u32, u32)> + '_ {
+        (r.y0..r.y1).flat_map(move |y| {
+            self.row_words(r, y)
+                .flat_map(move |(word, _, pending, mask)| {
+                    let mut bits = pending & mask;
+                    std::iter::from_fn(move || {
+                        (bits != 0).then(|| {
+                            let b = bits.trailing_zeros() as usize;
+                            bits &= bits - 1;
+                            (self.tile.x0 + (word * 64 + b) as u32, y)
+                        })
+                    })
+                })
+        })
     }
 
-    /// Whether pixel `(x, y)` is marked.
+    /// The word of pixel `(x, y)` in the bitmaps, and its bit there.
     #[inline]
-    fn get(&self, x: u32, y: u32) -> bool {
+    fn at(&self, x: u32, y: u32) -> (usize, u64) {
         let (row, col) = ((y - self.tile.y0) as usize, (x - self.tile.x0) as usize);
-        self.bits[row * self.words + col / 64] & (1 << (col % 64)) != 0
+        (row * self.words + col / 64, 1 << (col % 64))
     }
 
-    /// Whether every pixel of `r` (inside the tile) is marked.
+    /// Whether pixel `(x, y)` is done.
+    #[inline]
+    fn is_done(&self, x: u32, y: u32) -> bool {
+        let (word, bit) = self.at(x, y);
+        self.done[word] & bit != 0
+    }
+
+    /// Whether pixel `(x, y)` has rays pending.
+    #[inline]
+    fn is_pending(&self, x: u32, y: u32) -> bool {
+        let (word, bit) = self.at(x, y);
+        self.pending[word] & bit != 0
+    }
+
+    /// Whether every pixel of `r` (inside the tile) is done.
     fn all(&self, r: PixelRect) -> bool {
         if r.is_pixel() {
-            return self.get(r.x0, r.y0);
+            return self.is_done(r.x0, r.y0);
         }
         (r.y0..r.y1).all(|y| {
             self.row_words(r, y)
-                .all(|(_, bits, mask)| bits & mask == mask)
+                .all(|(_, done, _, mask)| done & mask == mask)
         })
     }
 
     /// The words of row `y` that hold `r`'s columns: each word's index in the row, its
-    /// bits, and the mask of `r`'s columns in it.
-    fn row_words(&self, r: PixelRect, y: u32) -> impl Iterator<Item = (usize, u64, u64)> + '_ {
+    /// bits done and pending, and the mask of `r`'s columns in it.
+    fn row_words(&self, r: PixelRect, y: u32) -> impl Iterator<Item = (usize, u64, u64, u64)> + '_ {
         let (c0, c1) = (
             (r.x0 - self.tile.x0) as usize,
             (r.x1 - self.tile.x0) as usize,
         );
-        let row = &self.bits[(y - self.tile.y0) as usize * self.words..][..self.words];
+        let row = (y - self.tile.y0) as usize * self.words;
+        let (done, pending) = (
+            &self.done[row..][..self.words],
+            &self.pending[row..][..self.words],
+        );
         // No word for an empty rectangle.
         let words = (c0 / 64)..c1.div_ceil(64).max(c0 / 64);
         words.map(move |word| {
@@ -506,8 +580,78 @@ impl Filled {
             } else {
                 ((1u64 << (to - from)) - 1) << from
             };
-            (word, row[word], mask)
+            (word, done[word], pending[word], mask)
         })
+    }
+}
+
+/// The rays of a tile's undecided pixels that the octree searches on past their first
+/// cells (the pixels [`Filled`] marks pending): each such pixel's node, first cell and
+/// rays, each ray's beam and whether it is still searched.
+#[derive(Default)]
+struct Pending {
+    /// Per pixel of the tile (row-major), its index in `pixels`, where it has one.
+    slot: Vec<u32>,
+    pixels: Vec<PendingPixel>,
+    /// The rays traced per pixel.
+    per: usize,
+    /// The rays of the pixels, `per` after each other; `None` once settled.
+    rays: Vec<Option<Beam>>,
+}
+
+/// A pixel of [`Pending`].
+#[derive(Copy, Clone)]
+struct PendingPixel {
+    /// Its quadtree node.
+    node: usize,
+    /// Its first cell's index in the tile's [`TileCells::cells`].
+    cell: u32,
+    /// How many of its rays are still searched.
+    left: u32,
+}
+
+impl Pending {
+    /// No pixel pending, in a tile of `area` pixels, each with `per` rays traced.
+    fn reset(&mut self, area: usize, per: usize) {
+        self.per = per;
+        self.slot.clear();
+        self.slot.resize(area, u32::MAX);
+        self.pixels.clear();
+        self.rays.clear();
+    }
+
+    /// The pending pixel of row-major index `k` in the tile, where it is one.
+    fn pixel(&self, k: usize) -> Option<&PendingPixel> {
+        self.pixels.get(*self.slot.get(k)? as usize)
+    }
+
+    /// The rays still searched of the pixel of row-major index `k`.
+    fn rays_of(&self, k: usize) -> impl Iterator<Item = &Beam> {
+        let first = self.slot.get(k).map_or(usize::MAX, |&s| s as usize);
+        self.rays
+            .get(first.saturating_mul(self.per)..)
+            .unwrap_or(&[])
+            .iter()
+            .take(self.per)
+            .flatten()
+    }
+
+    /// Settles every ray still searched of the pixel of row-major index `k` with `how`,
+    /// in its first cell among `cells`.
+    fn settle_all(&mut self, k: usize, cells: &mut [FirstCell], how: &Traced) {
+        let Some(&s) = self.slot.get(k) else {
+            return;
+        };
+        let Some(pixel) = self.pixels.get_mut(s as usize) else {
+            return;
+        };
+        let rays = &mut self.rays[s as usize * self.per..][..self.per];
+        for (ray, traced) in rays.iter_mut().zip(&mut cells[pixel.cell as usize].traced) {
+            if ray.take().is_some() {
+                *traced = how.clone();
+            }
+        }
+        pixel.left = 0;
     }
 }
 
@@ -523,8 +667,11 @@ struct Search<'a> {
     tile: PixelRect,
     epsilon: f64,
     first: TileCells,
-    /// The pixels that have their first cell in `first`.
+    /// The pixels that have their first cell in `first`, and those of them with rays
+    /// pending.
     filled: &'a mut Filled,
+    /// The rays of the pixels pending.
+    pending: &'a mut Pending,
     counters: &'a mut RootCounters,
     /// The restrictions of `g` of the cells holding the one searched, outermost first
     /// (each over its own cell's open pixels and range, a part of the one before); empty:
@@ -695,73 +842,6 @@ impl Search<'_> {
         None
     }
 
-    /// The ray of pixel `(x, y)` through its position `(ox, oy)` searched from `from` (no
-    /// ray of the pixel meets the surface before it; where `from_positive`, `g > 0` there on
-    /// every ray of the pixel) to the end of the tile's range:
-    /// through the region of each restriction of the chain in turn, innermost first, then
-    /// with the whole `g`, within [`TRACE_BUDGET`] evaluations. `spread` is the pixel's
-    /// spread of directions.
-    fn trace_ray(
-        &mut self,
-        (x, y): (u32, u32),
-        (ox, oy): (f64, f64),
-        (from, from_positive): (f64, bool),
-        spread: f64,
-    ) -> Traced {
-        let ray = self.cam.ray(f64::from(x) + ox, f64::from(y) + oy);
-        let beam = ray.beam();
-        if from.partial_cmp(&self.range.sup()) != Some(std::cmp::Ordering::Less) {
-            // Nothing past the first cell to search (a range of one parameter): the cell
-            // itself was not rejected.
-            return Traced::Clear { until: from };
-        }
-        let mut budget = self.counters.g_evals + TRACE_BUDGET;
-        let (mut start, mut start_positive) = (from, from_positive);
-        // Past the range of the restriction with a look-behind, the look-behind's range
-        // is searched with it first.
-        let mut behind = self.behind.as_ref().map(|b| b.at);
-        for level in (0..=self.chain.len()).rev() {
-            if behind.is_some_and(|at| level <= at) {
-                behind = None;
-                // Making the look-behind (once per cell) is not this ray's search: its
-                // evaluation does not count against the ray's budget, so that no ray's
-                // answer depends on whether it came first in its cell.
-                let made = self.counters.g_evals;
-                let scope = self.behind_scope();
-                budget += self.counters.g_evals - made;
-                if let Some(s) = scope.filter(|s| s.t.sup() > start) {
-                    let window = Interval::new_unchecked(start, s.t.sup());
-                    let traced = (start_positive, (spread, budget, 1));
-                    match self.trace_range(&beam, window, Some(&s.tape), traced) {
-                        Step::Rejected { positive_end } => {
-                            (start, start_positive) = (s.t.sup(), positive_end);
-                        }
-                        Step::Found(t, scope) => return Traced::First { t, scope },
-                        Step::Stuck(until) => return Traced::Clear { until },
-                    }
-                }
-            }
-            let (end, tape) = match level {
-                0 => (self.range.sup(), None),
-                k => (
-                    self.chain[k - 1].t.sup(),
-                    Some(self.chain[k - 1].tape.clone()),
-                ),
-            };
-            if end.is_nan() || end <= start {
-                continue;
-            }
-            let window = Interval::new_unchecked(start, end);
-            let traced = (start_positive, (spread, budget, 1));
-            match self.trace_range(&beam, window, tape.as_ref(), traced) {
-                Step::Rejected { positive_end } => (start, start_positive) = (end, positive_end),
-                Step::Found(t, scope) => return Traced::First { t, scope },
-                Step::Stuck(until) => return Traced::Clear { until },
-            }
-        }
-        Traced::NoRoot
-    }
-
     /// The range `t` of the ray `beam` (a beam of one ray) searched with `tape` (the whole
     /// `g` for `None`), the nearer half first, the ranges `depth` halvings down from the
     /// window (1 for the window itself) that are a multiple of [`TRACE_PRUNE_EVERY`]
@@ -914,9 +994,9 @@ impl Search<'_> {
 
     /// Searches the cell `column × t` with the innermost restriction of the chain, where
     /// `near_positive` says that `g > 0` at `inf t` on every ray of the cell's pixels that
-    /// have no first cell yet (a cell before it in each of their columns was rejected as
-    /// positive). Returns whether that is proven at `sup t` (for the pixels still without
-    /// one).
+    /// have no first cell yet and of its pending rays (a cell before it in each of their
+    /// columns was rejected as positive). Returns whether that is proven at `sup t` (for
+    /// those rays).
     fn visit(&mut self, column: &Column, t: Interval<f64>, near_positive: bool) -> bool {
         let Column {
             r,
@@ -927,17 +1007,23 @@ impl Search<'_> {
         if self.filled.complete(r, column.node) {
             return false;
         }
-        // Only the pixels without a first cell are searched on: where some have one, the
-        // cell is evaluated over the beam of the smallest rectangle holding the others
-        // (the rays of the filled pixels, inside or past the surface there, would keep the
+        if r.is_pixel() && self.filled.is_pending(r.x0, r.y0) {
+            return self.search_rays(column, t, near_positive);
+        }
+        // Only the pixels without a first cell, and the pending rays, are searched on:
+        // where some pixel has one, the cell is evaluated over the beam of the smallest
+        // rectangle holding the open pixels and of the pending rays (the other rays of the
+        // pixels with a first cell, inside or past the surface there, would keep the
         // enclosure from being positive all the way to their own surface behind).
         let untouched = self.filled.untouched(r, column.node);
-        let open = if untouched { r } else { self.filled.open(r) };
         let shrunk;
-        let beam = if open == r {
+        let beam = if untouched {
             beam
         } else {
-            shrunk = self.beams.beam(open);
+            let Some(open) = self.open_beam(r) else {
+                return false;
+            };
+            shrunk = open;
             &shrunk
         };
         self.g
@@ -978,6 +1064,18 @@ impl Search<'_> {
                 // grazes the surface), down to single pixels.
                 return self.quadrants(column, &[t], near_positive);
             }
+            // A pending ray of the cell meets the surface first in the range where every
+            // ray does; where every ray is inside at once it is clear up to the cell.
+            let settled = match &included {
+                Some((range, holds)) => Traced::First {
+                    t: *range,
+                    scope: holds.as_ref().map(|s| BeamScope {
+                        t: *range,
+                        ..s.clone()
+                    }),
+                },
+                None => Traced::Clear { until: t.inf() },
+            };
             // A Hit's scope is asked about its range only; an undecided cell's keeps the
             // whole region it holds for, where the pixel's rays search on from the cell.
             let first = match included {
@@ -991,33 +1089,125 @@ impl Search<'_> {
                     t,
                     hit: false,
                     scope: self.chain.last().cloned(),
-                    traced: if leaf {
-                        (0..self.traced.len())
-                            .map(|k| {
-                                let at = self.traced[k];
-                                self.trace_ray((r.x0, r.y0), at, (t.inf(), near_positive), spread)
-                            })
-                            .collect()
-                    } else {
-                        Vec::new()
-                    },
+                    traced: Vec::new(),
                 },
             };
             let (tile, found) = (self.tile, &mut self.first);
             let cell = found.cells.len() as u32;
             found.cells.push(first);
-            self.filled.fill(r, column.node, |x, y| {
-                found.pixels.push((pixel_index(tile, x, y) as u32, cell));
+            if leaf && !found.cells[cell as usize].hit && !self.traced.is_empty() {
+                // The pixel's rays are searched on from its first cell, in the cells around
+                // it where the octree searches its neighbours' columns.
+                found
+                    .pixels
+                    .push((pixel_index(tile, r.x0, r.y0) as u32, cell));
+                self.pend(column, cell);
+                return self.search_rays(column, t, near_positive);
+            }
+            let (pending, filled) = (&mut *self.pending, &mut *self.filled);
+            let mut opened = false;
+            filled.fill(r, column.node, |x, y, was_pending| {
+                let k = pixel_index(tile, x, y);
+                if was_pending {
+                    pending.settle_all(k, &mut found.cells, &settled);
+                } else {
+                    found.pixels.push((k as u32, cell));
+                    opened = true;
+                }
             });
+            if !opened {
+                // Only pending rays were settled here.
+                found.cells.pop();
+            }
             return false;
         }
         self.split(column, (*beam, t), (near_positive, shallow))
     }
 
+    /// The beam of the open pixels of `r` and of the pending rays inside it; `None` where
+    /// there is neither.
+    fn open_beam(&self, r: PixelRect) -> Option<Beam> {
+        let mut beam = self.filled.open(r).map(|open| self.beams.beam(open));
+        for (x, y) in self.filled.pending_in(r) {
+            for ray in self.pending.rays_of(pixel_index(self.tile, x, y)) {
+                beam = Some(match beam {
+                    None => *ray,
+                    Some(b) => Beam {
+                        origin: hull(&b.origin, &ray.origin),
+                        dir: hull(&b.dir, &ray.dir),
+                    },
+                });
+            }
+        }
+        beam
+    }
+
+    /// Makes the leaf `column`'s pixel, whose first cell is `cell` (undecided), pending:
+    /// its rays at the stratified positions asked for are searched on from there.
+    fn pend(&mut self, column: &Column, cell: u32) {
+        let (x, y) = (column.r.x0, column.r.y0);
+        let n = self.traced.len();
+        self.first.cells[cell as usize].traced = vec![Traced::NoRoot; n];
+        let p = &mut *self.pending;
+        p.slot[pixel_index(self.tile, x, y)] = p.pixels.len() as u32;
+        p.pixels.push(PendingPixel {
+            node: column.node,
+            cell,
+            left: n as u32,
+        });
+        p.rays.extend(
+            self.traced
+                .iter()
+                .map(|&(ox, oy)| Some(self.cam.ray(f64::from(x) + ox, f64::from(y) + oy).beam())),
+        );
+        self.filled.pend(x, y, column.node);
+    }
+
+    /// Searches each pending ray of the pixel `column` over `t` by itself
+    /// ([`Search::trace_range`], with the innermost restriction and [`TRACE_BUDGET`]
+    /// evaluations), where `near_positive` says that `g > 0` at `inf t` on each: a ray
+    /// rejected stays pending, one whose first root the search places, or that gets stuck,
+    /// is settled. Returns whether `g > 0` is proven at `sup t` on every ray still pending.
+    fn search_rays(&mut self, column: &Column, t: Interval<f64>, near_positive: bool) -> bool {
+        let (x, y) = (column.r.x0, column.r.y0);
+        let k = pixel_index(self.tile, x, y);
+        let Some(&pixel) = self.pending.pixel(k) else {
+            return false;
+        };
+        let tape = self.chain.last().map(|s| s.tape.clone());
+        let n = self.traced.len();
+        let first = self.pending.slot[k] as usize * n;
+        let mut positive = true;
+        for i in 0..n {
+            let Some(ray) = self.pending.rays[first + i] else {
+                continue;
+            };
+            let budget = self.counters.g_evals + TRACE_BUDGET;
+            let traced = (near_positive, (column.spread, budget, 1));
+            let settled = match self.trace_range(&ray, t, tape.as_ref(), traced) {
+                Step::Rejected { positive_end } => {
+                    positive &= positive_end;
+                    continue;
+                }
+                Step::Found(t, scope) => Traced::First { t, scope },
+                Step::Stuck(until) => Traced::Clear { until },
+            };
+            self.first.cells[pixel.cell as usize].traced[i] = settled;
+            self.pending.rays[first + i] = None;
+            let p = &mut self.pending.pixels[self.pending.slot[k] as usize];
+            p.left -= 1;
+            if p.left == 0 {
+                self.filled.settle(x, y, pixel.node);
+                return false;
+            }
+        }
+        positive
+    }
+
     /// Searches each quadrant of `column` over `ranges` in turn (consecutive, nearest
     /// first), where `near_positive` says that `g > 0` at the near end of the first for every
-    /// ray of the column's pixels without a first cell. Returns whether that is proven at
-    /// the far end of the last.
+    /// ray of the column's pixels without a first cell and of its pending rays. Returns
+    /// whether that is proven at the far end of the last.
     fn quadrants(
         &mut self,
         column: &Column,
@@ -1044,7 +1234,8 @@ impl Search<'_> {
     /// Searches the cells inside the cell `column × t` (see [`Search::visit`]), with `g`
     /// pruned to it: `t` in two where it is longer than the cross-section of the column's
     /// beam, else (`shallow`) the rectangle in four and `t` in two. Returns whether `g > 0`
-    /// is proven at `sup t` for every ray of the column's pixels without a first cell.
+    /// is proven at `sup t` for every ray of the column's pixels without a first cell and of
+    /// its pending rays.
     fn split(
         &mut self,
         column: &Column,
@@ -1101,6 +1292,7 @@ impl Search<'_> {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::collections::HashSet;
 
     /// The smallest rectangle holding `pixels` (`None` for none).
     fn bounding(pixels: &[(u32, u32)]) -> Option<PixelRect> {
@@ -1112,11 +1304,50 @@ mod tests {
         })
     }
 
-    /// The bitmap agrees with a plain set of pixels on every rectangle of a tile wider than
-    /// one word (whether it is filled whole, has no pixel filled, the rectangle of those not
-    /// filled), after marking a scattered set.
+    /// The one-pixel rectangle of `(x, y)`.
+    fn pixel(x: u32, y: u32) -> PixelRect {
+        PixelRect {
+            x0: x,
+            y0: y,
+            x1: x + 1,
+            y1: y + 1,
+        }
+    }
+
+    /// What the bitmaps say of `r` against plain sets of the pixels done and pending: done
+    /// whole, untouched, the rectangle of the open pixels, the pixels pending.
+    fn check_against_sets(
+        filled: &Filled,
+        (r, node): (PixelRect, usize),
+        done: &HashSet<(u32, u32)>,
+        pending: &HashSet<(u32, u32)>,
+    ) {
+        let open: Vec<(u32, u32)> = r
+            .pixels()
+            .filter(|p| !done.contains(p) && !pending.contains(p))
+            .collect();
+        assert_eq!(
+            filled.complete(r, node),
+            r.pixels().all(|p| done.contains(&p)),
+            "{r:?}"
+        );
+        assert_eq!(
+            filled.untouched(r, node),
+            open.len() as u64 == r.area(),
+            "{r:?}"
+        );
+        assert_eq!(filled.open(r), bounding(&open), "{r:?}");
+        let listed: Vec<(u32, u32)> = filled.pending_in(r).collect();
+        let expected: Vec<(u32, u32)> = r.pixels().filter(|p| pending.contains(p)).collect();
+        assert_eq!(listed, expected, "{r:?}");
+    }
+
+    /// The bitmaps agree with plain sets of pixels on every rectangle of a tile wider than
+    /// one word (done whole, untouched, the rectangle of the open pixels, the pixels
+    /// pending), after marking a scattered set done, another pending, and settling some of
+    /// those.
     #[test]
-    fn filled_pixels_agree_with_a_plain_set() {
+    fn filled_pixels_agree_with_plain_sets() {
         let tile = PixelRect {
             x0: 3,
             y0: 5,
@@ -1125,44 +1356,53 @@ mod tests {
         };
         let mut filled = Filled::default();
         filled.reset(tile, 0);
-        let mut plain = std::collections::HashSet::new();
+        let (mut done, mut pending) = (HashSet::new(), HashSet::new());
         for (k, (x, y)) in tile.pixels().enumerate() {
-            if k % 7 != 3 {
-                filled.set(x, y);
-                plain.insert((x, y));
+            match k % 7 {
+                3 => {}
+                5 => {
+                    filled.pend(x, y, 0);
+                    pending.insert((x, y));
+                }
+                _ => filled.fill(pixel(x, y), 0, |_, _, was| assert!(!was)),
+            }
+            if k % 7 != 3 && k % 7 != 5 {
+                done.insert((x, y));
             }
         }
-        // Then every pixel of the second row but one.
+        // Then every pixel of the second row but one, settling those pending.
         for x in tile.x0..tile.x1 {
             if x != 40 {
-                filled.set(x, 6);
-                plain.insert((x, 6));
+                let was = pending.remove(&(x, 6));
+                filled.fill(pixel(x, 6), 0, |_, _, p| assert_eq!(p, was));
+                done.insert((x, 6));
             }
         }
+        // And one pixel of the third row settled by itself.
+        let settled = (tile.x0..tile.x1)
+            .find(|&x| pending.contains(&(x, 7)))
+            .unwrap();
+        filled.settle(settled, 7, 0);
+        pending.remove(&(settled, 7));
+        done.insert((settled, 7));
         for y0 in tile.y0..tile.y1 {
             for y1 in y0 + 1..=tile.y1 {
                 for x0 in tile.x0..tile.x1 {
                     for x1 in x0 + 1..=tile.x1 {
                         let r = PixelRect { x0, y0, x1, y1 };
-                        let expected = r.pixels().all(|p| plain.contains(&p));
-                        assert_eq!(filled.all(r), expected, "{r:?}");
-                        let open: Vec<_> = r.pixels().filter(|p| !plain.contains(p)).collect();
-                        assert_eq!(filled.untouched(r, 0), open.len() as u64 == r.area());
-                        if let Some(bound) = bounding(&open) {
-                            assert_eq!(filled.open(r), bound, "{r:?}");
-                        }
+                        check_against_sets(&filled, (r, 0), &done, &pending);
                     }
                 }
             }
         }
     }
 
-    /// The per-node counts agree with the bitmap (whether a node is filled whole, whether
-    /// it has no pixel filled, the rectangle of those not filled) on every node that the
-    /// search may still ask about (no node holding it filled whole), after fills of nodes
-    /// in a scattered order, on a tile whose sides split unevenly.
+    /// The per-node counts agree with the bitmaps (done whole, untouched, the rectangle of
+    /// the open pixels) on every node that the search may still ask about (no node holding
+    /// it filled whole), after fills of nodes, pixels made pending and pixels settled in a
+    /// scattered order, on a tile whose sides split unevenly.
     #[test]
-    fn node_counts_agree_with_the_bitmap() {
+    fn node_counts_agree_with_the_bitmaps() {
         let tile = PixelRect {
             x0: 64,
             y0: 128,
@@ -1184,9 +1424,12 @@ mod tests {
         }
         let mut filled = Filled::default();
         filled.reset(tile, quadtree_nodes(tile).unwrap_or(0));
-        let mut whole = std::collections::HashSet::new();
+        let (mut done, mut pending) = (HashSet::new(), HashSet::new());
+        let mut whole = HashSet::new();
         let mut state = 0x9e37_79b9_7f4a_7c15_u64;
-        for _ in 0..400 {
+        let (mut settled, mut with_pending) = (0, 0);
+        let mut made_pending: Vec<(u32, u32, usize)> = Vec::new();
+        for step in 0..600 {
             // A node that may still be searched: none holding it filled whole.
             state = state
                 .wrapping_mul(6_364_136_223_846_793_005)
@@ -1195,22 +1438,44 @@ mod tests {
             if whole.contains(id) || above.iter().any(|a| whole.contains(a)) {
                 continue;
             }
-            filled.fill(*r, *id, |_, _| {});
-            whole.insert(*id);
+            let (x, y) = (r.x0, r.y0);
+            if step % 4 == 1 {
+                // A pending pixel settled at its own node (none holding it was filled whole:
+                // that would have settled it).
+                if let Some(&(x, y, id)) =
+                    made_pending.iter().find(|p| pending.contains(&(p.0, p.1)))
+                {
+                    filled.settle(x, y, id);
+                    pending.remove(&(x, y));
+                    done.insert((x, y));
+                    whole.insert(id);
+                    settled += 1;
+                }
+            } else if r.is_pixel() && step % 3 == 0 && !done.contains(&(x, y)) {
+                if pending.insert((x, y)) {
+                    // A leaf's pixel made pending.
+                    filled.pend(x, y, *id);
+                    made_pending.push((x, y, *id));
+                }
+            } else {
+                filled.fill(*r, *id, |x, y, was| {
+                    assert_eq!(pending.remove(&(x, y)), was);
+                    done.insert((x, y));
+                });
+                whole.insert(*id);
+            }
+            with_pending += usize::from(!pending.is_empty());
             for (r, id, above) in &nodes {
                 if above.iter().any(|a| whole.contains(a)) {
                     continue;
                 }
-                assert_eq!(filled.complete(*r, *id), filled.all(*r), "{r:?}");
-                let none = r.pixels().all(|(x, y)| !filled.get(x, y));
-                assert_eq!(filled.untouched(*r, *id), none, "{r:?}");
-                let open: Vec<(u32, u32)> =
-                    r.pixels().filter(|&(x, y)| !filled.get(x, y)).collect();
-                if let Some(bound) = bounding(&open) {
-                    assert_eq!(filled.open(*r), bound, "{r:?}");
-                }
+                check_against_sets(&filled, (*r, *id), &done, &pending);
             }
         }
         assert!(whole.len() > 20, "{} fills", whole.len());
+        assert!(
+            settled > 0 && with_pending > 20,
+            "{settled} settled, {with_pending}"
+        );
     }
 }

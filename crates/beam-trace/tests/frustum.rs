@@ -15,12 +15,15 @@ use glam::DVec3;
 const OCTREE: &str = "[render]\nprimary = \"octree\"";
 
 /// What [`check_first_cells`] counted: pixels with a first cell, traced rays that missed,
-/// that found their first root, that were left to the root finder, and proven hits.
+/// that found their first root (and of those, past their pixel's first cell: rays that
+/// pass a silhouette and meet a surface behind), that were left to the root finder, and
+/// proven hits.
 #[derive(Debug, Default)]
 struct Checked {
     covered: usize,
     traced_miss: usize,
     traced_hit: usize,
+    traced_behind: usize,
     stuck: usize,
     hits: usize,
 }
@@ -117,6 +120,8 @@ fn check_first_cells(
                             "pixel ({x}, {y}) at ({ox}, {oy}): the root at {t}, traced in {range:?}"
                         );
                         n.traced_hit += 1;
+                        n.traced_behind +=
+                            usize::from(range.inf() > first.map_or(0.0, |f| f.t.sup()));
                     }
                     (traced, exact) => {
                         panic!(
@@ -220,6 +225,10 @@ fn first_cells_hold_behind_a_step_in_depth() {
     let n = check_first_cells(&scene, &tiles, exact);
     assert!(n.covered > 700, "the balls cover much of the view: {n:?}");
     assert!(n.hits > 400, "most of their pixels are proven hits: {n:?}");
+    assert!(
+        n.traced_behind > 0,
+        "rays past the near ball's silhouette meet the far one: {n:?}"
+    );
 }
 
 /// The octree with one ray per covered pixel draws what the screen box structure with one
@@ -334,5 +343,9 @@ fn first_cells_hold_in_a_cluster_of_balls() {
     assert!(
         n.traced_miss > 0 && n.traced_hit > 0,
         "the silhouettes' undecided pixels trace both ways: {n:?}"
+    );
+    assert!(
+        n.traced_behind > 0,
+        "rays past a silhouette meet a ball behind: {n:?}"
     );
 }
