@@ -123,7 +123,6 @@ fn octree(
     // Each tile's first cells, and for each of its pixels the index of its first cell
     // among them (`u32::MAX`: none, the pixel is proven missed).
     let mut firsts: Vec<TileCells> = Vec::with_capacity(all.len());
-    let mut slots: Vec<Vec<u32>> = Vec::with_capacity(all.len());
     for band in all.chunk_by(|a, b| a.y0 / (4 * OCTREE_TILE) == b.y0 / (4 * OCTREE_TILE)) {
         let queries: Vec<CellQuery> = band
             .iter()
@@ -131,13 +130,6 @@ fn octree(
             .collect();
         let answers = q.first_cells(&queries)?;
         c.search.add(&answers.search);
-        slots.par_extend(band.par_iter().zip(&answers.values).map(|(tile, cells)| {
-            let mut slot = vec![u32::MAX; tile.area() as usize];
-            for &(k, j) in &cells.pixels {
-                slot[k as usize] = j;
-            }
-            slot
-        }));
         for (tile, mut cells) in band.iter().zip(answers.values) {
             c.add_pixels(&BoxClass::Miss, tile.area() - cells.len() as u64);
             let width = tile.x1 - tile.x0;
@@ -169,30 +161,33 @@ fn octree(
                 .collect()
         })
         .collect();
-    // Every pixel's class and scope, in parallel: the tiles lie on the image's grid of
-    // `OCTREE_TILE` from the window's corner, row by row.
-    let (corner, width) = (window.rect(), window.width());
-    let columns = width.div_ceil(OCTREE_TILE) as usize;
-    let mut classes: PixelClasses = buffers::with_room(window.len());
-    let mut of = buffers::with_room(window.len());
-    (0..window.len())
-        .into_par_iter()
-        .map(|i| {
-            let (x, y) = ((i as u32) % width, (i as u32) / width);
-            let t = (y / OCTREE_TILE) as usize * columns + (x / OCTREE_TILE) as usize;
-            let tile = &all[t];
-            let (x, y) = (corner.x0 + x, corner.y0 + y);
-            debug_assert!(x >= tile.x0 && x < tile.x1 && y >= tile.y0 && y < tile.y1);
-            let k = (y - tile.y0) * (tile.x1 - tile.x0) + (x - tile.x0);
-            match slots[t][k as usize] {
-                u32::MAX => (Some(BoxPixel::of(BoxClass::Miss, false)), PixelScopes::NONE),
-                j => {
-                    let f = &firsts[t].cells[j as usize];
-                    (Some(BoxPixel::of(f.class(), false)), index[t][j as usize])
+    // Every pixel's class and scope, a band of tile rows at a time in parallel: the tiles
+    // lie on the image's grid of `OCTREE_TILE` from the window's corner, row by row; a
+    // pixel without a first cell is proven missed.
+    let (corner, width) = (window.rect(), window.width() as usize);
+    let columns = width.div_ceil(OCTREE_TILE as usize);
+    let mut classes: PixelClasses =
+        buffers::filled(window.len(), Some(BoxPixel::of(BoxClass::Miss, false)));
+    let mut of = buffers::filled(window.len(), PixelScopes::NONE);
+    let band = OCTREE_TILE as usize * width;
+    debug_assert_eq!(all.len(), columns * window.len().div_ceil(band));
+    classes
+        .par_chunks_mut(band)
+        .zip(of.par_chunks_mut(band))
+        .zip(all.par_chunks(columns).zip(firsts.par_chunks(columns)))
+        .zip(index.par_chunks(columns))
+        .for_each(|(((classes, of), (tiles, firsts)), index)| {
+            for ((tile, cells), index) in tiles.iter().zip(firsts).zip(index) {
+                let tile_width = tile.x1 - tile.x0;
+                for &(k, j) in &cells.pixels {
+                    let (x, y) = (tile.x0 + k % tile_width, tile.y0 + k / tile_width);
+                    // The band's first row is the tile's.
+                    let p = (y - tile.y0) as usize * width + (x - corner.x0) as usize;
+                    classes[p] = Some(BoxPixel::of(cells.cells[j as usize].class(), false));
+                    of[p] = index[j as usize];
                 }
             }
-        })
-        .unzip_into_vecs(&mut classes, &mut of);
+        });
     scopes.assign(of);
     // The beams evaluated: the cells and the leaves' inclusion tests.
     c.beams = c.search.g_evals;
