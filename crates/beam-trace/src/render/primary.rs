@@ -724,7 +724,15 @@ pub(super) fn primary_rays(
                 _ => Some(hits.values[hit_rank[j]]),
             }
         };
-        cost.extend((0..n).map(|k| ray_cost[first_ray[k]..first_ray[k + 1]].iter().sum::<f32>()));
+        if searched.is_empty() && hit_rays.is_empty() {
+            // No ray was searched or asked about: no pixel of the batch cost anything
+            // measured (every root and hit point followed from what the boxes proved).
+            cost.resize(cost.len() + n, 0.0);
+        } else {
+            cost.extend(
+                (0..n).map(|k| ray_cost[first_ray[k]..first_ray[k + 1]].iter().sum::<f32>()),
+            );
+        }
         // Each pixel's samples: one per ray, in order. A Miss box's pixel has none: it is
         // background, proven missed.
         let samples = ray_pixel.par_iter().enumerate().map(|(j, &k)| Sample {
