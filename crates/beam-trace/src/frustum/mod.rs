@@ -56,13 +56,12 @@
 //! pixels and their pending rays, so that a ray past a silhouette is searched in the cells,
 //! with the restrictions, of the neighbouring pixels whose columns go on behind it (rather
 //! than with the long restrictions of the wide cells around the leaf), and a cell one pixel
-//! wide and as shallow as a leaf searches each pending ray of its pixel by itself. A ray
-//! ends rejected everywhere to the end of the tile's range ([`Traced::NoRoot`]), or at a
-//! range where the inclusion test places its first root ([`Traced::First`]), or stuck (a
-//! graze, a jump, or a budget of evaluations spent in one cell: the renderer's root finder
-//! takes the ray over from where it is proven clear, [`Traced::Clear`]). A leaf right
-//! behind cells rejected as positive knows the sign at its near face and spends no
-//! evaluation on it.
+//! wide searches each pending ray of its pixel by itself. A ray ends rejected everywhere to
+//! the end of the tile's range ([`Traced::NoRoot`]), or at a range where the inclusion test
+//! places its first root ([`Traced::First`]), or stuck (a graze, a jump, or its budget of
+//! evaluations spent in its own searches: the renderer's root finder takes the ray over
+//! from where it is proven clear, [`Traced::Clear`]). A leaf right behind cells rejected as
+//! positive knows the sign at its near face and spends no evaluation on it.
 //!
 //! Against the screen box structure ([`crate::beam::evaluate_box_within`]), a cell costs one
 //! evaluation (a leaf that may hold the surface a few more for its inclusion test; no
@@ -81,7 +80,7 @@ use crate::ray::{Beam, BeamEval, RayFn};
 use crate::root::RootCounters;
 use crate::root::search::{Eval, sign, sign_change};
 use crate::screen::{PixelRect, stratified_offsets};
-use pixels::{Filled, Pending, PendingPixel};
+use pixels::{Filled, Pending, PendingPixel, PendingRay};
 
 /// How far [`Search::included`] looks past a leaf: up to `2^LOOK_AHEAD` of its lengths.
 const LOOK_AHEAD: u32 = 4;
@@ -136,8 +135,9 @@ const TRACE_DEPTH: i32 = 10;
 /// fourth).
 const TRACE_PRUNE_EVERY: u32 = 3;
 
-/// The evaluations a traced ray may spend in the range of one cell before it is left to the
-/// root finder. Bisection finds a ray's first root or its absence in a few dozen
+/// The evaluations a traced ray may spend in its own searches (over its leaf's range and
+/// in the cells of its pixel alone; not in the cells it shares with other pixels' rays)
+/// before it is left to the root finder. Bisection finds a ray's first root or its absence in a few dozen
 /// evaluations where the pruned formulas are tight (the CSG models: 90 % of the rays in
 /// fewer than 16); where a ray runs long beside a surface it can take hundreds (the default
 /// scene: half of them more than 64), and the root finder's Newton steps are cheaper there.
@@ -181,7 +181,8 @@ pub enum Traced {
         scope: Option<BeamScope>,
     },
     /// No root before `until`; past it the search got stuck (a graze, a jump) or ran out of
-    /// its budget of evaluations in a cell (32) and the root finder takes the ray over.
+    /// its budget of evaluations (32 in its own searches) and the root finder takes the ray
+    /// over.
     Clear {
         /// Where the part of the ray proven root-free ends.
         until: f64,
@@ -876,17 +877,18 @@ impl Search<'_> {
             cell,
             left: n as u32,
         });
-        p.rays.extend(
-            self.traced
-                .iter()
-                .map(|&(ox, oy)| Some(self.cam.ray(f64::from(x) + ox, f64::from(y) + oy).beam())),
-        );
+        p.rays.extend(self.traced.iter().map(|&(ox, oy)| {
+            Some(PendingRay {
+                beam: self.cam.ray(f64::from(x) + ox, f64::from(y) + oy).beam(),
+                budget: TRACE_BUDGET,
+            })
+        }));
         self.filled.pend(x, y, column.node);
     }
 
     /// Searches each pending ray of the pixel `column` over `t` by itself
-    /// ([`Search::trace_range`], with the innermost restriction and [`TRACE_BUDGET`]
-    /// evaluations), where `near_positive` says that `g > 0` at `inf t` on each: a ray
+    /// ([`Search::trace_range`], with the innermost restriction, within what is left of the
+    /// ray's [`TRACE_BUDGET`] evaluations), where `near_positive` says that `g > 0` at `inf t` on each: a ray
     /// rejected stays pending, one whose first root the search places, or that gets stuck,
     /// is settled. Returns whether `g > 0` is proven at `sup t` on every ray still pending.
     fn search_rays(&mut self, column: &Column, t: Interval<f64>, near_positive: bool) -> bool {
@@ -903,10 +905,15 @@ impl Search<'_> {
             let Some(ray) = self.pending.rays[first + i] else {
                 continue;
             };
-            let budget = self.counters.g_evals + TRACE_BUDGET;
-            let traced = (near_positive, (column.spread, budget, 1));
-            let settled = match self.trace_range(&ray, t, tape.as_ref(), traced) {
+            let before = self.counters.g_evals;
+            let traced = (near_positive, (column.spread, before + ray.budget, 1));
+            let step = self.trace_range(&ray.beam, t, tape.as_ref(), traced);
+            let spent = self.counters.g_evals - before;
+            let settled = match step {
                 Step::Rejected { positive_end } => {
+                    if let Some(ray) = &mut self.pending.rays[first + i] {
+                        ray.budget = ray.budget.saturating_sub(spent);
+                    }
                     positive &= positive_end;
                     continue;
                 }
