@@ -831,7 +831,9 @@ impl Search<'_> {
             filled.fill(r, column.node, |x, y, was_pending| {
                 let k = pixel_index(tile, x, y);
                 if was_pending {
-                    pending.settle_all(k, &mut found.cells, &settled);
+                    pending.settle_all(k, |first, i| {
+                        found.cells[first as usize].traced[i] = settled.clone();
+                    });
                 } else {
                     found.pixels.push((k as u32, cell));
                     opened = true;

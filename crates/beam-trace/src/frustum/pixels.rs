@@ -5,12 +5,8 @@
 //! inlined into the search across the module's boundary (without, the molecule's octree
 //! pass took 6 % longer).
 
-use super::{FirstCell, Traced};
 use crate::ray::Beam;
 use crate::screen::PixelRect;
-
-#[cfg(doc)]
-use super::{MAX_DEPTH, TileCells};
 
 /// Which pixels of a tile have their first cell and which of those still have rays
 /// searched by the octree ([`Pending`]): two bits per pixel (rows of 64-bit words), and
@@ -29,7 +25,7 @@ pub(super) struct Filled {
 
 impl Filled {
     /// Every pixel of `tile` open, with counts for `nodes` nodes of its quadtree (0: none
-    /// kept, see [`MAX_DEPTH`]).
+    /// kept, as for a tile too deep to keep a table per node).
     #[inline]
     pub(super) fn reset(&mut self, tile: PixelRect, nodes: usize) {
         self.tile = tile;
@@ -251,7 +247,7 @@ pub(super) struct Pending {
 }
 
 /// A ray of a [`PendingPixel`]: its beam (of one ray) and the evaluations its own searches
-/// may still spend ([`TRACE_BUDGET`](super::TRACE_BUDGET) in all; the cells it shares with
+/// may still spend (the search's budget per ray in all; the cells it shares with
 /// other rays do not count).
 #[derive(Copy, Clone)]
 pub(super) struct PendingRay {
@@ -264,7 +260,7 @@ pub(super) struct PendingRay {
 pub(super) struct PendingPixel {
     /// Its quadtree node.
     pub(super) node: usize,
-    /// Its first cell's index in the tile's [`TileCells::cells`].
+    /// Its first cell's index among the tile's first cells.
     pub(super) cell: u32,
     /// How many of its rays are still searched.
     pub(super) left: u32,
@@ -300,10 +296,10 @@ impl Pending {
             .map(|ray| &ray.beam)
     }
 
-    /// Settles every ray still searched of the pixel of row-major index `k` with `how`,
-    /// in its first cell among `cells`.
+    /// Settles every ray still searched of the pixel of row-major index `k`, calling
+    /// `each` with the pixel's first cell and the ray's index among the pixel's rays.
     #[inline]
-    pub(super) fn settle_all(&mut self, k: usize, cells: &mut [FirstCell], how: &Traced) {
+    pub(super) fn settle_all(&mut self, k: usize, mut each: impl FnMut(u32, usize)) {
         let Some(&s) = self.slot.get(k) else {
             return;
         };
@@ -311,9 +307,9 @@ impl Pending {
             return;
         };
         let rays = &mut self.rays[s as usize * self.per..][..self.per];
-        for (ray, traced) in rays.iter_mut().zip(&mut cells[pixel.cell as usize].traced) {
+        for (i, ray) in rays.iter_mut().enumerate() {
             if ray.take().is_some() {
-                *traced = how.clone();
+                each(pixel.cell, i);
             }
         }
         pixel.left = 0;
