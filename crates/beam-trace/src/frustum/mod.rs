@@ -80,7 +80,7 @@ use crate::ray::{Beam, BeamEval, RayFn};
 use crate::root::RootCounters;
 use crate::root::search::{Eval, sign, sign_change};
 use crate::screen::{PixelRect, stratified_offsets};
-use pixels::{Filled, Pending, PendingPixel, PendingRay};
+use pixels::{Filled, Pending};
 
 /// How far [`Search::included`] looks past a leaf: up to `2^LOOK_AHEAD` of its lengths.
 const LOOK_AHEAD: u32 = 4;
@@ -137,10 +137,11 @@ const TRACE_PRUNE_EVERY: u32 = 3;
 
 /// The evaluations a traced ray may spend in its own searches (over its leaf's range and
 /// in the cells of its pixel alone; not in the cells it shares with other pixels' rays)
-/// before it is left to the root finder. Bisection finds a ray's first root or its absence in a few dozen
-/// evaluations where the pruned formulas are tight (the CSG models: 90 % of the rays in
-/// fewer than 16); where a ray runs long beside a surface it can take hundreds (the default
-/// scene: half of them more than 64), and the root finder's Newton steps are cheaper there.
+/// before it is left to the root finder. Bisection finds a ray's first root or its absence
+/// in a few dozen evaluations where the pruned formulas are tight (the CSG models: 90 % of
+/// the rays in fewer than 16); where a ray runs long beside a surface it can take hundreds
+/// (the default scene: half of them more than 64), and the root finder's Newton steps are
+/// cheaper there.
 const TRACE_BUDGET: u64 = 32;
 
 /// Where a pixel's surface may begin: the range `t` of its first cell (no ray of the pixel
@@ -202,6 +203,24 @@ enum Step {
 }
 
 impl FirstCell {
+    /// What a pending ray of this cell's rectangle (not yet settled before it) proved,
+    /// where the cell is the first for the rectangle's open pixels: a Hit's inclusion test
+    /// holds for every ray of the cell's beam, the pending ray's too, so its first root is
+    /// in `t`; where every ray is inside at once (an undecided cell that is not a leaf), the
+    /// ray is clear up to `inf t`.
+    fn settles(&self) -> Traced {
+        if self.hit {
+            Traced::First {
+                t: self.t,
+                scope: self.scope.clone(),
+            }
+        } else {
+            Traced::Clear {
+                until: self.t.inf(),
+            }
+        }
+    }
+
     /// The pixel's class: a Hit with `T_final = t` where every ray meets the surface in
     /// `t`, else Undecided in `t`.
     pub fn class(&self) -> BoxClass {
@@ -260,9 +279,9 @@ pub struct Scratch {
 /// parameter range `range` (where the tile's beam lies in the scene bounds `bounds`), with `g` the scene
 /// function of the camera's beams; leaves are no longer than `epsilon` or the pixel's
 /// cross-section. With `traced_rays` more than 0, the rays of each pixel whose first cell
-/// is an undecided leaf, at the stratified positions of that many, are searched on from there
-/// ([`FirstCell::traced`]). Counts each cell's
-/// evaluation (and the inclusion tests', and the traced rays') in `counters.g_evals`.
+/// is an undecided leaf, at the stratified positions of that many, are searched on from
+/// there ([`FirstCell::traced`]). Counts each cell's evaluation (and the inclusion tests',
+/// and the traced rays') in `counters.g_evals`.
 /// `scratch` is working memory (what it held before does not matter).
 pub fn first_cells(
     (g, scratch): (&mut BeamEval, &mut Scratch),
@@ -786,18 +805,6 @@ impl Search<'_> {
                 // grazes the surface), down to single pixels.
                 return self.quadrants(column, &[t], near_positive);
             }
-            // A pending ray of the cell meets the surface first in the range where every
-            // ray does; where every ray is inside at once it is clear up to the cell.
-            let settled = match &included {
-                Some((range, holds)) => Traced::First {
-                    t: *range,
-                    scope: holds.as_ref().map(|s| BeamScope {
-                        t: *range,
-                        ..s.clone()
-                    }),
-                },
-                None => Traced::Clear { until: t.inf() },
-            };
             // A Hit's scope is asked about its range only; an undecided cell's keeps the
             // whole region it holds for, where the pixel's rays search on from the cell.
             let first = match included {
@@ -832,7 +839,8 @@ impl Search<'_> {
                 let k = pixel_index(tile, x, y);
                 if was_pending {
                     pending.settle_all(k, |first, i| {
-                        found.cells[first as usize].traced[i] = settled.clone();
+                        let settled = found.cells[cell as usize].settles();
+                        found.cells[first as usize].traced[i] = settled;
                     });
                 } else {
                     found.pixels.push((k as u32, cell));
@@ -870,29 +878,22 @@ impl Search<'_> {
     /// its rays at the stratified positions asked for are searched on from there.
     fn pend(&mut self, column: &Column, cell: u32) {
         let (x, y) = (column.r.x0, column.r.y0);
-        let n = self.traced.len();
-        self.first.cells[cell as usize].traced = vec![Traced::NoRoot; n];
-        let p = &mut *self.pending;
-        p.slot[pixel_index(self.tile, x, y)] = p.pixels.len() as u32;
-        p.pixels.push(PendingPixel {
-            node: column.node,
-            cell,
-            left: n as u32,
-        });
-        p.rays.extend(self.traced.iter().map(|&(ox, oy)| {
-            Some(PendingRay {
-                beam: self.cam.ray(f64::from(x) + ox, f64::from(y) + oy).beam(),
-                budget: TRACE_BUDGET,
-            })
-        }));
+        self.first.cells[cell as usize].traced = vec![Traced::NoRoot; self.traced.len()];
+        let cam = self.cam;
+        let rays = self
+            .traced
+            .iter()
+            .map(|&(ox, oy)| cam.ray(f64::from(x) + ox, f64::from(y) + oy).beam());
+        let k = pixel_index(self.tile, x, y);
+        self.pending.add(k, (column.node, cell), rays, TRACE_BUDGET);
         self.filled.pend(x, y, column.node);
     }
 
     /// Searches each pending ray of the pixel `column` over `t` by itself
     /// ([`Search::trace_range`], with the innermost restriction, within what is left of the
-    /// ray's [`TRACE_BUDGET`] evaluations), where `near_positive` says that `g > 0` at `inf t` on each: a ray
-    /// rejected stays pending, one whose first root the search places, or that gets stuck,
-    /// is settled. Returns whether `g > 0` is proven at `sup t` on every ray still pending.
+    /// ray's [`TRACE_BUDGET`] evaluations), where `near_positive` says that `g > 0` at
+    /// `inf t` on each: a ray rejected stays pending, one whose first root the search
+    /// places, or that gets stuck, is settled. Returns whether `g > 0` is proven at `sup t` on every ray still pending.
     fn search_rays(&mut self, column: &Column, t: Interval<f64>, near_positive: bool) -> bool {
         let (x, y) = (column.r.x0, column.r.y0);
         let k = pixel_index(self.tile, x, y);
@@ -900,22 +901,17 @@ impl Search<'_> {
             return false;
         };
         let tape = self.chain.last().map(|s| s.tape.clone());
-        let n = self.traced.len();
-        let first = self.pending.slot[k] as usize * n;
         let mut positive = true;
-        for i in 0..n {
-            let Some(ray) = self.pending.rays[first + i] else {
+        for i in 0..self.traced.len() {
+            let Some(ray) = self.pending.ray(k, i) else {
                 continue;
             };
             let before = self.counters.g_evals;
             let traced = (near_positive, (column.spread, before + ray.budget, 1));
             let step = self.trace_range(&ray.beam, t, tape.as_ref(), traced);
-            let spent = self.counters.g_evals - before;
             let settled = match step {
                 Step::Rejected { positive_end } => {
-                    if let Some(ray) = &mut self.pending.rays[first + i] {
-                        ray.budget = ray.budget.saturating_sub(spent);
-                    }
+                    self.pending.spend(k, i, self.counters.g_evals - before);
                     positive &= positive_end;
                     continue;
                 }
@@ -923,10 +919,7 @@ impl Search<'_> {
                 Step::Stuck(until) => Traced::Clear { until },
             };
             self.first.cells[pixel.cell as usize].traced[i] = settled;
-            self.pending.rays[first + i] = None;
-            let p = &mut self.pending.pixels[self.pending.slot[k] as usize];
-            p.left -= 1;
-            if p.left == 0 {
+            if self.pending.settle(k, i) {
                 self.filled.settle(x, y, pixel.node);
                 return false;
             }

@@ -237,13 +237,13 @@ impl Filled {
 #[derive(Default)]
 pub(super) struct Pending {
     /// Per pixel of the tile (row-major), its index in `pixels`, where it has one.
-    pub(super) slot: Vec<u32>,
+    slot: Vec<u32>,
     /// The pixels with rays pending.
-    pub(super) pixels: Vec<PendingPixel>,
+    pixels: Vec<PendingPixel>,
     /// The rays traced per pixel.
     per: usize,
     /// The rays of the pixels, `per` after each other; `None` once settled.
-    pub(super) rays: Vec<Option<PendingRay>>,
+    rays: Vec<Option<PendingRay>>,
 }
 
 /// A ray of a [`PendingPixel`]: its beam (of one ray) and the evaluations its own searches
@@ -263,7 +263,7 @@ pub(super) struct PendingPixel {
     /// Its first cell's index among the tile's first cells.
     pub(super) cell: u32,
     /// How many of its rays are still searched.
-    pub(super) left: u32,
+    left: u32,
 }
 
 impl Pending {
@@ -277,23 +277,82 @@ impl Pending {
         self.rays.clear();
     }
 
+    /// Makes the pixel of row-major index `k` pending, node `node` of the quadtree, with its
+    /// first cell `cell` and its rays' beams `rays` (as many as the tile traces per pixel),
+    /// each with `budget` evaluations to spend.
+    #[inline]
+    pub(super) fn add(
+        &mut self,
+        k: usize,
+        (node, cell): (usize, u32),
+        rays: impl Iterator<Item = Beam>,
+        budget: u64,
+    ) {
+        self.slot[k] = self.pixels.len() as u32;
+        self.pixels.push(PendingPixel {
+            node,
+            cell,
+            left: self.per as u32,
+        });
+        self.rays
+            .extend(rays.map(|beam| Some(PendingRay { beam, budget })));
+        debug_assert_eq!(self.rays.len(), self.pixels.len() * self.per);
+    }
+
     /// The pending pixel of row-major index `k` in the tile, where it is one.
     #[inline]
     pub(super) fn pixel(&self, k: usize) -> Option<&PendingPixel> {
         self.pixels.get(*self.slot.get(k)? as usize)
     }
 
-    /// The rays still searched of the pixel of row-major index `k`.
+    /// The rays of the pixel of row-major index `k`, `None` for those settled (all `None`
+    /// where the pixel is not pending).
     #[inline]
-    pub(super) fn rays_of(&self, k: usize) -> impl Iterator<Item = &Beam> {
+    fn rays(&self, k: usize) -> &[Option<PendingRay>] {
         let first = self.slot.get(k).map_or(usize::MAX, |&s| s as usize);
         self.rays
             .get(first.saturating_mul(self.per)..)
-            .unwrap_or(&[])
-            .iter()
-            .take(self.per)
-            .flatten()
-            .map(|ray| &ray.beam)
+            .map_or(&[], |rays| &rays[..self.per])
+    }
+
+    /// The rays still searched of the pixel of row-major index `k`.
+    #[inline]
+    pub(super) fn rays_of(&self, k: usize) -> impl Iterator<Item = &Beam> {
+        self.rays(k).iter().flatten().map(|ray| &ray.beam)
+    }
+
+    /// Ray `i` of the pixel of row-major index `k`, where it is still searched.
+    #[inline]
+    pub(super) fn ray(&self, k: usize, i: usize) -> Option<PendingRay> {
+        self.rays(k).get(i).copied().flatten()
+    }
+
+    /// Takes `spent` evaluations from the budget of ray `i` of the pixel of row-major index
+    /// `k`.
+    #[inline]
+    pub(super) fn spend(&mut self, k: usize, i: usize, spent: u64) {
+        if let Some(s) = self.slot.get(k)
+            && let Some(Some(ray)) = self.rays.get_mut(*s as usize * self.per + i)
+        {
+            ray.budget = ray.budget.saturating_sub(spent);
+        }
+    }
+
+    /// Settles ray `i` of the pixel of row-major index `k`; returns whether that was the
+    /// pixel's last ray still searched.
+    #[inline]
+    pub(super) fn settle(&mut self, k: usize, i: usize) -> bool {
+        let Some(&s) = self.slot.get(k) else {
+            return false;
+        };
+        let (pixel, ray) = (
+            &mut self.pixels[s as usize],
+            &mut self.rays[s as usize * self.per + i],
+        );
+        if ray.take().is_some() {
+            pixel.left -= 1;
+        }
+        pixel.left == 0
     }
 
     /// Settles every ray still searched of the pixel of row-major index `k`, calling

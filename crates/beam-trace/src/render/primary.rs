@@ -120,8 +120,7 @@ fn octree(
     let mut traced: PixelTraces = Vec::new();
     let mut c = ScreenBoxCounters::default();
     let all = window.tiles(OCTREE_TILE);
-    // Each tile's first cells, and for each of its pixels the index of its first cell
-    // among them (`u32::MAX`: none, the pixel is proven missed).
+    // Each tile's first cells (a pixel without one is proven missed).
     let mut firsts: Vec<TileCells> = Vec::with_capacity(all.len());
     for band in all.chunk_by(|a, b| a.y0 / (4 * OCTREE_TILE) == b.y0 / (4 * OCTREE_TILE)) {
         let queries: Vec<CellQuery> = band
