@@ -774,6 +774,20 @@ impl Search<'_> {
         // pixels with a first cell, inside or past the surface there, would keep the
         // enclosure from being positive all the way to their own surface behind).
         let untouched = self.filled.untouched(r, column.node);
+        let across = spread * t.sup().abs();
+        let shallow = t.wid() <= self.epsilon.max(across);
+        // A block (below) some of whose pixels have their first cell straddles a step in
+        // depth: where a filled pixel lies in its open rectangle, that pixel's rays are
+        // inside (or past) the surface at `inf t` and the others' are not, so `g` at
+        // `inf t` has no one sign over the beam and the inclusion test fails (on the CSG
+        // models, for 98 % of such blocks; where none does, testing the open pixels as a
+        // block gains nothing: csg3d-2k, 3 % more evaluations), and its enclosure over the
+        // open pixels rarely rejects them all. Its quadrants are searched, without an
+        // evaluation of the block (csg3d-2k at 512 × 512: 5 % fewer evaluations, a render
+        // 108 → 104 ms; at 1024 × 1024 7 % fewer; csg3d-660 3 % more, in the same time).
+        if !untouched && !r.is_pixel() && r.side() <= BLOCK && shallow {
+            return self.quadrants(column, &[t], near_positive);
+        }
         let shrunk;
         let beam = if untouched {
             beam
@@ -793,8 +807,6 @@ impl Search<'_> {
         if gt.inf() > 0.0 {
             return true;
         }
-        let across = spread * t.sup().abs();
-        let shallow = t.wid() <= self.epsilon.max(across);
         let leaf = r.is_pixel() && shallow;
         // A block: a leaf, or a cell of a few pixels as shallow, tried as one leaf.
         let block = r.side() <= BLOCK && shallow;
@@ -803,15 +815,8 @@ impl Search<'_> {
                 beam,
                 bounds: self.bounds,
             };
-            // A block that may hold the surface, some of whose pixels have their first cell,
-            // straddles a step in depth: where a filled pixel lies in its open rectangle,
-            // that pixel's rays are inside (or past) the surface at `inf t` and the others'
-            // are not, so `g` at `inf t` has no one sign over the beam and the test fails
-            // (on the CSG models, for 98 % of such blocks); where none does, testing the
-            // open pixels as a block gains nothing (csg3d-2k: 3 % more evaluations). Its
-            // quadrants are searched without the test.
-            let whole = r.is_pixel() || gt.sup() < 0.0 || untouched;
-            let included = if block && whole && gt.inf() < 0.0 && extent.holds(t.inf()) {
+            // (No pixel of a block has its first cell: see above.)
+            let included = if block && gt.inf() < 0.0 && extent.holds(t.inf()) {
                 self.included(beam, t, &extent, near_positive)
             } else {
                 None
