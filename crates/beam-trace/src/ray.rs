@@ -574,6 +574,16 @@ impl BeamEval {
         }
     }
 
+    /// The share of the tape's `min`/`max` operations whose choice the last
+    /// [`BeamEval::g_traced`] decided, where it was over `t` with the tape and beam set now
+    /// and recorded them ([`RayEvaluator::decided_share`]); `None` otherwise.
+    pub fn decided_share(&self, t: Interval<f64>) -> Option<f64> {
+        match self.precision {
+            Precision::F64 => self.interval.decided_share(t),
+            Precision::F32 | Precision::Dd => None,
+        }
+    }
+
     /// Sets the interval evaluator's ray or beam with the restriction `scope` (which must
     /// hold for it, as for [`RayFn::set_scope`]), without loading the whole `g` in between;
     /// the whole `g` without one.

@@ -258,6 +258,27 @@ impl<N: Number> RayEvaluator<N> {
         g
     }
 
+    /// The share of `g`'s `min`/`max` operations whose choice the last
+    /// [`g_traced`](Self::g_traced) decided, where it was over `t` with the ray or beam and
+    /// the tape set now (what a [`restrict_traced`](Self::restrict_traced) to `t` would
+    /// prune by); `None` otherwise, or where the tape has no `min`/`max`.
+    pub fn decided_share(&self, t: N) -> Option<f64>
+    where
+        N: PartialEq,
+    {
+        let fresh =
+            matches!(&self.traced, Some((at, tape)) if *at == t && tape.ptr_eq(self.g.tape()));
+        if !fresh || self.trace.is_empty() {
+            return None;
+        }
+        let decided = self
+            .trace
+            .iter()
+            .filter(|&&c| c != crate::Choice::Both)
+            .count();
+        Some(decided as f64 / self.trace.len() as f64)
+    }
+
     /// [`restrict`](Self::restrict) to `t`, by the choices that the last
     /// [`g_traced`](Self::g_traced) recorded where it was over `t` with the tape and the
     /// ray or beam set now (no evaluation spent); otherwise as `restrict`.

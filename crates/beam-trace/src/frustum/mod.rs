@@ -38,11 +38,12 @@
 //! as `T_final` (no longer than the pixel's cross-section, or the block's, before the
 //! probes). A pixel without a first cell is a
 //! [`BoxClass::Miss`].
-//! A cell that is split, at every second level of the subdivision, prunes `g` to the beam
-//! it was evaluated over (its open pixels') and `T` ([`RayFn::restrict`]) for the cells
-//! inside it (whose open pixels and pending rays, below, are among its own: a pixel only
-//! ever goes from open to pending to done), so the deep cells evaluate a few instructions
-//! of a long formula; the restrictions of the cells holding a leaf are kept, and a probe past the region of the leaf's own is
+//! A cell that is split prunes `g` to the beam it was evaluated over (its open pixels')
+//! and `T` ([`RayFn::restrict`]) for the cells inside it (whose open pixels and pending
+//! rays, below, are among its own: a pixel only ever goes from open to pending to done),
+//! where its evaluation decided a quarter of the choices or more, so the deep cells
+//! evaluate a few instructions of a long formula; the restrictions of the cells holding a
+//! leaf are kept, and a probe past the region of the leaf's own is
 //! evaluated with the next one out (the whole `g` past them all), or first with the
 //! look-behind of the outermost cell at most 16 pixels wide holding the leaf (`g` pruned
 //! for that cell's beam over its range and as much again behind it, made when a probe
@@ -106,17 +107,20 @@ const BEHIND_SIDE: u32 = 16;
 /// [`COMPILE_AFTER`]: implicit_expr::jit::COMPILE_AFTER
 const HOT_SIDE: u32 = 16;
 
-/// A cell that is split prunes `g` for the cells inside it where the cell holding it
-/// did not (a level whose pruning shortens nothing counts as not pruned): every second
-/// level of the subdivision. A pruned tape serves the cells down to the next pruning;
-/// pruning at every level made a tape (and, for the hot ones, compiled it) for the few
-/// cells of the next level only. On `csg3d-2k` at 512 × 512 (one thread, per render):
-/// with every level 15,300 prunings (7,000 made afresh, 1.9 M instructions read), 490,000
-/// instructions compiled and 14.4 M evaluated; with every second level 19,600 prunings
-/// (6,200 afresh, 2.6 M read), 281,000 compiled and 17.9 M evaluated, and the render
-/// 113–119 → 105–108 ms (best of 10, alternating; every third level 108–112); at 1024 ×
-/// 1024 221 → 206–212 ms, and `csg3d-660` at 1024 × 1024 93 → 89–91 ms.
-const PRUNE_EVERY: u32 = 2;
+/// A cell that is split prunes `g` for the cells inside it where its evaluation decided
+/// the choice of at least this share of the tape's `min`/`max` operations (a tape too
+/// short to record them is pruned as before). A pruned tape serves the cells down to the
+/// next pruning; pruning at every level made a tape (and, for the hot ones, compiled it)
+/// for the few cells of the next level only, many of them hardly shorter. On `csg3d-2k` at
+/// 512 × 512 (one thread, per render) pruning at every level made 7,000 prunings afresh
+/// (8,300 more found in the cache) that read 1.9 M instructions, and compiled 490,000
+/// instructions, against 14.4 M evaluated. Renders of `csg3d-2k` at 512 and 1024 and of
+/// `csg3d-660` at 1024 (one thread, best of 4 to 10): pruning at every level 113–119,
+/// 218–223 and 93 ms; at every second level 104–107, 208–234 and 90–91; with a share of
+/// 0.15, 0.2, 0.25, 0.3, 0.4 and 0.5 103–104, 100–101, 100–101, 100–101, 101 and 107–108
+/// ms; 192–201, 180–187, 178–182, 181–182, 194–197 and 196–197; 92–93, 92–94, 91–92, 91–92,
+/// 90–95 and 89–90.
+const PRUNE_SHARE: f64 = 0.25;
 
 /// Tapes this short are not pruned for the cells inside a cell (a pruning costs about two
 /// evaluations of the tape it prunes).
@@ -323,7 +327,6 @@ pub fn first_cells(
         epsilon,
         first: TileCells::default(),
         look_from: 0,
-        unpruned: 0,
         filled: &mut scratch.filled,
         pending: &mut scratch.pending,
         counters,
@@ -440,9 +443,6 @@ struct Search<'a> {
     /// The probe of [`Search::included`] at which the tile's last passing leaf found every
     /// ray's sign changed (0 before any): the next leaf's probes start one before it.
     look_from: u32,
-    /// The levels of the subdivision above the cell searched whose cells did not prune,
-    /// since the innermost that did ([`PRUNE_EVERY`]).
-    unpruned: u32,
 }
 
 /// The look-behind of a restriction of the chain ([`Search::behind_scope`]): `g` pruned
@@ -511,8 +511,8 @@ impl Search<'_> {
             return None;
         }
         // Level `k` is the restriction `chain[k - 1]`, level 0 the whole `g` (for probes
-        // past the region of every restriction: the tile's own cell prunes nothing, see
-        // `PRUNE_EVERY`); the leaf's beam is set with the innermost.
+        // past the region of every restriction: the tile's own cell may not prune, see
+        // `PRUNE_SHARE`); the leaf's beam is set with the innermost.
         let range_end = self.range.sup();
         let limit = |chain: &[BeamScope], k: usize| match k {
             0 => range_end,
@@ -987,16 +987,14 @@ impl Search<'_> {
         (beam, t): (Beam, Interval<f64>),
         (near_positive, shallow): (bool, bool),
     ) -> bool {
-        // The cells inside this one search with `g` pruned to it, at every
-        // `PRUNE_EVERY`-th level; where pruning decides nothing, the tape keeps the wider
-        // region it holds for.
-        let unpruned = self.unpruned;
-        let pruned = if unpruned + 1 >= PRUNE_EVERY {
-            self.pruned_to(t)
-        } else {
-            None
-        };
-        self.unpruned = if pruned.is_some() { 0 } else { unpruned + 1 };
+        // The cells inside this one search with `g` pruned to it where its evaluation
+        // decided enough choices (`PRUNE_SHARE`); elsewhere, or where pruning shortens
+        // nothing, the tape keeps the wider region it holds for.
+        let worth = self
+            .g
+            .decided_share(t)
+            .is_none_or(|share| share >= PRUNE_SHARE);
+        let pruned = if worth { self.pruned_to(t) } else { None };
         let pushed = match pruned {
             Some(tape) => {
                 let side = column.r.side();
@@ -1028,7 +1026,6 @@ impl Search<'_> {
             let middle = self.visit(column, near, near_positive);
             self.visit(column, far, middle)
         };
-        self.unpruned = unpruned;
         if pushed {
             self.chain.pop();
             if self
