@@ -41,6 +41,35 @@ fn a_restricted_tape_compiles_shorter() {
     assert_eq!(scoped.g_dg_tape().outputs().len(), 2);
 }
 
+/// The share of choices the last traced evaluation decided: none before any, or for
+/// another range or beam; for the thin beam through the sphere at x = 1, two of the four
+/// `min` and `max` (that sphere against the one at x = -1, and that pair against the pair
+/// at y = ±1, which lie as far from the beam as each other; the slab's `max` is straddled),
+/// and a restriction by that trace drops the three other spheres.
+#[test]
+fn the_decided_share_is_that_of_the_last_trace() {
+    let f = ray_function();
+    let mut ev = RayEvaluator::<Interval<f64>>::new(&f, &[]).unwrap();
+    let origin = [ival(0.99, 1.01), ival(-0.01, 0.01), ival(3.0, 3.0)];
+    let dir = [ival(-0.001, 0.001), ival(-0.001, 0.001), ival(-1.0, -1.0)];
+    ev.set_ray(origin, dir);
+    let t = ival(2.0, 3.0);
+    assert_eq!(ev.decided_share(t), None, "nothing traced yet");
+    ev.g(t);
+    assert_eq!(ev.decided_share(t), None, "a plain evaluation records nothing");
+    ev.g_traced(t);
+    let share = ev.decided_share(t).expect("traced over t");
+    assert_eq!(share, 0.5);
+    assert_eq!(ev.decided_share(ival(2.0, 2.5)), None, "another range");
+    let whole = ev.scope().len();
+    ev.restrict_traced(t);
+    assert!(2 * ev.scope().len() < whole + 4);
+    assert_eq!(ev.decided_share(t), None, "the tape has changed");
+    ev.g_traced(t);
+    ev.set_ray([ival(-1.01, -0.99), origin[1], origin[2]], dir);
+    assert_eq!(ev.decided_share(t), None, "another beam");
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(200))]
 
