@@ -20,13 +20,20 @@ fn ray_function() -> RayFunction {
     RayFunction::new(&ctx, f).unwrap()
 }
 
+/// A thin beam along -z through the sphere at x = 1: its origin and direction.
+fn beam_through_sphere() -> ([Interval<f64>; 3], [Interval<f64>; 3]) {
+    (
+        [ival(0.99, 1.01), ival(-0.01, 0.01), ival(3.0, 3.0)],
+        [ival(-0.001, 0.001), ival(-0.001, 0.001), ival(-1.0, -1.0)],
+    )
+}
+
 #[test]
 fn a_restricted_tape_compiles_shorter() {
     let f = ray_function();
     let mut ev = RayEvaluator::<Interval<f64>>::new(&f, &[]).unwrap();
-    // A thin beam along -z through the sphere at x = 1, over the part of the ray above it.
-    let origin = [ival(0.99, 1.01), ival(-0.01, 0.01), ival(3.0, 3.0)];
-    let dir = [ival(-0.001, 0.001), ival(-0.001, 0.001), ival(-1.0, -1.0)];
+    // Over the part of the ray above the sphere.
+    let (origin, dir) = beam_through_sphere();
     ev.set_ray(origin, dir);
     ev.restrict(ival(2.0, 3.0));
     let scoped = RayFunction::from_ray_tape(ev.scope()).unwrap();
@@ -50,13 +57,16 @@ fn a_restricted_tape_compiles_shorter() {
 fn the_decided_share_is_that_of_the_last_trace() {
     let f = ray_function();
     let mut ev = RayEvaluator::<Interval<f64>>::new(&f, &[]).unwrap();
-    let origin = [ival(0.99, 1.01), ival(-0.01, 0.01), ival(3.0, 3.0)];
-    let dir = [ival(-0.001, 0.001), ival(-0.001, 0.001), ival(-1.0, -1.0)];
+    let (origin, dir) = beam_through_sphere();
     ev.set_ray(origin, dir);
     let t = ival(2.0, 3.0);
     assert_eq!(ev.decided_share(t), None, "nothing traced yet");
     ev.g(t);
-    assert_eq!(ev.decided_share(t), None, "a plain evaluation records nothing");
+    assert_eq!(
+        ev.decided_share(t),
+        None,
+        "a plain evaluation records nothing"
+    );
     ev.g_traced(t);
     let share = ev.decided_share(t).expect("traced over t");
     assert_eq!(share, 0.5);
