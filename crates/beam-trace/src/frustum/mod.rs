@@ -43,11 +43,10 @@
 //! rays, below, are among its own: a pixel only ever goes from open to pending to done),
 //! where its evaluation decided a quarter of the choices or more, so the deep cells
 //! evaluate a few instructions of a long formula; the restrictions of the cells holding a
-//! leaf are kept, and a probe past the region of the leaf's own is
-//! evaluated with the next one out (the whole `g` past them all), or first with the
-//! look-behind of the outermost cell at most 16 pixels wide holding the leaf (`g` pruned
-//! for that cell's beam over its range and as much again behind it, made when a probe
-//! first passes its range).
+//! leaf are kept, and a probe past the region of the leaf's own is evaluated with the next
+//! one out (the whole `g` past them all), or first with the look-behind of the outermost
+//! cell at most 16 pixels wide holding the leaf (`g` pruned for that cell's beam over its
+//! range and as much again behind it, made when a probe first passes its range).
 //!
 //! A pixel whose first cell is an undecided leaf (its beam straddles the silhouette, or the
 //! inclusion test cannot place every ray's root) may have its rays traced
@@ -485,9 +484,9 @@ impl Search<'_> {
     /// give the look-ahead up too soon (on the CSG models 3 to 13 % fewer evaluations and
     /// more leaves passing; a probe's proof is the same whichever probes came before it).
     /// Each probe is made with the innermost restriction whose region holds it (the whole
-    /// `g` past the region of every one), so the probes reach as far as the leaf's depth needs, each
-    /// made once. Where `g > 0` at `inf t` and a probe's upper
-    /// bound is no lower than the last one's (a ray that passes the surface by), or would
+    /// `g` past the region of every one), so the probes reach as far as the leaf's depth
+    /// needs, each made once. Where `g > 0` at `inf t` and a probe's upper bound is no
+    /// lower than the last one's (a ray that passes the surface by), or would
     /// still be positive at the last probe if it kept falling at the rate it fell since the
     /// last one, the probes stop: the leaf is left undecided (this decides nothing wrongly,
     /// it only gives up).
