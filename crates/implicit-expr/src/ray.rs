@@ -258,6 +258,15 @@ impl<N: Number> RayEvaluator<N> {
         g
     }
 
+    /// Whether the choices recorded last are those of a [`g_traced`](Self::g_traced) over
+    /// `t` with the ray or beam and the tape set now.
+    fn traced_over(&self, t: N) -> bool
+    where
+        N: PartialEq,
+    {
+        matches!(&self.traced, Some((at, tape)) if *at == t && tape.ptr_eq(self.g.tape()))
+    }
+
     /// The share of `g`'s `min`/`max` operations whose choice the last
     /// [`g_traced`](Self::g_traced) decided, where it was over `t` with the ray or beam and
     /// the tape set now (what a [`restrict_traced`](Self::restrict_traced) to `t` would
@@ -266,9 +275,7 @@ impl<N: Number> RayEvaluator<N> {
     where
         N: PartialEq,
     {
-        let fresh =
-            matches!(&self.traced, Some((at, tape)) if *at == t && tape.ptr_eq(self.g.tape()));
-        if !fresh || self.trace.is_empty() {
+        if !self.traced_over(t) || self.trace.is_empty() {
             return None;
         }
         let decided = self
@@ -286,9 +293,7 @@ impl<N: Number> RayEvaluator<N> {
     where
         N: PartialEq,
     {
-        let fresh =
-            matches!(&self.traced, Some((at, tape)) if *at == t && tape.ptr_eq(self.g.tape()));
-        if !fresh || self.g.tape().choice_count() == 0 {
+        if !self.traced_over(t) || self.g.tape().choice_count() == 0 {
             self.restrict(t);
             return;
         }

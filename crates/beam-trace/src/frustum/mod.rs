@@ -917,7 +917,8 @@ impl Search<'_> {
     /// ([`Search::trace_range`], with the innermost restriction, within what is left of the
     /// ray's [`TRACE_BUDGET`] evaluations), where `near_positive` says that `g > 0` at
     /// `inf t` on each: a ray rejected stays pending, one whose first root the search
-    /// places, or that gets stuck, is settled. Returns whether `g > 0` is proven at `sup t` on every ray still pending.
+    /// places, or that gets stuck, is settled. Returns whether `g > 0` is proven at `sup t`
+    /// on every ray still pending.
     fn search_rays(&mut self, column: &Column, t: Interval<f64>, near_positive: bool) -> bool {
         let (x, y) = (column.r.x0, column.r.y0);
         let k = pixel_index(self.tile, x, y);
