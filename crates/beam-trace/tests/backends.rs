@@ -11,6 +11,7 @@ use beam_trace::backend::{
     RayQuery, SegmentQuery, ShadeBatch, SoftAnswers, Support, VariationQuery,
 };
 use beam_trace::frustum::TileCells;
+use beam_trace::progress::Progress;
 use beam_trace::root::RootResult;
 use beam_trace::shadow::hard::Visibility;
 use beam_trace::shadow::{ShadowQuery, ShadowSpec, ShadowWork};
@@ -79,8 +80,12 @@ impl Queries for PieceQueries<'_> {
     fn beams(&self, q: &[BeamQuery]) -> Result<Answers<Classified>, Error> {
         self.pieces(q, |c| self.inner.beams(c))
     }
-    fn first_cells(&self, q: &[CellQuery]) -> Result<Answers<TileCells>, Error> {
-        self.pieces(q, |c| self.inner.first_cells(c))
+    fn first_cells(
+        &self,
+        q: &[CellQuery],
+        progress: &dyn Progress,
+    ) -> Result<Answers<TileCells>, Error> {
+        self.pieces(q, |c| self.inner.first_cells(c, progress))
     }
     fn roots(&self, q: &[RayQuery]) -> Result<Answers<RootResult>, Error> {
         self.pieces(q, |c| self.inner.roots(c))

@@ -8,11 +8,22 @@ use beam_trace::backend::{Backend, CellQuery, QueryKind};
 use beam_trace::beam::BoxClass;
 use beam_trace::frustum::{FirstCell, Traced};
 use beam_trace::screen::{PixelRect, stratified_offsets};
-use beam_trace::{Cpu, NoProgress, Plan, Scene, render};
+use beam_trace::{Cpu, NoProgress, Plan, Progress, Scene, render};
 use glam::DVec3;
+use std::sync::atomic::{AtomicU64, Ordering};
 
 /// The render table of the scenes of these tests: the frustum octree.
 const OCTREE: &str = "[render]\nprimary = \"octree\"";
+
+/// A progress that counts the units reported done.
+#[derive(Default)]
+struct Counted(AtomicU64);
+
+impl Progress for Counted {
+    fn advance(&self, n: u64) {
+        self.0.fetch_add(n, Ordering::Relaxed);
+    }
+}
 
 /// What [`check_first_cells`] counted: pixels with a first cell, traced rays that missed,
 /// that found their first root (and of those, past their pixel's first cell: rays that
@@ -52,11 +63,17 @@ fn check_first_cells(
             traced_rays: 4,
         })
         .collect();
+    let done = Counted::default();
     let answers = prepared
         .queries
-        .first_cells(&queries)
+        .first_cells(&queries, &done)
         .unwrap_or_else(|e| panic!("{e}"));
     assert!(answers.search.g_evals > 0);
+    // Every tile's pixels reported done, once.
+    assert_eq!(
+        done.0.load(Ordering::Relaxed),
+        tiles.iter().map(|t| t.area()).sum::<u64>()
+    );
     let mut n = Checked::default();
     for (tile, cells) in tiles.iter().zip(&answers.values) {
         // One record per pixel: its first cell where it has one.

@@ -31,7 +31,7 @@ use beam_trace::shadow::hard::{Visibility, segment_visibility};
 use beam_trace::shadow::rounds::{Answer, Question, RoundsError, visibility_in_rounds};
 use beam_trace::shadow::{Occlusion, ShadowQuery, ShadowSpec};
 use beam_trace::stats::PassStats;
-use beam_trace::{Error, Plan, Scene};
+use beam_trace::{Error, Plan, Progress, Scene};
 use glam::DVec3;
 use interval_core::Interval;
 
@@ -497,7 +497,7 @@ impl Queries for GpuQueries<'_> {
         unsupported("shading-variation")
     }
 
-    fn first_cells(&self, _: &[CellQuery]) -> Result<Answers<TileCells>, Error> {
+    fn first_cells(&self, _: &[CellQuery], _: &dyn Progress) -> Result<Answers<TileCells>, Error> {
         unsupported("first-cell")
     }
 

@@ -14,6 +14,7 @@ use super::traits::{Backend, Prepared, Queries};
 use crate::error::Error;
 use crate::frustum::TileCells;
 use crate::plan::{Pass, PixelBeams, Plan, Primary};
+use crate::progress::Progress;
 use crate::root::RootResult;
 use crate::sample::Hit;
 use crate::scene::Scene;
@@ -196,8 +197,12 @@ impl Queries for Routed<'_> {
     fn beams(&self, q: &[BeamQuery]) -> Result<Answers<Classified>, Error> {
         self.to(QueryKind::Beams).beams(q)
     }
-    fn first_cells(&self, q: &[CellQuery]) -> Result<Answers<TileCells>, Error> {
-        self.to(QueryKind::Cells).first_cells(q)
+    fn first_cells(
+        &self,
+        q: &[CellQuery],
+        progress: &dyn Progress,
+    ) -> Result<Answers<TileCells>, Error> {
+        self.to(QueryKind::Cells).first_cells(q, progress)
     }
     fn roots(&self, q: &[RayQuery]) -> Result<Answers<RootResult>, Error> {
         self.to(QueryKind::Roots).roots(q)

@@ -9,6 +9,7 @@ use super::query::{
 use crate::error::Error;
 use crate::frustum::TileCells;
 use crate::plan::Plan;
+use crate::progress::Progress;
 use crate::root::RootResult;
 use crate::sample::Hit;
 use crate::scene::Scene;
@@ -29,8 +30,14 @@ pub trait Queries: Sync {
 
     /// The first cells of the frustum octree of each tile's pixels that have one
     /// ([`TileCells`]): where the pixel's rays may first meet a surface, none before
-    /// ([`crate::frustum`]); a pixel without one has no ray that meets a surface.
-    fn first_cells(&self, queries: &[CellQuery]) -> Result<Answers<TileCells>, Error>;
+    /// ([`crate::frustum`]); a pixel without one has no ray that meets a surface. Each
+    /// tile's area in pixels is added to `progress` as its answer is made (a batch is
+    /// much work: the tiles of a whole image).
+    fn first_cells(
+        &self,
+        queries: &[CellQuery],
+        progress: &dyn Progress,
+    ) -> Result<Answers<TileCells>, Error>;
 
     /// The first root of each ray in its window.
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error>;

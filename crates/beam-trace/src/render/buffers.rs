@@ -14,8 +14,13 @@
 //! models with two threads took 7 to 16 % less time (`docs/expr-benchmarks.md`); renders
 //! that find memory freed by earlier ones in the allocator take the same time.
 
+use rayon::prelude::*;
+
 /// Buffers smaller than this are left as the allocator makes them (a huge page is 2 MiB).
 const LARGE: usize = 4 << 20;
+
+/// Buffers of [`filled`] from this size on are written in parallel.
+const PARALLEL_FILL: usize = 256 << 10;
 
 /// The size of a huge page where the system has them (x86-64; most ARM64 kernels).
 #[cfg(target_os = "linux")]
@@ -33,10 +38,15 @@ pub(super) fn with_room<T>(n: usize) -> Vec<T> {
     v
 }
 
-/// `n` copies of `value`, in a vector made by [`with_room`].
-pub(super) fn filled<T: Clone>(n: usize, value: T) -> Vec<T> {
+/// `n` copies of `value`, in a vector made by [`with_room`]; a large one is written in
+/// parallel (its fresh pages are faulted in by every thread, not one).
+pub(super) fn filled<T: Clone + Send + Sync>(n: usize, value: T) -> Vec<T> {
     let mut v = with_room(n);
-    v.resize(n, value);
+    if n.saturating_mul(size_of::<T>()) >= PARALLEL_FILL {
+        v.par_extend(rayon::iter::repeat_n(value, n));
+    } else {
+        v.resize(n, value);
+    }
     v
 }
 

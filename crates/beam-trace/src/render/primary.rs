@@ -105,10 +105,10 @@ pub(super) fn structure(
     }
 }
 
-/// The frustum octree pass ([`crate::frustum`]): the tiles of a band of rows in one batch;
-/// each pixel a Hit in the range its first cell proved (with that cell's scope), else
-/// Undecided in its first cell (its `traced_rays` stratified rays traced on from there),
-/// or a Miss without one.
+/// The frustum octree pass ([`crate::frustum`]): every tile in one batch (the backend
+/// reports each tile's pixels done as it goes); each pixel a Hit in the range its first
+/// cell proved (with that cell's scope), else Undecided in its first cell (its
+/// `traced_rays` stratified rays traced on from there), or a Miss without one.
 fn octree(
     q: &dyn Queries,
     window: &Window,
@@ -116,34 +116,30 @@ fn octree(
     progress: &dyn Progress,
 ) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
     let t0 = Instant::now();
-    progress.begin(Pass::ScreenBoxes.name(), u64::from(window.height()));
+    progress.begin(Pass::ScreenBoxes.name(), window.len() as u64);
     let mut traced: PixelTraces = Vec::new();
     let mut c = ScreenBoxCounters::default();
     let all = window.tiles(OCTREE_TILE);
+    let queries: Vec<CellQuery> = all
+        .iter()
+        .map(|&tile| CellQuery { tile, traced_rays })
+        .collect();
+    let answers = q.first_cells(&queries, progress)?;
+    c.search.add(&answers.search);
     // Each tile's first cells (a pixel without one is proven missed).
-    let mut firsts: Vec<TileCells> = Vec::with_capacity(all.len());
-    for band in all.chunk_by(|a, b| a.y0 / (4 * OCTREE_TILE) == b.y0 / (4 * OCTREE_TILE)) {
-        let queries: Vec<CellQuery> = band
-            .iter()
-            .map(|&tile| CellQuery { tile, traced_rays })
-            .collect();
-        let answers = q.first_cells(&queries)?;
-        c.search.add(&answers.search);
-        for (tile, mut cells) in band.iter().zip(answers.values) {
-            c.add_pixels(&BoxClass::Miss, tile.area() - cells.len() as u64);
-            let width = tile.x1 - tile.x0;
-            for &(k, j) in &cells.pixels {
-                let f = &mut cells.cells[j as usize];
-                c.add_pixels(&f.class(), 1);
-                if !f.traced.is_empty() {
-                    // A traced cell is a single pixel's.
-                    let (x, y) = (tile.x0 + k % width, tile.y0 + k / width);
-                    traced.push((window.local(x, y) as u32, std::mem::take(&mut f.traced)));
-                }
+    let mut firsts: Vec<TileCells> = answers.values;
+    for (tile, cells) in all.iter().zip(&mut firsts) {
+        c.add_pixels(&BoxClass::Miss, tile.area() - cells.len() as u64);
+        let width = tile.x1 - tile.x0;
+        for &(k, j) in &cells.pixels {
+            let f = &mut cells.cells[j as usize];
+            c.add_pixels(&f.class(), 1);
+            if !f.traced.is_empty() {
+                // A traced cell is a single pixel's.
+                let (x, y) = (tile.x0 + k % width, tile.y0 + k / width);
+                traced.push((window.local(x, y) as u32, std::mem::take(&mut f.traced)));
             }
-            firsts.push(cells);
         }
-        progress.advance(u64::from(band[band.len() - 1].y1 - band[0].y0));
     }
     traced.sort_unstable_by_key(|&(p, _)| p);
     // The scopes the pixels keep, once per first cell: a Hit pixel's ray is searched (in

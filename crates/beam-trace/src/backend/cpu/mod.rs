@@ -26,6 +26,7 @@ use crate::grid::Grid;
 use crate::ibox::point_box;
 use crate::mesh::MeshIndex;
 use crate::plan::{Pass, Plan};
+use crate::progress::Progress;
 use crate::root::{Escalating, RootFinder, RootResult};
 use crate::sample::Hit;
 use crate::scene::{Material, Scene};
@@ -108,7 +109,11 @@ impl Queries for CpuQueries<'_> {
         Ok(self.map(queries, true, |ev, q, c| self.classify(ev, q, c)))
     }
 
-    fn first_cells(&self, queries: &[CellQuery]) -> Result<Answers<TileCells>, Error> {
+    fn first_cells(
+        &self,
+        queries: &[CellQuery],
+        progress: &dyn Progress,
+    ) -> Result<Answers<TileCells>, Error> {
         if !self.scene.meshes.is_empty() {
             return Err(Error::Backend {
                 backend: "cpu".into(),
@@ -118,8 +123,13 @@ impl Queries for CpuQueries<'_> {
                     .into(),
             });
         }
-        // A tile is much work: one per piece.
-        Ok(self.map_pieces(queries, 1, true, |ev, q, c| self.cells(ev, q, c)))
+        // A tile is much work, and neighbouring tiles share prunings and compiled tapes:
+        // the tiles are taken in order by whichever thread is free.
+        Ok(self.map_pulled(queries, |ev, q, c| {
+            let cells = self.cells(ev, q, c);
+            progress.advance(q.tile.area());
+            cells
+        }))
     }
 
     fn roots(&self, queries: &[RayQuery]) -> Result<Answers<RootResult>, Error> {
