@@ -14,6 +14,7 @@
 
 mod batches;
 mod buffers;
+mod classes;
 mod fingerprint;
 mod hard_shadows;
 mod images;
@@ -92,5 +93,10 @@ pub(crate) fn screen_box_pass(
     let window = Window::full(scene.camera.width(), scene.camera.height());
     let (classes, _, _, stats) = primary::structure(&queries, scene, plan, &window, progress)?;
     passes.push(stats);
-    Ok((passes, classes.iter().map(|c| c.map(|c| c.class)).collect()))
+    Ok((
+        passes,
+        (0..classes.len())
+            .map(|p| classes.get(p).map(|c| c.class))
+            .collect(),
+    ))
 }

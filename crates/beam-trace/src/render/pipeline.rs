@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use glam::DVec3;
 
-use super::buffers;
+use super::classes::PixelClasses;
 use super::output::RenderOutput;
 use super::piece::{Piece, PieceShadows};
 use super::scopes::PixelScopes;
@@ -103,7 +103,7 @@ impl<'a> Pipeline<'a> {
         } else {
             passes.push(PassStats::skipped(Pass::ScreenBoxes.name()));
             (
-                buffers::filled(npix, None),
+                PixelClasses::filled(npix, None),
                 PixelScopes::none(npix),
                 Vec::new(),
             )
@@ -199,12 +199,7 @@ impl<'a> Pipeline<'a> {
         Ok(Piece {
             window: *window,
             colors: shaded.colors,
-            // In place: the two records have the same layout, so the map reuses the
-            // classes' memory instead of mapping fresh pages for every pixel.
-            classes: classes
-                .into_iter()
-                .map(|c| c.map(|c| (c.class, c.edge)))
-                .collect(),
+            classes: classes.into_boxes(),
             coverage: shaded.coverage,
             cost,
             shadows,

@@ -22,8 +22,8 @@ use rayon::prelude::*;
 
 use super::batches::{PixelSamples, ROWS_PER_BATCH, RowBatch, row_batches};
 use super::buffers;
+use super::classes::PixelClasses;
 use super::pixels::{Pixels, offsets};
-use super::primary::PixelClasses;
 use super::scopes::PixelScopes;
 use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery, VariationQuery};
 use crate::beam::{BeamScope, BoxClass, child_window};
@@ -230,10 +230,10 @@ pub(super) fn pixel_beams(
         let mut pixel_cost = vec![0f32; n];
         // With anti-aliasing a Hit pixel's own beam is classified inside its box's
         // `T_final`: its own, narrower section is the region whose shading is judged.
-        let class = |k: usize| classes[first + k].map(|c| c.class);
+        let class = |k: usize| classes.get(first + k).map(|c| c.class);
         // A pixel of a Hit box whose shading the screen boxes judged smooth keeps the
         // box's class and is shaded once.
-        let smooth = |k: usize| classes[first + k].is_some_and(|c| c.smooth);
+        let smooth = |k: usize| classes.get(first + k).is_some_and(|c| c.smooth);
         // A pixel its screen box proved missed is background with no part (counted as
         // rejected); the others start as whole-pixel parts.
         let missed = |k: usize| matches!(class(k), Some(BoxClass::Miss));

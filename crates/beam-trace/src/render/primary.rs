@@ -8,6 +8,7 @@ use rayon::prelude::*;
 
 use super::batches::{PixelSamples, RAY_BATCH_PIXELS, RowBatch, row_batches};
 use super::buffers;
+use super::classes::{BoxPixel, PixelClasses};
 use super::pixels::{self, Pixels, owners};
 use super::scopes::PixelScopes;
 use crate::backend::{
@@ -30,37 +31,6 @@ use crate::screen::{
 use crate::stats::PassStats;
 use crate::stats::counters::{PrimaryRayCounters, ScreenBoxCounters};
 use crate::window::Window;
-
-/// What the first primary pass proved of a pixel.
-#[derive(Copy, Clone, Debug)]
-pub(super) struct BoxPixel {
-    /// Its box's class.
-    pub(super) class: BoxClass,
-    /// Whether the pixel lies on its box's top or left edge (the classification image's
-    /// outlines).
-    pub(super) edge: bool,
-    /// Whether its box is a Hit whose shading was judged to vary by at most the
-    /// anti-aliasing threshold, hard shadows included ([`shading_variation`]: a bound up to
-    /// the rounding of its cone angles): the pixel is shaded once, in the box's `T_final`,
-    /// with no beam of its own.
-    ///
-    /// [`shading_variation`]: crate::aa::shading_variation
-    pub(super) smooth: bool,
-}
-
-impl BoxPixel {
-    /// A pixel of a box of class `class`, not judged smooth.
-    fn of(class: BoxClass, edge: bool) -> Self {
-        Self {
-            class,
-            edge,
-            smooth: false,
-        }
-    }
-}
-
-/// What the first primary pass proved of each pixel (`None`: nothing, no box classified it).
-pub(super) type PixelClasses = Vec<Option<BoxPixel>>;
 
 /// What the search of each of a pixel's rays proved past its first cell, for each pixel
 /// the frustum octree traced
@@ -161,12 +131,12 @@ fn octree(
     // pixel without a first cell is proven missed.
     let (corner, width) = (window.rect(), window.width() as usize);
     let columns = width.div_ceil(OCTREE_TILE as usize);
-    let mut classes: PixelClasses =
-        buffers::filled(window.len(), Some(BoxPixel::of(BoxClass::Miss, false)));
+    let mut classes = PixelClasses::filled(window.len(), Some((BoxClass::Miss, false)));
     let mut of = buffers::filled(window.len(), PixelScopes::NONE);
     let band = OCTREE_TILE as usize * width;
     debug_assert_eq!(all.len(), columns * window.len().div_ceil(band));
     classes
+        .boxes_mut()
         .par_chunks_mut(band)
         .zip(of.par_chunks_mut(band))
         .zip(all.par_chunks(columns).zip(firsts.par_chunks(columns)))
@@ -178,7 +148,7 @@ fn octree(
                     let (x, y) = (tile.x0 + k % tile_width, tile.y0 + k / tile_width);
                     // The band's first row is the tile's.
                     let p = (y - tile.y0) as usize * width + (x - corner.x0) as usize;
-                    classes[p] = Some(BoxPixel::of(cells.cells[j as usize].class(), false));
+                    classes[p] = Some((cells.cells[j as usize].class(), false));
                     of[p] = index[j as usize];
                 }
             }
@@ -208,7 +178,7 @@ fn screen_boxes(
     let cam = &scene.camera;
     let t0 = Instant::now();
     progress.begin(Pass::ScreenBoxes.name(), window.len() as u64);
-    let mut classes: PixelClasses = buffers::filled(window.len(), None);
+    let mut classes = PixelClasses::filled(window.len(), None);
     let mut scopes = PixelScopes::none(window.len());
     let mut c = ScreenBoxCounters::default();
     // With anti-aliasing, the Hit boxes of more than one pixel whose shading is judged
@@ -265,7 +235,7 @@ fn screen_boxes(
             }
             for (x, y) in rect.pixels() {
                 let edge = x == rect.x0 || y == rect.y0;
-                classes[window.local(x, y)] = Some(BoxPixel::of(class, edge));
+                classes.set(window.local(x, y), class, edge);
             }
             if !matches!(class, BoxClass::Miss) {
                 let pixels = rect.pixels().map(|(x, y)| window.local(x, y));
@@ -311,9 +281,7 @@ fn mark_smooth(
         c.smooth_boxes += 1;
         c.smooth_pixels += rect.area();
         for (x, y) in rect.pixels() {
-            if let Some(p) = &mut classes[window.local(x, y)] {
-                p.smooth = true;
-            }
+            classes.mark_smooth(window.local(x, y));
         }
     }
     Ok(())
@@ -566,9 +534,9 @@ pub(super) fn primary_rays(
     let mut c = PrimaryRayCounters::default();
     let direct = q.direct_hits();
     let npix = window.len();
-    let all_rays: usize = classes
-        .par_iter()
-        .map(|class| ray_count(*class, pixel_rays.count()))
+    let all_rays: usize = (0..classes.len())
+        .into_par_iter()
+        .map(|p| ray_count(classes.get(p), pixel_rays.count()))
         .sum();
     let mut pixels = Pixels::with_capacity(npix, all_rays);
     let mut cost: Vec<f32> = buffers::with_room(npix);
@@ -576,9 +544,7 @@ pub(super) fn primary_rays(
         // The rays of every pixel of the batch, built in parallel; pixel `k` owns the rays
         // `first_ray[k]..first_ray[k + 1]` of the flat batch.
         let first_ray = pixels::offsets(
-            classes[first..first + n]
-                .iter()
-                .map(|class| ray_count(*class, pixel_rays.count())),
+            (first..first + n).map(|p| ray_count(classes.get(p), pixel_rays.count())),
         );
         let ray_pixel = owners(&first_ray);
         // Ray `j`'s pixel (in the image) and its index among the pixel's rays.
@@ -595,7 +561,11 @@ pub(super) fn primary_rays(
                 (&pixel_rays, start, narrow),
                 p,
                 window,
-                (classes[p], scopes.get(p), traces_of(classes[p], traced, p)),
+                (
+                    classes.get(p),
+                    scopes.get(p),
+                    traces_of(classes.get(p), traced, p),
+                ),
                 r,
             )
         };
@@ -603,10 +573,10 @@ pub(super) fn primary_rays(
             .into_par_iter()
             .map(|j| {
                 let (p, r) = pixel_of(j);
-                let traced = traces_of(classes[p], traced, p);
+                let traced = traces_of(classes.get(p), traced, p);
                 known_root(
                     narrow,
-                    classes[p],
+                    classes.get(p),
                     octree_trace(traced, pixel_rays.count(), r),
                 )
             })
@@ -711,8 +681,8 @@ pub(super) fn primary_rays(
             match direct {
                 Some(d) if DirectHits::applies(t) => {
                     let (p, r) = pixel_of(j);
-                    let traced = traces_of(classes[p], traced, p);
-                    let ray = ray_of_pixel(&pixel_rays, window.pixel(p), classes[p], traced, r);
+                    let traced = traces_of(classes.get(p), traced, p);
+                    let ray = ray_of_pixel(&pixel_rays, window.pixel(p), classes.get(p), traced, r);
                     d.hit(&ray, t)
                 }
                 // Asked about: its answer is at its rank.
@@ -734,7 +704,7 @@ pub(super) fn primary_rays(
             // Each of the pixel's rays weighs the same.
             weight: 1.0 / (first_ray[k as usize + 1] - first_ray[k as usize]) as f32,
             hit: hit_of(j),
-            area: sample_area(classes[first + k as usize]),
+            area: sample_area(classes.get(first + k as usize)),
         });
         pixels.par_extend(samples, &first_ray);
         progress.advance(u64::from(rows));
