@@ -8,7 +8,7 @@ use rayon::prelude::*;
 
 use super::batches::{PixelSamples, RAY_BATCH_PIXELS, RowBatch, row_batches};
 use super::buffers;
-use super::classes::{BoxPixel, PixelClasses};
+use super::classes::{BoxPixel, Kind, PixelClasses};
 use super::pixels::{self, Pixels, owners};
 use super::scopes::PixelScopes;
 use crate::backend::{
@@ -39,13 +39,10 @@ use crate::window::Window;
 pub(super) type PixelTraces = Vec<(u32, Vec<Traced>)>;
 
 /// The traces of pixel `p`'s rays in `traces` (empty where it has none). Only an
-/// Undecided pixel's rays are traced, so a Hit or Miss pixel's (`class`) are known empty
+/// Undecided pixel's rays are traced, so a Hit or Miss pixel's (`kind`) are known empty
 /// without a look-up.
-fn traces_of(class: Option<BoxPixel>, traces: &PixelTraces, p: usize) -> &[Traced] {
-    if matches!(
-        class.map(|c| c.class),
-        Some(BoxClass::Hit { .. } | BoxClass::Miss)
-    ) {
+fn traces_of(kind: Kind, traces: &PixelTraces, p: usize) -> &[Traced] {
+    if matches!(kind, Kind::Hit | Kind::Miss) {
         return &[];
     }
     match traces.binary_search_by_key(&p, |&(q, _)| q as usize) {
@@ -136,19 +133,18 @@ fn octree(
     let band = OCTREE_TILE as usize * width;
     debug_assert_eq!(all.len(), columns * window.len().div_ceil(band));
     classes
-        .boxes_mut()
-        .par_chunks_mut(band)
+        .bands_mut(band)
         .zip(of.par_chunks_mut(band))
         .zip(all.par_chunks(columns).zip(firsts.par_chunks(columns)))
         .zip(index.par_chunks(columns))
-        .for_each(|(((classes, of), (tiles, firsts)), index)| {
+        .for_each(|(((mut classes, of), (tiles, firsts)), index)| {
             for ((tile, cells), index) in tiles.iter().zip(firsts).zip(index) {
                 let tile_width = tile.x1 - tile.x0;
                 for &(k, j) in &cells.pixels {
                     let (x, y) = (tile.x0 + k % tile_width, tile.y0 + k / tile_width);
                     // The band's first row is the tile's.
                     let p = (y - tile.y0) as usize * width + (x - corner.x0) as usize;
-                    classes[p] = Some((cells.cells[j as usize].class(), false));
+                    classes.set(p, cells.cells[j as usize].class(), false);
                     of[p] = index[j as usize];
                 }
             }
@@ -374,23 +370,23 @@ pub(super) enum RayStart {
     FirstCell,
 }
 
-/// What is proven about the share of a pixel of box class `class` that one of its samples
-/// stands for.
-fn sample_area(class: Option<BoxPixel>) -> Area {
-    match class.map(|c| c.class) {
-        Some(BoxClass::Miss) => Area::Missed,
-        Some(BoxClass::Hit { .. }) => Area::Covered,
-        Some(BoxClass::Undecided { .. }) | None => Area::Unknown,
+/// What is proven about the share of a pixel of a class of kind `kind` that one of its
+/// samples stands for.
+fn sample_area(kind: Kind) -> Area {
+    match kind {
+        Kind::Miss => Area::Missed,
+        Kind::Hit => Area::Covered,
+        Kind::Undecided | Kind::Unclassified => Area::Unknown,
     }
 }
 
-/// The number of rays of a pixel of box class `class`: the central ray in a Hit box;
+/// The number of rays of a pixel of a class of kind `kind`: the central ray in a Hit box;
 /// `stratified` rays in an Undecided box (or without a box); none in a Miss box.
-fn ray_count(class: Option<BoxPixel>, stratified: usize) -> usize {
-    match class.map(|c| c.class) {
-        Some(BoxClass::Miss) => 0,
-        Some(BoxClass::Hit { .. }) => 1,
-        Some(BoxClass::Undecided { .. }) | None => stratified,
+fn ray_count(kind: Kind, stratified: usize) -> usize {
+    match kind {
+        Kind::Miss => 0,
+        Kind::Hit => 1,
+        Kind::Undecided | Kind::Unclassified => stratified,
     }
 }
 
@@ -408,7 +404,8 @@ fn pixel_ray(
     (class, scope, traced): (Option<BoxPixel>, Option<&BeamScope>, &[Traced]),
     r: usize,
 ) -> PixelRay {
-    let ray = ray_of_pixel(rays, window.pixel(i), class, traced, r);
+    let kind = Kind::of(class.as_ref().map(|c| &c.class));
+    let ray = ray_of_pixel(rays, window.pixel(i), kind, traced, r);
     if let Some(traced) = octree_trace(traced, rays.count(), r) {
         return match traced {
             Traced::NoRoot => PixelRay {
@@ -474,20 +471,19 @@ fn pixel_ray(
     }
 }
 
-/// Ray `r` of the pixel at `(x, y)` of box class `class` whose rays the octree `traced`,
-/// as [`pixel_ray`] makes it: the octree's ray `r` where it traced the pixel's rays (at the
-/// same stratified position), else a Hit box's central ray or stratified ray `r`.
+/// Ray `r` of the pixel at `(x, y)` of a class of kind `kind` whose rays the octree
+/// `traced`, as [`pixel_ray`] makes it: the octree's ray `r` where it traced the pixel's
+/// rays (at the same stratified position), else a Hit box's central ray or stratified ray
+/// `r`.
 fn ray_of_pixel(
     rays: &PixelRays,
     (x, y): (u32, u32),
-    class: Option<BoxPixel>,
+    kind: Kind,
     traced: &[Traced],
     r: usize,
 ) -> Ray {
-    match class.map(|c| c.class) {
-        Some(BoxClass::Hit { .. }) if octree_trace(traced, rays.count(), r).is_none() => {
-            rays.centre(x, y)
-        }
+    match kind {
+        Kind::Hit if octree_trace(traced, rays.count(), r).is_none() => rays.centre(x, y),
         _ => rays.stratified(x, y, r),
     }
 }
@@ -536,7 +532,7 @@ pub(super) fn primary_rays(
     let npix = window.len();
     let all_rays: usize = (0..classes.len())
         .into_par_iter()
-        .map(|p| ray_count(classes.get(p), pixel_rays.count()))
+        .map(|p| ray_count(classes.kind(p), pixel_rays.count()))
         .sum();
     let mut pixels = Pixels::with_capacity(npix, all_rays);
     let mut cost: Vec<f32> = buffers::with_room(npix);
@@ -544,7 +540,7 @@ pub(super) fn primary_rays(
         // The rays of every pixel of the batch, built in parallel; pixel `k` owns the rays
         // `first_ray[k]..first_ray[k + 1]` of the flat batch.
         let first_ray = pixels::offsets(
-            (first..first + n).map(|p| ray_count(classes.get(p), pixel_rays.count())),
+            (first..first + n).map(|p| ray_count(classes.kind(p), pixel_rays.count())),
         );
         let ray_pixel = owners(&first_ray);
         // Ray `j`'s pixel (in the image) and its index among the pixel's rays.
@@ -564,16 +560,18 @@ pub(super) fn primary_rays(
                 (
                     classes.get(p),
                     scopes.get(p),
-                    traces_of(classes.get(p), traced, p),
+                    traces_of(classes.kind(p), traced, p),
                 ),
                 r,
             )
         };
-        let known: Vec<Option<RootResult>> = (0..ray_pixel.len())
+        // Each ray's first root where it is known without a search (a Hit pixel's, a ray
+        // the octree traced); `None` for the rays to search, filled in below.
+        let mut results: Vec<Option<RootResult>> = (0..ray_pixel.len())
             .into_par_iter()
             .map(|j| {
                 let (p, r) = pixel_of(j);
-                let traced = traces_of(classes.get(p), traced, p);
+                let traced = traces_of(classes.kind(p), traced, p);
                 known_root(
                     narrow,
                     classes.get(p),
@@ -581,30 +579,40 @@ pub(super) fn primary_rays(
                 )
             })
             .collect();
-        let searched: Vec<usize> = (0..known.len()).filter(|&j| known[j].is_none()).collect();
+        let searched: Vec<usize> = (0..results.len())
+            .filter(|&j| results[j].is_none())
+            .collect();
         let queries: Vec<RayQuery> = searched.par_iter().map(|&j| ray_of(j).query).collect();
         let first_try = q.roots(&queries)?;
         c.rays += queries.len() as u64;
         c.search.add(&first_try.search);
-        let mut results: Vec<RootResult> = known
-            .into_iter()
-            .map(|r| r.unwrap_or(RootResult::NoRoot))
-            .collect();
-        let mut ray_cost = vec![0f32; results.len()];
+        // Each ray's cost, where some ray was searched or asked about.
+        let mut ray_cost = vec![
+            0f32;
+            if searched.is_empty() {
+                0
+            } else {
+                results.len()
+            }
+        ];
         for ((&j, r), t) in searched.iter().zip(first_try.values).zip(first_try.cost) {
-            results[j] = r;
+            results[j] = Some(r);
             ray_cost[j] = t;
         }
+        // Ray `j`'s first root in `results`, searched or known (each searched ray has its
+        // answer).
+        let result_in =
+            |results: &[Option<RootResult>], j: usize| results[j].unwrap_or(RootResult::NoRoot);
         // No root where one was expected first: search the fallback window, past the
         // first window where that one is proven root-free.
         let retry: Vec<(usize, Interval<f64>)> = searched
             .iter()
-            .filter(|&&j| !matches!(results[j], RootResult::Root { .. }))
+            .filter(|&&j| !matches!(result_in(&results, j), RootResult::Root { .. }))
             .filter_map(|&j| {
                 let ray = ray_of(j);
                 let w = ray.fallback?;
                 let searched = ray.query.window;
-                Some(match results[j] {
+                Some(match result_in(&results, j) {
                     RootResult::NoRoot if searched.inf() <= w.inf() => (
                         j,
                         Interval::new_unchecked(searched.sup().max(w.inf()), w.sup()),
@@ -625,12 +633,14 @@ pub(super) fn primary_rays(
             let again = q.roots(&queries)?;
             c.search.add(&again.search);
             for ((&(j, _), r), t) in retry.iter().zip(again.values).zip(&again.cost) {
-                results[j] = r;
+                results[j] = Some(r);
                 ray_cost[j] += t;
             }
         }
-        for r in &results {
-            match *r {
+        let results = results;
+        let result = |j: usize| result_in(&results, j);
+        for j in 0..results.len() {
+            match result(j) {
                 RootResult::Root { proof, .. } => {
                     c.hits += 1;
                     match proof {
@@ -645,21 +655,14 @@ pub(super) fn primary_rays(
         }
         // The shading points of the rays that meet (or may meet) a surface: those the
         // backend leaves to the pass are made with the samples, the others asked for.
-        let root_of = |j: usize| match results[j] {
+        let root_of = |j: usize| match result(j) {
             RootResult::Root { t, .. } | RootResult::Undecided { t } => Some(t),
             RootResult::NoRoot => None,
         };
         let asked =
             |j: usize| root_of(j).is_some_and(|t| direct.is_none() || !DirectHits::applies(t));
-        // The rays asked about, and each ray's rank among them (where its answer is).
-        let mut hit_rays: Vec<usize> = Vec::new();
-        let mut hit_rank = Vec::with_capacity(results.len());
-        for j in 0..results.len() {
-            hit_rank.push(hit_rays.len());
-            if asked(j) {
-                hit_rays.push(j);
-            }
-        }
+        // The rays asked about, in order (a ray's answer is at its rank among them).
+        let hit_rays: Vec<usize> = (0..results.len()).filter(|&j| asked(j)).collect();
         let hit_queries: Vec<HitQuery> = hit_rays
             .par_iter()
             .map(|&j| {
@@ -673,23 +676,30 @@ pub(super) fn primary_rays(
             .collect();
         let hits = q.hit_points(&hit_queries)?;
         c.search.add(&hits.search);
-        for (&j, t) in hit_rays.iter().zip(&hits.cost) {
-            ray_cost[j] += t;
+        if !hit_rays.is_empty() {
+            ray_cost.resize(results.len(), 0.0);
+            for (&j, t) in hit_rays.iter().zip(&hits.cost) {
+                ray_cost[j] += t;
+            }
         }
         let hit_of = |j: usize| {
             let t = root_of(j)?;
             match direct {
                 Some(d) if DirectHits::applies(t) => {
                     let (p, r) = pixel_of(j);
-                    let traced = traces_of(classes.get(p), traced, p);
-                    let ray = ray_of_pixel(&pixel_rays, window.pixel(p), classes.get(p), traced, r);
+                    let traced = traces_of(classes.kind(p), traced, p);
+                    let ray =
+                        ray_of_pixel(&pixel_rays, window.pixel(p), classes.kind(p), traced, r);
                     d.hit(&ray, t)
                 }
                 // Asked about: its answer is at its rank.
-                _ => Some(hits.values[hit_rank[j]]),
+                _ => hit_rays
+                    .binary_search(&j)
+                    .ok()
+                    .map(|rank| hits.values[rank]),
             }
         };
-        if searched.is_empty() && hit_rays.is_empty() {
+        if ray_cost.is_empty() {
             // No ray was searched or asked about: no pixel of the batch cost anything
             // measured (every root and hit point followed from what the boxes proved).
             cost.resize(cost.len() + n, 0.0);
@@ -704,7 +714,7 @@ pub(super) fn primary_rays(
             // Each of the pixel's rays weighs the same.
             weight: 1.0 / (first_ray[k as usize + 1] - first_ray[k as usize]) as f32,
             hit: hit_of(j),
-            area: sample_area(classes.get(first + k as usize)),
+            area: sample_area(classes.kind(first + k as usize)),
         });
         pixels.par_extend(samples, &first_ray);
         progress.advance(u64::from(rows));
