@@ -208,10 +208,15 @@ impl RayTable {
     /// If `i` or `j` is out of range.
     pub fn ray(&self, i: usize, j: usize) -> Ray {
         let (x, y) = (&self.columns[i], &self.rows[j]);
-        let d: [f64; 3] = std::array::from_fn(|k| (x[k] + y[k]).mid());
+        // Written out rather than by `array::from_fn`, whose closure was not inlined: a
+        // call per coordinate (the primary-rays pass makes a ray per hit pixel).
         Ray {
             origin: self.eye,
-            dir: DVec3::from_array(d),
+            dir: DVec3::new(
+                (x[0] + y[0]).mid(),
+                (x[1] + y[1]).mid(),
+                (x[2] + y[2]).mid(),
+            ),
         }
     }
 }
