@@ -97,11 +97,76 @@ pub(super) fn offsets(counts: impl Iterator<Item = usize>) -> Vec<usize> {
     first
 }
 
-/// The owner of each item of a flat list where owner `k` owns `first[k]..first[k + 1]`.
-pub(super) fn owners(first: &[usize]) -> Vec<u32> {
-    let mut out = Vec::with_capacity(first[first.len() - 1]);
-    for k in 0..first.len() - 1 {
-        out.extend(std::iter::repeat_n(k as u32, first[k + 1] - first[k]));
+/// Owners per piece of work of [`par_offsets`] and [`owners`].
+const OWNERS_PER_PIECE: usize = 4096;
+
+/// [`offsets`] of `n` owners where owner `k` has `count(k)` items, counted in parallel
+/// (each piece of owners summed, then each written from where the pieces before end).
+pub(super) fn par_offsets(n: usize, count: impl Fn(usize) -> usize + Sync) -> Vec<usize> {
+    let totals: Vec<usize> = (0..n.div_ceil(OWNERS_PER_PIECE))
+        .into_par_iter()
+        .map(|piece| {
+            let start = piece * OWNERS_PER_PIECE;
+            (start..(start + OWNERS_PER_PIECE).min(n)).map(&count).sum()
+        })
+        .collect();
+    let mut first = vec![0; n + 1];
+    let mut pieces = Vec::with_capacity(totals.len());
+    let (mut before, mut rest) = (0, &mut first[1..]);
+    for (piece, total) in totals.iter().enumerate() {
+        let (mine, more) = rest.split_at_mut(OWNERS_PER_PIECE.min(rest.len()));
+        pieces.push((piece * OWNERS_PER_PIECE, before, mine));
+        before += total;
+        rest = more;
     }
+    pieces.into_par_iter().for_each(|(start, mut sum, mine)| {
+        for (k, f) in mine.iter_mut().enumerate() {
+            sum += count(start + k);
+            *f = sum;
+        }
+    });
+    first
+}
+
+/// The owner of each item of a flat list where owner `k` owns `first[k]..first[k + 1]`,
+/// written in parallel.
+pub(super) fn owners(first: &[usize]) -> Vec<u32> {
+    let n = first.len() - 1;
+    let mut out = vec![0; first[n]];
+    let mut pieces = Vec::with_capacity(n.div_ceil(OWNERS_PER_PIECE));
+    let mut rest = &mut out[..];
+    for start in (0..n).step_by(OWNERS_PER_PIECE) {
+        let end = (start + OWNERS_PER_PIECE).min(n);
+        let (mine, more) = rest.split_at_mut(first[end] - first[start]);
+        pieces.push((start..end, mine));
+        rest = more;
+    }
+    pieces.into_par_iter().for_each(|(owned, mine)| {
+        let base = first[owned.start];
+        for k in owned {
+            mine[first[k] - base..first[k + 1] - base].fill(k as u32);
+        }
+    });
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The parallel offsets and owners are those of a plain count, for owners with no
+    /// items, one or many, across pieces of work.
+    #[test]
+    fn offsets_and_owners_follow_the_counts() {
+        for n in [0, 1, 5, OWNERS_PER_PIECE, 3 * OWNERS_PER_PIECE + 17] {
+            let count = |k: usize| (k * 7 + k / 3) % 4;
+            let first = par_offsets(n, count);
+            assert_eq!(first, offsets((0..n).map(count)));
+            let own = owners(&first);
+            assert_eq!(own.len(), first[n]);
+            for k in 0..n {
+                assert!(own[first[k]..first[k + 1]].iter().all(|&o| o as usize == k));
+            }
+        }
+    }
 }

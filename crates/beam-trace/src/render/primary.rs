@@ -538,9 +538,9 @@ pub(super) fn primary_rays(
     for RowBatch { rows, first, n } in row_batches(w, h, RAY_BATCH_PIXELS / w.max(1)) {
         // The rays of every pixel of the batch, built in parallel; pixel `k` owns the rays
         // `first_ray[k]..first_ray[k + 1]` of the flat batch.
-        let first_ray = pixels::offsets(
-            (first..first + n).map(|p| ray_count(classes.kind(p), pixel_rays.count())),
-        );
+        let first_ray = pixels::par_offsets(n, |k| {
+            ray_count(classes.kind(first + k), pixel_rays.count())
+        });
         let ray_pixel = owners(&first_ray);
         // Ray `j`'s pixel (in the image) and its index among the pixel's rays.
         let pixel_of = |j: usize| {
