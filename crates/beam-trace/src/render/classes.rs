@@ -27,18 +27,18 @@ pub(super) struct BoxPixel {
 pub(super) type BoxOf = Option<(BoxClass, bool)>;
 
 /// The kind of a pixel's class, which decides how many rays it takes and what its samples
-/// prove.
+/// prove. The values index tables by kind (`kind as usize`).
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 #[repr(u8)]
 pub(super) enum Kind {
     /// No box classified the pixel.
-    Unclassified,
+    Unclassified = 0,
     /// Its box is a Miss.
-    Miss,
+    Miss = 1,
     /// Its box is a Hit.
-    Hit,
+    Hit = 2,
     /// Its box is Undecided.
-    Undecided,
+    Undecided = 3,
 }
 
 impl Kind {
@@ -115,8 +115,11 @@ impl PixelClasses {
 
     /// Pixel `p` in a box of class `class`, on its top or left edge where `edge`.
     pub(super) fn set(&mut self, p: usize, class: BoxClass, edge: bool) {
-        self.boxes[p] = Some((class, edge));
-        self.kinds[p] = Kind::of(Some(&class));
+        BandMut {
+            boxes: &mut self.boxes,
+            kinds: &mut self.kinds,
+        }
+        .set(p, class, edge);
     }
 
     /// Marks pixel `p` smooth, where a box classified it.

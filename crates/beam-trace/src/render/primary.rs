@@ -384,7 +384,8 @@ fn sample_area(kind: Kind) -> Area {
 /// `stratified` rays in an Undecided box (or without a box); none in a Miss box.
 fn ray_count(kind: Kind, stratified: usize) -> usize {
     // A look-up rather than a branch: a row's kinds change from pixel to pixel at every
-    // silhouette, where branches are mispredicted.
+    // silhouette, where branches are mispredicted. Indexed by kind: unclassified, Miss,
+    // Hit, Undecided.
     let counts = [stratified, 0, 1, stratified];
     counts[kind as usize]
 }
@@ -586,14 +587,11 @@ pub(super) fn primary_rays(
         c.rays += queries.len() as u64;
         c.search.add(&first_try.search);
         // Each ray's cost, where some ray was searched or asked about.
-        let mut ray_cost = vec![
-            0f32;
-            if searched.is_empty() {
-                0
-            } else {
-                results.len()
-            }
-        ];
+        let mut ray_cost = if searched.is_empty() {
+            Vec::new()
+        } else {
+            vec![0f32; results.len()]
+        };
         for ((&j, r), t) in searched.iter().zip(first_try.values).zip(first_try.cost) {
             results[j] = Some(r);
             ray_cost[j] = t;
@@ -636,7 +634,6 @@ pub(super) fn primary_rays(
                 ray_cost[j] += t;
             }
         }
-        let results = results;
         let result = |j: usize| result_in(&results, j);
         for j in 0..results.len() {
             match result(j) {
