@@ -96,11 +96,17 @@ pub struct Coverage {
 impl Coverage {
     /// The bounds over a pixel's samples.
     pub fn of(samples: &[Sample]) -> Coverage {
+        Coverage::of_shares(samples.iter().map(|s| (s.weight, s.area)))
+    }
+
+    /// The bounds over a pixel's shares, each given as its weight and what its beam proved
+    /// of it.
+    pub fn of_shares(shares: impl Iterator<Item = (f32, Area)> + Clone) -> Coverage {
         let share = |keep: fn(Area) -> bool| {
-            samples
-                .iter()
-                .filter(|s| keep(s.area))
-                .map(|s| s.weight)
+            shares
+                .clone()
+                .filter(|&(_, area)| keep(area))
+                .map(|(weight, _)| weight)
                 .sum::<f32>()
                 .min(1.0)
         };

@@ -1,6 +1,7 @@
-//! The CPU output guard: the images, classification images, shadow maps and work counters
-//! of the default scene, every scene file of `scenes/` and the main render modes, compared
-//! bit for bit with the values recorded in `tests/data/cpu_guard.txt`.
+//! The CPU output guard: the images, classification images, coverage, shadow maps and work
+//! counters of the default scene, every scene file of `scenes/`, the main render modes and
+//! unlit renders, compared bit for bit with the values recorded in
+//! `tests/data/cpu_guard.txt`.
 //!
 //! A change that alters any of them must say why in its commit and record them again:
 //!
@@ -76,8 +77,12 @@ fn digest(name: &str, out: &RenderOutput) -> String {
             .bytes(&pixels_hash(&s.image).to_le_bytes())
             .0
     });
+    let coverage = Fnv::new()
+        .f32s(out.coverage.iter().flat_map(|c| [c.proven, c.possible]))
+        .0;
     format!(
-        "{name} image={:016x} classification={:016x} shadows={:016x} counters={:016x}",
+        "{name} image={:016x} classification={:016x} coverage={coverage:016x} shadows={:016x} \
+         counters={:016x}",
         pixels_hash(&out.image),
         pixels_hash(&out.classification()),
         shadows,
@@ -157,6 +162,24 @@ fn cases() -> Vec<(String, Scene)> {
                 s.settings.shadow_method = method.parse().unwrap();
             },
         );
+    }
+    // Unlit: each pixel's colour and coverage resolved in the primary-rays pass, for one
+    // colour (hits known from the boxes) and several (each hit's object searched).
+    for (file, modes) in [
+        ("default.toml", ["octree", "screen-rays", "per-pixel"]),
+        ("gallery.toml", ["octree", "screen-rays", "per-pixel"]),
+    ] {
+        for mode in modes {
+            variant(&format!("{file}+unlit+{mode}"), file, &|s| {
+                s.lights.clear();
+                s.settings.aa = Some(beam_trace::scene::AaMode::None);
+                s.settings.primary = match mode {
+                    "octree" => beam_trace::scene::PrimaryMode::Octree,
+                    "screen-rays" => beam_trace::scene::PrimaryMode::ScreenRays,
+                    _ => beam_trace::scene::PrimaryMode::PerPixel,
+                };
+            });
+        }
     }
     variant("soft-shadows+iaa", "soft-shadows.toml", &|s| {
         s.settings.aa = Some("iaa".parse().unwrap());

@@ -794,7 +794,7 @@ impl Search<'_> {
         let beam = if untouched {
             beam
         } else {
-            let Some(open) = self.open_beam(r) else {
+            let Some(open) = self.open_beam(r, column.node) else {
                 return false;
             };
             shrunk = open;
@@ -880,11 +880,11 @@ impl Search<'_> {
         self.split(column, (*beam, t), (near_positive, shallow))
     }
 
-    /// The beam of the open pixels of `r` and of the pending rays inside it; `None` where
-    /// there is neither.
-    fn open_beam(&self, r: PixelRect) -> Option<Beam> {
+    /// The beam of the open pixels of `r`, node `node` of the quadtree, and of the pending
+    /// rays inside it; `None` where there is neither.
+    fn open_beam(&self, r: PixelRect, node: usize) -> Option<Beam> {
         let mut beam = self.filled.open(r).map(|open| self.beams.beam(open));
-        for (x, y) in self.filled.pending_in(r) {
+        self.filled.pending_in(r, node, |x, y| {
             for ray in self.pending.rays_of(pixel_index(self.tile, x, y)) {
                 beam = Some(match beam {
                     None => *ray,
@@ -894,7 +894,7 @@ impl Search<'_> {
                     },
                 });
             }
-        }
+        });
         beam
     }
 

@@ -151,22 +151,28 @@ impl Filled {
         })
     }
 
-    /// The pixels of `r` with rays pending, row by row.
+    /// The pixels of `r`, node `node` of the quadtree, with rays pending, row by row: `each`
+    /// is called with each of them. Where the node's counts are kept none is looked for
+    /// when they say there is none: every pixel touched is done or pending, so the node's
+    /// pending pixels are its touched less its done (most cells of a render have none).
     #[inline]
-    pub(super) fn pending_in(&self, r: PixelRect) -> impl Iterator<Item = (u32, u32)> + '_ {
-        (r.y0..r.y1).flat_map(move |y| {
-            self.row_words(r, y)
-                .flat_map(move |(word, _, pending, mask)| {
-                    let mut bits = pending & mask;
-                    std::iter::from_fn(move || {
-                        (bits != 0).then(|| {
-                            let b = bits.trailing_zeros() as usize;
-                            bits &= bits - 1;
-                            (self.tile.x0 + (word * 64 + b) as u32, y)
-                        })
-                    })
-                })
-        })
+    pub(super) fn pending_in(&self, r: PixelRect, node: usize, mut each: impl FnMut(u32, u32)) {
+        if let (Some(touched), Some(done)) =
+            (self.touched_counts.get(node), self.done_counts.get(node))
+            && touched == done
+        {
+            return;
+        }
+        for y in r.y0..r.y1 {
+            for (word, _, pending, mask) in self.row_words(r, y) {
+                let mut bits = pending & mask;
+                while bits != 0 {
+                    let b = bits.trailing_zeros() as usize;
+                    bits &= bits - 1;
+                    each(self.tile.x0 + (word * 64 + b) as u32, y);
+                }
+            }
+        }
     }
 
     /// The word of pixel `(x, y)` in the bitmaps, and its bit there.
@@ -424,7 +430,8 @@ mod tests {
             "{r:?}"
         );
         assert_eq!(filled.open(r), bounding(&open), "{r:?}");
-        let listed: Vec<(u32, u32)> = filled.pending_in(r).collect();
+        let mut listed = Vec::new();
+        filled.pending_in(r, node, |x, y| listed.push((x, y)));
         let expected: Vec<(u32, u32)> = r.pixels().filter(|p| pending.contains(p)).collect();
         assert_eq!(listed, expected, "{r:?}");
     }

@@ -24,6 +24,7 @@ mod pipeline;
 mod pixel_beams;
 mod pixels;
 mod primary;
+mod resolve;
 mod scopes;
 mod shading;
 mod soft_shadows;

@@ -9,12 +9,15 @@ use glam::DVec3;
 use super::classes::PixelClasses;
 use super::output::RenderOutput;
 use super::piece::{Piece, PieceShadows};
+use super::pixels::Pixels;
+use super::resolve::Flat;
 use super::scopes::PixelScopes;
 use super::{hard_shadows, pixel_beams, primary, shading, soft_shadows};
 use crate::backend::{Backend, Routed, Routing};
 use crate::error::Error;
 use crate::plan::{Pass, PixelBeams, Plan, Primary};
 use crate::progress::Progress;
+use crate::sample::Coverage;
 use crate::scene::Scene;
 use crate::stats::PassStats;
 use crate::window::{Window, window_grid};
@@ -109,7 +112,7 @@ impl<'a> Pipeline<'a> {
             )
         };
 
-        let (mut samples, cost) = match plan.primary {
+        let (primaries, cost) = match plan.primary {
             Primary::ScreenBoxes { .. } | Primary::Iaa { .. } => {
                 let PixelBeams {
                     max_depth,
@@ -130,7 +133,7 @@ impl<'a> Pipeline<'a> {
                     q, scene, window, &classes, &scopes, refine, progress,
                 )?;
                 passes.push(stats);
-                (samples, cost)
+                (Primaries::Samples(samples), cost)
             }
             Primary::ScreenRays { rays_per_undecided }
             | Primary::Octree { rays_per_undecided }
@@ -141,19 +144,75 @@ impl<'a> Pipeline<'a> {
                     Primary::Octree { .. } => primary::RayStart::FirstCell,
                     _ => primary::RayStart::BoxWindow,
                 };
-                let (samples, cost, stats) = primary::primary_rays(
-                    q,
-                    scene,
-                    window,
-                    (&classes, &scopes, &traced),
-                    (rays_per_undecided, start, plan.narrow_hits),
-                    progress,
-                )?;
+                let pixels = (&classes, &scopes, &traced);
+                let rays = (rays_per_undecided, start, plan.narrow_hits);
+                // Unlit: no pass after this one reads a surface point, so each pixel's
+                // colour and coverage are resolved at once.
+                let (primaries, cost, stats) = if plan.shading {
+                    let (samples, cost, stats) = primary::primary_rays(
+                        q,
+                        scene,
+                        window,
+                        pixels,
+                        rays,
+                        (Pixels::with_capacity, progress),
+                    )?;
+                    (Primaries::Samples(samples), cost, stats)
+                } else {
+                    let (flat, cost, stats) = primary::primary_rays(
+                        q,
+                        scene,
+                        window,
+                        pixels,
+                        rays,
+                        (|n, _| Flat::with_capacity(scene, n), progress),
+                    )?;
+                    (Primaries::Flat(flat.colors, flat.coverage), cost, stats)
+                };
                 passes.push(stats);
                 passes.push(PassStats::skipped(Pass::PixelBeams.name()));
-                (samples, cost)
+                (primaries, cost)
             }
         };
+        let (colors, coverage, shadows, lights) = match primaries {
+            Primaries::Samples(samples) => self.shade(samples, window, progress, &mut passes)?,
+            Primaries::Flat(colors, coverage) => {
+                for pass in [
+                    Pass::Normals,
+                    Pass::HardShadows,
+                    Pass::SoftShadows,
+                    Pass::Shading,
+                ] {
+                    passes.push(PassStats::skipped(pass.name()));
+                }
+                (colors, coverage, None, Vec::new())
+            }
+        };
+
+        Ok(Piece {
+            window: *window,
+            colors,
+            classes: classes.into_boxes(),
+            coverage,
+            cost,
+            shadows,
+            passes,
+            lights,
+        })
+    }
+
+    /// The passes after the primary pass over the samples of `window`'s pixels: normals,
+    /// hard and soft shadows and shading, each where the plan runs it (their statistics
+    /// pushed on `passes`). Returns each pixel's colour and coverage, the soft shadows'
+    /// maps and their statistics per light.
+    fn shade(
+        &self,
+        mut samples: Pixels,
+        window: &Window,
+        progress: &dyn Progress,
+        passes: &mut Vec<PassStats>,
+    ) -> Result<Shades, Error> {
+        let (q, scene, plan) = (&self.queries, self.scene, self.plan);
         if plan.runs(Pass::Normals) {
             passes.push(shading::normals(q, scene, &mut samples, progress)?);
         } else {
@@ -195,17 +254,7 @@ impl<'a> Pipeline<'a> {
 
         let shaded = shading::shading(q, scene, plan.runs(Pass::Shading), &samples, &vis)?;
         passes.push(shaded.stats);
-
-        Ok(Piece {
-            window: *window,
-            colors: shaded.colors,
-            classes: classes.into_boxes(),
-            coverage: shaded.coverage,
-            cost,
-            shadows,
-            passes,
-            lights,
-        })
+        Ok((shaded.colors, shaded.coverage, shadows, lights))
     }
 
     /// The render of the whole image from `pieces` whose windows cover it, each pixel
@@ -227,6 +276,21 @@ impl<'a> Pipeline<'a> {
         )
     }
 }
+
+/// What the primary pass hands on: every pixel's samples, for the passes that shade them,
+/// or (unlit) each pixel's colour and coverage.
+enum Primaries {
+    Samples(Pixels),
+    Flat(Vec<[f32; 3]>, Vec<Coverage>),
+}
+
+/// Each pixel's colour and coverage, the soft shadows' maps, and their statistics per light.
+type Shades = (
+    Vec<[f32; 3]>,
+    Vec<Coverage>,
+    Option<PieceShadows>,
+    Vec<PassStats>,
+);
 
 /// Renders `scene` with `backend`: the plan, the pipeline over the whole image, and the
 /// output.

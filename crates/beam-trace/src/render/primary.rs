@@ -6,10 +6,11 @@ use std::time::Instant;
 use interval_core::Interval;
 use rayon::prelude::*;
 
-use super::batches::{PixelSamples, RAY_BATCH_PIXELS, RowBatch, row_batches};
+use super::batches::{RAY_BATCH_PIXELS, RowBatch, row_batches};
 use super::buffers;
 use super::classes::{BoxPixel, Kind, PixelClasses};
-use super::pixels::{self, Pixels, owners};
+use super::pixels::{self, owners};
+use super::resolve::{PixelSink, RayBatch};
 use super::scopes::PixelScopes;
 use crate::backend::{
     BeamQuery, CellQuery, DirectHits, HitQuery, Queries, RayQuery, VariationQuery,
@@ -23,7 +24,7 @@ use crate::plan::{Pass, Plan, Primary};
 use crate::progress::Progress;
 use crate::ray::Ray;
 use crate::root::{Proof, RootResult};
-use crate::sample::{Area, Sample};
+use crate::sample::Area;
 use crate::scene::Scene;
 use crate::screen::{
     OCTREE_TILE, PixelRect, SCREEN_TILE as TILE, needs_split, stratified_offsets, stratified_side,
@@ -514,15 +515,17 @@ fn known_root(narrow: bool, class: Option<BoxPixel>, trace: Option<&Traced>) -> 
 /// rays per pixel, from where the pixel's beam proved them root-free; a Miss box's pixels
 /// are background without a ray. `classes` holds each pixel's box and `scopes` the scope
 /// of the box's beam (none in per-pixel mode). Without `narrow`, a Hit box's ray is not
-/// searched: its first root is the one the box proved in `T_final`.
-pub(super) fn primary_rays(
+/// searched: its first root is the one the box proved in `T_final`. The pixels go, batch
+/// by batch, to the sink `make` makes from the number of pixels and of rays
+/// ([`PixelSink`]: their samples, or, unlit, their colours and coverage).
+pub(super) fn primary_rays<S: PixelSink>(
     q: &dyn Queries,
     scene: &Scene,
     window: &Window,
     (classes, scopes, traced): (&PixelClasses, &PixelScopes, &PixelTraces),
     (rays, start, narrow): (u32, RayStart, bool),
-    progress: &dyn Progress,
-) -> Result<PixelSamples, Error> {
+    (make, progress): (impl FnOnce(usize, usize) -> S, &dyn Progress),
+) -> Result<(S, Vec<f32>, PassStats), Error> {
     let (w, h) = (window.width(), window.height());
     let t0 = Instant::now();
     let pixel_rays = PixelRays::new(&scene.camera, rays, window);
@@ -534,7 +537,7 @@ pub(super) fn primary_rays(
         .into_par_iter()
         .map(|p| ray_count(classes.kind(p), pixel_rays.count()))
         .sum();
-    let mut pixels = Pixels::with_capacity(npix, all_rays);
+    let mut sink = make(npix, all_rays);
     let mut cost: Vec<f32> = buffers::with_room(npix);
     for RowBatch { rows, first, n } in row_batches(w, h, RAY_BATCH_PIXELS / w.max(1)) {
         // The rays of every pixel of the batch, built in parallel; pixel `k` owns the rays
@@ -704,20 +707,33 @@ pub(super) fn primary_rays(
                 (0..n).map(|k| ray_cost[first_ray[k]..first_ray[k + 1]].iter().sum::<f32>()),
             );
         }
-        // Each pixel's samples: one per ray, in order. A Miss box's pixel has none: it is
-        // background, proven missed.
-        let samples = ray_pixel.par_iter().enumerate().map(|(j, &k)| Sample {
-            // Each of the pixel's rays weighs the same.
-            weight: 1.0 / (first_ray[k as usize + 1] - first_ray[k as usize]) as f32,
-            hit: hit_of(j),
-            area: sample_area(classes.kind(first + k as usize)),
-        });
-        pixels.par_extend(samples, &first_ray);
+        // The leaf that shades ray `j`'s first root, without its hit record.
+        let leaf_of = |j: usize| {
+            let t = root_of(j)?;
+            match direct {
+                Some(d) if DirectHits::applies(t) => Some(d.leaf),
+                _ => hit_rays
+                    .binary_search(&j)
+                    .ok()
+                    .map(|rank| hits.values[rank].leaf),
+            }
+        };
+        // Each pixel's rays, in order. A Miss box's pixel has none: it is background,
+        // proven missed.
+        sink.extend(
+            RayBatch {
+                first: &first_ray,
+                owner: &ray_pixel,
+            },
+            |k| sample_area(classes.kind(first + k)),
+            leaf_of,
+            hit_of,
+        );
         progress.advance(u64::from(rows));
     }
     progress.end();
     Ok((
-        pixels,
+        sink,
         cost,
         PassStats::of(Pass::PrimaryRays, t0.elapsed(), &c),
     ))

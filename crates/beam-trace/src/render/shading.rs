@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use super::buffers;
 use super::pixels::Pixels;
+use super::resolve::resolve;
 use crate::backend::{Queries, ShadeBatch, ShadeLight, ShadeSample};
 use crate::error::Error;
 use crate::plan::Pass;
@@ -141,25 +142,15 @@ pub(super) fn shading(
     (0..pixels.len())
         .into_par_iter()
         .map(|p| {
-            let mut acc = [0f32; 3];
-            let mut wsum = 0f32;
-            for j in pixels.range(p) {
+            let shares = pixels.range(p).map(|j| {
                 let s = &samples[j];
                 let c = match &s.hit {
                     Some(h) => color(j, h),
                     None => scene.background,
                 };
-                for k in 0..3 {
-                    acc[k] += s.weight * c[k];
-                }
-                wsum += s.weight;
-            }
-            let color = if wsum > 0.0 {
-                acc.map(|a| a / wsum)
-            } else {
-                scene.background
-            };
-            (color, Coverage::of(pixels.pixel(p)))
+                (s.weight, c, s.area)
+            });
+            resolve(shares, scene.background)
         })
         .unzip_into_vecs(&mut pixel_colors, &mut coverage);
     let stats = if lit {
