@@ -90,14 +90,19 @@ impl PixelSink for Flat<'_> {
         L: Fn(usize) -> Option<u32> + Sync,
         H: Fn(usize) -> Option<Hit> + Sync,
     {
-        let scene = self.scene;
+        let (scene, background) = (self.scene, self.scene.background);
         let pixels = (0..batch.first.len() - 1).into_par_iter().map(|k| {
+            // The pixel's rays share its weight and its area.
+            let rays = batch.first[k]..batch.first[k + 1];
             let (weight, area) = (batch.weight(k), area(k));
-            let rays = (batch.first[k]..batch.first[k + 1]).map(|j| {
-                let color = leaf(j).map_or(scene.background, |l| scene.material_of(l).color);
-                (weight, color, area)
+            let colors = rays.clone().map(|j| {
+                let color = leaf(j).map_or(background, |l| scene.material_of(l).color);
+                (weight, color)
             });
-            resolve(rays, scene.background)
+            (
+                weighed(colors, background),
+                Coverage::of_shares(std::iter::repeat_n((weight, area), rays.len())),
+            )
         });
         let mut both = (
             std::mem::take(&mut self.colors),
@@ -109,28 +114,32 @@ impl PixelSink for Flat<'_> {
 }
 
 /// A pixel's colour and coverage from its samples, each given as its weight, its colour
-/// and what its beam proved of its share: the colours weighed (`background` where no
-/// sample weighs anything, as for a pixel without samples), and [`Coverage::of`] the
-/// shares.
+/// and what its beam proved of its share: the colours [`weighed`], and [`Coverage::of`]
+/// the shares.
 pub(super) fn resolve(
     samples: impl Iterator<Item = (f32, [f32; 3], Area)> + Clone,
     background: [f32; 3],
 ) -> ([f32; 3], Coverage) {
+    (
+        weighed(samples.clone().map(|(w, c, _)| (w, c)), background),
+        Coverage::of_shares(samples.map(|(weight, _, area)| (weight, area))),
+    )
+}
+
+/// The mean of a pixel's colours, each given with its weight (`background` where none
+/// weighs anything, as for a pixel without samples).
+fn weighed(colors: impl Iterator<Item = (f32, [f32; 3])>, background: [f32; 3]) -> [f32; 3] {
     let mut acc = [0f32; 3];
     let mut wsum = 0f32;
-    for (weight, c, _) in samples.clone() {
+    for (weight, c) in colors {
         for k in 0..3 {
             acc[k] += weight * c[k];
         }
         wsum += weight;
     }
-    let color = if wsum > 0.0 {
+    if wsum > 0.0 {
         acc.map(|a| a / wsum)
     } else {
         background
-    };
-    (
-        color,
-        Coverage::of_shares(samples.map(|(weight, _, area)| (weight, area))),
-    )
+    }
 }
