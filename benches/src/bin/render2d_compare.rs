@@ -29,11 +29,6 @@ use fidget::shape::Shape;
 use fidget::vm::VmFunction;
 use render2d::{Image, Settings};
 
-/// The allocator of both renderers: freed buffers are kept for the next timed render (the
-/// system allocator returns each large one and its pages are faulted in again).
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 struct Options {
     size: usize,
     threads: usize,
@@ -141,7 +136,7 @@ fn run() -> Result<(), String> {
             .map_err(|e| e.to_string())?,
     );
     println!(
-        "{}x{} pixels over [-1, 1]², {} threads for every renderer, all allocating with mimalloc, best / median of {} runs; {}\n",
+        "{}x{} pixels over [-1, 1]², {} threads for every renderer, best / median of {} runs; {}\n",
         o.size,
         o.size,
         o.threads,

@@ -83,11 +83,6 @@ use fidget::shape::Shape;
 use fidget::vm::VmFunction;
 use interval_core::isa::{self, Isa};
 
-/// The allocator of both renderers: freed buffers are kept for the next timed render (the
-/// system allocator returns each large one and its pages are faulted in again).
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 const USAGE: &str = "usage: render3d_compare [--sizes 512,1024] [--threads 2] [--runs 3] \
 [--distance 100000] [--precision f64|f32] [--primary screen-rays|octree|screen-boxes] [--isa baseline|best] \
 [--warm] [--stats] [--images DIR] [MODEL.vm ...]";
@@ -403,7 +398,7 @@ fn run() -> Result<(), String> {
          ours: beam_trace::render, eye (0, 0, {d}) looking at the origin, up +y, fov 2·atan(1/{d}) = {:.5}°, \
          one ray per pixel centre, no light (primary visibility only), {} intervals, evaluator loops for {}; \
          at depth z the view is scaled by {d}/({d} - z), at most {:.4} px off at the border of a {}² image.\n\
-         {} threads for each renderer, both allocating with mimalloc; times: best of {} runs (median in brackets); {}.\n",
+         {} threads for each renderer; times: best of {} runs (median in brackets); {}.\n",
         2.0 * (1.0 / d).atan().to_degrees(),
         o.precision,
         isa.name(),

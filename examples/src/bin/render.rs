@@ -33,11 +33,6 @@ use clap::Parser;
 use examples::pass_bars::PassBars;
 use indicatif::{MultiProgress, ProgressBar, ProgressStyle};
 
-/// The allocator: freed per-pixel buffers are kept for the next frame of an animation (the
-/// system allocator returns each large one and its pages are faulted in again).
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 /// Reliable interval ray tracing of implicit surfaces.
 #[derive(Parser, Debug)]
 #[command(version, about)]

@@ -18,11 +18,6 @@ use clap::{Parser, ValueEnum};
 use implicit_expr::{Context, Error, Tape};
 use render2d::{Image, Region, Settings};
 
-/// The allocator: freed image buffers are kept for the next render (the system allocator
-/// returns each large one and its pages are faulted in again).
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 /// Renders f(x, y) < 0 (inside) by interval subdivision with tape pruning.
 #[derive(Parser, Debug)]
 #[command(name = "render2d")]
