@@ -113,22 +113,9 @@ impl PixelSink for Flat<'_> {
     }
 }
 
-/// A pixel's colour and coverage from its samples, each given as its weight, its colour
-/// and what its beam proved of its share: the colours [`weighed`], and [`Coverage::of`]
-/// the shares.
-pub(super) fn resolve(
-    samples: impl Iterator<Item = (f32, [f32; 3], Area)> + Clone,
-    background: [f32; 3],
-) -> ([f32; 3], Coverage) {
-    (
-        weighed(samples.clone().map(|(w, c, _)| (w, c)), background),
-        Coverage::of_shares(samples.map(|(weight, _, area)| (weight, area))),
-    )
-}
-
 /// The mean of a pixel's colours, each given with its weight (`background` where none
 /// weighs anything, as for a pixel without samples).
-fn weighed(colors: impl Iterator<Item = (f32, [f32; 3])>, background: [f32; 3]) -> [f32; 3] {
+pub(super) fn weighed(colors: impl Iterator<Item = (f32, [f32; 3])>, background: [f32; 3]) -> [f32; 3] {
     let mut acc = [0f32; 3];
     let mut wsum = 0f32;
     for (weight, c) in colors {

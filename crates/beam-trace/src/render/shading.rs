@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use super::buffers;
 use super::pixels::Pixels;
-use super::resolve::resolve;
+use super::resolve::weighed;
 use crate::backend::{Queries, ShadeBatch, ShadeLight, ShadeSample};
 use crate::error::Error;
 use crate::plan::Pass;
@@ -142,15 +142,18 @@ pub(super) fn shading(
     (0..pixels.len())
         .into_par_iter()
         .map(|p| {
-            let shares = pixels.range(p).map(|j| {
+            let colors = pixels.range(p).map(|j| {
                 let s = &samples[j];
                 let c = match &s.hit {
                     Some(h) => color(j, h),
                     None => scene.background,
                 };
-                (s.weight, c, s.area)
+                (s.weight, c)
             });
-            resolve(shares, scene.background)
+            (
+                weighed(colors, scene.background),
+                Coverage::of(pixels.pixel(p)),
+            )
         })
         .unzip_into_vecs(&mut pixel_colors, &mut coverage);
     let stats = if lit {
