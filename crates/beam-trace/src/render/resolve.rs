@@ -115,7 +115,10 @@ impl PixelSink for Flat<'_> {
 
 /// The mean of a pixel's colours, each given with its weight (`background` where none
 /// weighs anything, as for a pixel without samples).
-pub(super) fn weighed(colors: impl Iterator<Item = (f32, [f32; 3])>, background: [f32; 3]) -> [f32; 3] {
+pub(super) fn weighed(
+    colors: impl Iterator<Item = (f32, [f32; 3])>,
+    background: [f32; 3],
+) -> [f32; 3] {
     let mut acc = [0f32; 3];
     let mut wsum = 0f32;
     for (weight, c) in colors {
