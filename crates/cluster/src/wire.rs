@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use beam_trace::Coverage;
 use beam_trace::beam::BoxClass;
-use beam_trace::render::{Piece, PieceShadows};
+use beam_trace::render::{Piece, PieceShadows, PixelBox};
 use beam_trace::screen::PixelRect;
 use beam_trace::shadow::ShadowClass;
 use beam_trace::stats::PassStats;
@@ -252,16 +252,16 @@ pub fn write_piece(w: &mut Writer, p: &Piece) {
         c.iter().for_each(|&v| w.f32(v));
     }
     for c in &p.classes {
-        match c {
+        match c.get() {
             None => w.u8(0),
-            Some((BoxClass::Miss, edge)) => w.u8(1 | u8::from(*edge) << 4),
+            Some((BoxClass::Miss, edge)) => w.u8(1 | u8::from(edge) << 4),
             Some((BoxClass::Hit { t_final }, edge)) => {
-                w.u8(2 | u8::from(*edge) << 4);
-                write_interval(w, *t_final);
+                w.u8(2 | u8::from(edge) << 4);
+                write_interval(w, t_final);
             }
             Some((BoxClass::Undecided { t }, edge)) => {
-                w.u8(3 | u8::from(*edge) << 4);
-                write_interval(w, *t);
+                w.u8(3 | u8::from(edge) << 4);
+                write_interval(w, t);
             }
         }
     }
@@ -300,7 +300,7 @@ pub fn read_piece(r: &mut Reader<'_>) -> Result<Piece, ReadError> {
     for _ in 0..n {
         let tag = r.u8("box class")?;
         let edge = tag >> 4 != 0;
-        classes.push(match tag & 15 {
+        classes.push(PixelBox::from(match tag & 15 {
             0 => None,
             1 => Some((BoxClass::Miss, edge)),
             2 => Some((
@@ -316,7 +316,7 @@ pub fn read_piece(r: &mut Reader<'_>) -> Result<Piece, ReadError> {
                 edge,
             )),
             t => return Err(format!("box class tag {t}")),
-        });
+        }));
     }
     let coverage = (0..n)
         .map(|_| {

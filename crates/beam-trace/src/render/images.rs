@@ -3,6 +3,7 @@
 
 use rayon::prelude::*;
 
+use super::classes::PixelBox;
 use crate::beam::BoxClass;
 use crate::image::Image;
 use crate::shadow::ShadowClass;
@@ -19,14 +20,14 @@ pub fn box_class_color(class: &BoxClass) -> [f32; 3] {
 
 /// The screen box classification image (thesis fig. 5.13): each pixel's box class, box
 /// outlines darker; grey where no beam classified the pixel.
-pub fn classification_image(w: u32, h: u32, classes: &[Option<(BoxClass, bool)>]) -> Image {
+pub fn classification_image(w: u32, h: u32, classes: &[PixelBox]) -> Image {
     let pixels = classes
         .par_iter()
-        .map(|c| match c {
+        .map(|c| match c.get() {
             None => [0.5, 0.5, 0.5],
             Some((class, edge)) => {
-                let base = box_class_color(class);
-                if *edge { base.map(|v| v * 0.6) } else { base }
+                let base = box_class_color(&class);
+                if edge { base.map(|v| v * 0.6) } else { base }
             }
         })
         .collect();

@@ -29,6 +29,7 @@ mod scopes;
 mod shading;
 mod soft_shadows;
 
+pub use classes::PixelBox;
 pub use images::{box_class_color, classification_image, cost_image, shadow_class_image};
 pub use output::{RenderOutput, ShadowMaps};
 pub use piece::{Piece, PieceShadows};

@@ -4,9 +4,9 @@
 use std::time::Instant;
 
 use super::buffers;
+use super::classes::PixelBox;
 use super::images::shadow_class_image;
 use super::output::{RenderOutput, ShadowMaps};
-use crate::beam::BoxClass;
 use crate::error::Error;
 use crate::image::Image;
 use crate::plan::{Pass, Plan};
@@ -32,7 +32,7 @@ pub struct Piece {
     pub colors: Vec<[f32; 3]>,
     /// Each pixel's screen box class and whether it lies on its box's top or left edge
     /// (`None` where no screen box classified it).
-    pub classes: Vec<Option<(BoxClass, bool)>>,
+    pub classes: Vec<PixelBox>,
     /// Each pixel's proven coverage bounds.
     pub coverage: Vec<Coverage>,
     /// Each pixel's cost of primary visibility (the backend's unit: time on the CPU).
@@ -157,7 +157,7 @@ pub(super) fn assemble(
 /// Every pixel's values of the image, in image order.
 struct ImageMaps {
     colors: Vec<[f32; 3]>,
-    classes: Vec<Option<(BoxClass, bool)>>,
+    classes: Vec<PixelBox>,
     coverage: Vec<Coverage>,
     cost: Vec<f32>,
     shadow_classes: Vec<Option<ShadowClass>>,
@@ -223,7 +223,7 @@ fn gather(
     }
     let mut seen = vec![false; npix];
     let mut colors = vec![[0f32; 3]; npix];
-    let mut classes: Vec<Option<(BoxClass, bool)>> = vec![None; npix];
+    let mut classes = vec![PixelBox::NONE; npix];
     let no_coverage = Coverage {
         proven: 0.0,
         possible: 0.0,
