@@ -574,6 +574,16 @@ impl BeamEval {
         }
     }
 
+    /// The number of instructions `g` is evaluated with now at the precision set (the
+    /// length of [`RayFn::scope`], without a handle to the tape).
+    pub fn scope_len(&self) -> usize {
+        match self.precision {
+            Precision::F64 => self.interval.g_len(),
+            Precision::F32 => self.interval32.g_len(),
+            Precision::Dd => self.interval_dd.g_len(),
+        }
+    }
+
     /// The share of the tape's `min`/`max` operations whose choice the last
     /// [`BeamEval::g_traced`] decided, where it was over `t` with the tape and beam set now
     /// and recorded them ([`RayEvaluator::decided_share`]); `None` otherwise.

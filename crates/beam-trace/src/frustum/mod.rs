@@ -738,11 +738,7 @@ impl Search<'_> {
     /// (`restrict_traced`) instead of evaluating again.
     fn enclosure(&mut self, t: Interval<f64>) -> Interval<f64> {
         self.counters.g_evals += 1;
-        if self
-            .g
-            .scope()
-            .is_some_and(|tape| tape.len() >= TRACED_MIN_LEN)
-        {
+        if self.g.scope_len() >= TRACED_MIN_LEN {
             self.g.g_traced(t)
         } else {
             self.g.g(t)
