@@ -154,7 +154,8 @@ impl Filled {
     /// The pixels of `r`, node `node` of the quadtree, with rays pending, row by row: `each`
     /// is called with each of them. Where the node's counts are kept none is looked for
     /// when they say there is none: every pixel touched is done or pending, so the node's
-    /// pending pixels are its touched less its done (most cells of a render have none).
+    /// pending pixels are its touched less its done (a cell away from every undecided pixel
+    /// has none).
     #[inline]
     pub(super) fn pending_in(&self, r: PixelRect, node: usize, mut each: impl FnMut(u32, u32)) {
         if let (Some(touched), Some(done)) =
