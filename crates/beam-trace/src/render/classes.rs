@@ -2,11 +2,10 @@
 //! class, kept in the form the render's output holds, the kind of each class in a byte,
 //! and the pixels whose shading was judged smooth.
 
+use interval_core::Interval;
 use rayon::prelude::*;
 
 use super::buffers;
-use interval_core::Interval;
-
 use crate::beam::BoxClass;
 
 /// What the first primary pass proved of a pixel.
@@ -130,17 +129,19 @@ impl BandMut<'_> {
     /// The band's pixel `i` in a box of class `class`, on its top or left edge where
     /// `edge`.
     pub(super) fn set(&mut self, i: usize, class: BoxClass, edge: bool) {
-        self.boxes[i] = PixelBox::new(class, edge);
-        self.kinds[i] = Kind::of(Some(&class));
+        let b = PixelBox::new(class, edge);
+        self.boxes[i] = b;
+        self.kinds[i] = b.kind;
     }
 }
 
 impl PixelClasses {
     /// `n` pixels, each with `class` (none judged smooth).
     pub(super) fn filled(n: usize, class: Option<(BoxClass, bool)>) -> Self {
+        let b = PixelBox::from(class);
         Self {
-            boxes: buffers::filled(n, PixelBox::from(class)),
-            kinds: buffers::filled(n, Kind::of(class.as_ref().map(|(c, _)| c))),
+            boxes: buffers::filled(n, b),
+            kinds: buffers::filled(n, b.kind),
             smooth: Vec::new(),
         }
     }

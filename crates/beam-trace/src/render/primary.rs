@@ -681,22 +681,24 @@ pub(super) fn primary_rays<S: PixelSink>(
                 ray_cost[j] += t;
             }
         }
-        let hit_of = |j: usize| {
+        // Where ray `j`'s hit record comes from: made here from its root where the backend
+        // leaves that to the pass (`Ok`), else the backend's answer at its rank among the
+        // rays asked about (`Err(rank)`).
+        let hit_source = |j: usize| {
             let t = root_of(j)?;
             match direct {
-                Some(d) if DirectHits::applies(t) => {
-                    let (p, r) = pixel_of(j);
-                    let traced = traces_of(classes.kind(p), traced, p);
-                    let ray =
-                        ray_of_pixel(&pixel_rays, window.pixel(p), classes.kind(p), traced, r);
-                    d.hit(&ray, t)
-                }
-                // Asked about: its answer is at its rank.
-                _ => hit_rays
-                    .binary_search(&j)
-                    .ok()
-                    .map(|rank| hits.values[rank]),
+                Some(d) if DirectHits::applies(t) => Some(Ok((d, t))),
+                _ => hit_rays.binary_search(&j).ok().map(Err),
             }
+        };
+        let hit_of = |j: usize| match hit_source(j)? {
+            Ok((d, t)) => {
+                let (p, r) = pixel_of(j);
+                let traced = traces_of(classes.kind(p), traced, p);
+                let ray = ray_of_pixel(&pixel_rays, window.pixel(p), classes.kind(p), traced, r);
+                d.hit(&ray, t)
+            }
+            Err(rank) => Some(hits.values[rank]),
         };
         if ray_cost.is_empty() {
             // No ray was searched or asked about: no pixel of the batch cost anything
@@ -708,15 +710,9 @@ pub(super) fn primary_rays<S: PixelSink>(
             );
         }
         // The leaf that shades ray `j`'s first root, without its hit record.
-        let leaf_of = |j: usize| {
-            let t = root_of(j)?;
-            match direct {
-                Some(d) if DirectHits::applies(t) => Some(d.leaf),
-                _ => hit_rays
-                    .binary_search(&j)
-                    .ok()
-                    .map(|rank| hits.values[rank].leaf),
-            }
+        let leaf_of = |j: usize| match hit_source(j)? {
+            Ok((d, _)) => Some(d.leaf),
+            Err(rank) => Some(hits.values[rank].leaf),
         };
         // Each pixel's rays, in order. A Miss box's pixel has none: it is background,
         // proven missed.
