@@ -10,11 +10,17 @@
 //! interpreter's tight arithmetic computes.
 //!
 //! The function begins by saving `mxcsr` and loading upward rounding with every exception
-//! masked and no flag set; it ends by reading the invalid-operation flag (raised by every
-//! NaN an operation makes or meets: `∞ − ∞`, `0 · ∞`, the root of a negative number, an
-//! empty argument of `min`, `max` or a comparison) and restoring `mxcsr`. A raised flag
-//! tells the caller to evaluate with the interpreter instead, whose rules for empty sets
-//! and the limits at infinity apply there.
+//! masked; it ends by restoring `mxcsr`. A NaN made anywhere tells the caller to evaluate
+//! with the interpreter instead, whose rules for empty sets and the limits at infinity
+//! apply there. An empty variable (NaN bounds) is flagged where it is read. On nonempty
+//! intervals (no lower bound `+∞`, no upper bound `−∞`) only two operations can make a
+//! NaN: a product of a zero and an infinite bound (`0 · ∞`, at a corner of a product,
+//! where the largest of the corners would hide it), and the root of an argument entirely
+//! below 0. Those add their NaN lanes to a mask (`xmm8`), which the function returns as a
+//! flag; sums, differences, `min`, `max` and the other operations keep the bounds' signs
+//! apart and make none. (Reading the invalid-operation flag of `mxcsr` instead waits for
+//! every operation of the code to finish: a third to a half of an evaluation of a short
+//! tape.)
 //!
 //! The long operations (product, square, absolute value, square root, `not`, and the
 //! comparison behind a recorded choice) are assembled once, as the [`Runtime`]'s routines,
@@ -259,6 +265,7 @@ fn assemble(b: &mut Buffers, tape: &Tape, traced: bool, entries: &[u64; ROUTINES
     a.stmxcsr(Mem::Stack(0));
     a.ldmxcsr(Mem::Pool(CSR));
     a.rr(Sse::XorPd, PARTIAL, PARTIAL);
+    a.clear_nan_mask();
     if traced {
         a.lea_rcx_pool(MIN_TABLE);
     }
@@ -280,6 +287,10 @@ fn assemble(b: &mut Buffers, tape: &Tape, traced: bool, entries: &[u64; ROUTINES
             Opcode::Var => {
                 a.rm(Sse::MovUpd, X0, Mem::Vars(16 * ins.a as i32));
                 a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
+                // An empty variable (NaN bounds) is a NaN made here.
+                a.rr(Sse::MovApd, X1, X0);
+                a.cmppd(X1, X0, Cmp::Unord);
+                a.or_nan_mask(X1);
             }
             Opcode::Const | Opcode::Copy => load(a, X0, ins.a),
             Opcode::Unary(op) => {
@@ -316,9 +327,8 @@ fn assemble(b: &mut Buffers, tape: &Tape, traced: bool, entries: &[u64; ROUTINES
         a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
         a.store(Mem::Out(16 * i as i32), X0);
     }
-    // Flags: bit 0 the invalid operation, bit 1 a partial square root, bit 2 a jump.
-    a.stmxcsr(Mem::Stack(4));
-    a.load_eax_stack(4);
+    // Flags: bit 0 a NaN made, bit 1 a partial square root, bit 2 a jump.
+    a.nan_mask_eax();
     a.movmskpd_ecx(PARTIAL);
     a.merge_flags();
     a.ldmxcsr(Mem::Stack(0));
@@ -412,7 +422,7 @@ fn across(a: &mut Asm, op: Sse, dst: Xmm, src: Xmm) {
 }
 
 /// `X0 = √X0` over the argument's non-negative part; flags a negative lower bound in
-/// [`PARTIAL`]. The argument entirely below 0 gives NaN and the invalid flag.
+/// [`PARTIAL`]. The argument entirely below 0 gives NaN, added to the NaN mask.
 fn sqrt(a: &mut Asm) {
     // PARTIAL |= (0 < −lo).
     a.rm(Sse::MovSd, X1, Mem::Pool(ZERO));
@@ -437,6 +447,10 @@ fn sqrt(a: &mut Asm) {
     a.rr(Sse::SqrtSd, X5, X5);
     a.rr(Sse::UnpckLPd, X2, X5);
     a.rr(Sse::MovApd, X0, X2);
+    // The root of an upper bound below 0 (the argument entirely negative) is NaN.
+    a.rr(Sse::MovApd, X1, X0);
+    a.cmppd(X1, X0, Cmp::Unord);
+    a.or_nan_mask(X1);
 }
 
 /// `X0 = not(X0)`: `[1, 1]` on `[0, 0]`, `[0, 1]` on an interval holding 0, else
@@ -463,7 +477,7 @@ fn not(a: &mut Asm) {
     a.rr(Sse::MovApd, X0, X2);
 }
 
-/// `X0 = X0 op X1`; uses `X2` to `X6`.
+/// `X0 = X0 op X1`; uses `X2` to `X6` (a product `X1` too).
 fn binary(a: &mut Asm, op: BinaryOp) {
     match op {
         BinaryOp::Add => a.rr(Sse::AddPd, X0, X1),
@@ -494,7 +508,7 @@ fn binary(a: &mut Asm, op: BinaryOp) {
 /// `X0 = X0 · X1`: with `A = [−al, ah]`, `B = [−bl, bh]`, the lane-wise maximum of
 /// `A·[bl, bh]`, `A·[bh, bl]`, `[ah, −al]·[−bl, −bl]` and `[ah, −al]·[−bh, −bh]`, rounded
 /// upward: the negated products of the four corners in the low lane, the products in the
-/// high one.
+/// high one. A corner `0 · ∞` goes to the NaN mask. Uses `X1` to `X6`.
 fn mul(a: &mut Asm) {
     a.rr(Sse::MovApd, X2, X1);
     a.rm(Sse::XorPd, X2, Mem::Pool(SIGN_LO)); // [bl, bh]
@@ -511,6 +525,13 @@ fn mul(a: &mut Asm) {
     a.rr(Sse::MulPd, X3, X0);
     a.rr(Sse::MulPd, X5, X4);
     a.rr(Sse::MulPd, X6, X4);
+    // A corner `0 · ∞` is NaN, which `maxpd` would drop: into the NaN mask.
+    a.rr(Sse::MovApd, X1, X2);
+    a.cmppd(X1, X3, Cmp::Unord);
+    a.or_nan_mask(X1);
+    a.rr(Sse::MovApd, X1, X5);
+    a.cmppd(X1, X6, Cmp::Unord);
+    a.or_nan_mask(X1);
     a.rr(Sse::MaxPd, X2, X3);
     a.rr(Sse::MaxPd, X5, X6);
     a.rr(Sse::MaxPd, X2, X5);

@@ -16,8 +16,8 @@
 //! The compiled operations: `+ − ×`, negation, `abs`, square, square root, `min`, `max`
 //! and `not`; a tape with any other is left to the interpreter.
 //!
-//! Where an operation meets an empty set, an infinite limit (`∞ − ∞`, `0 · ∞`) or a square
-//! root of a negative interval, the code says so (the invalid-operation flag) and the
+//! Where a code meets an empty variable, an infinite limit (`0 · ∞`) or a square root of a
+//! negative interval, it says so (a NaN it made, flagged where it was made) and the
 //! evaluator runs the interpreter instead, so every result is the interpreter's.
 //!
 //! Before the first tape is compiled, a compiled sum checks that the machine honours the
@@ -109,7 +109,7 @@ impl std::fmt::Debug for Code {
 
 /// The signature of a compiled tape: the variables as `[lo, hi]` pairs, the choice bytes
 /// (written only by traced code), the outputs as `[lo, hi]` pairs; returns the flags (bit
-/// 0: invalid operation, bit 1: partial square root, bit 2: a step that may jump).
+/// 0: a NaN made, bit 1: partial square root, bit 2: a step that may jump).
 #[cfg(all(target_arch = "x86_64", target_os = "linux"))]
 type Entry = unsafe extern "sysv64" fn(*const [f64; 2], *mut u8, *mut [f64; 2]) -> u32;
 

@@ -245,6 +245,28 @@ fn fixed_cases() {
         )
         .is_none()
     );
+    // The same where a `min`, `max` or absolute value would drop the NaN, traced or not,
+    // and where a variable is empty.
+    let unbounded = [iv(0.0, 1.0), iv(1.0, f64::INFINITY), iv(0.0, 0.0)];
+    for formula in ["min(sqrt(x), 1)", "max(sqrt(x), 1) + y"] {
+        assert!(run(formula, &x(-2.0, -1.0)).is_none(), "{formula}");
+        let code = Code::compile(&tape_of(formula), true).unwrap();
+        let mut out = [[0.0; 2]; MAX_OUTPUTS];
+        let mut bytes = vec![0u8; 1];
+        assert!(
+            code.run(&pairs(&x(-2.0, -1.0)), &mut bytes, &mut out)
+                .is_none()
+        );
+    }
+    assert!(run("max(x * y, 2)", &unbounded).is_none());
+    assert!(run("min(abs(x * y), 2)", &unbounded).is_none());
+    assert!(
+        run(
+            "max(abs(x), 1)",
+            &[Interval::EMPTY, iv(0.0, 0.0), iv(0.0, 0.0)]
+        )
+        .is_none()
+    );
     // Squares and absolute values across 0; products by sign.
     assert_eq!(run("sqr(x)", &x(-3.0, 2.0)).unwrap().0, iv(0.0, 9.0));
     assert_eq!(run("abs(x)", &x(-3.0, 2.0)).unwrap().0, iv(0.0, 3.0));

@@ -1,5 +1,6 @@
 //! The few x86-64 instructions the compiled tapes use, encoded into a byte buffer: SSE2
-//! on `xmm0`–`xmm7` (no REX prefix needed), loads and stores at `rsp`, `rdi`, `rsi`, `rdx`
+//! on `xmm0`–`xmm7` (no REX prefix needed; `xmm8`, the NaN mask, only in the three
+//! instructions that clear, grow and read it), loads and stores at `rsp`, `rdi`, `rsi`, `rdx`
 //! plus a displacement or at a label of the constant pool (RIP-relative, patched when the
 //! pool is placed), and the handful of integer instructions of the prologue, the epilogue
 //! and the choice bytes.
@@ -97,13 +98,15 @@ impl Sse {
 }
 
 /// Comparison predicates of `cmppd` / `cmpsd`: `Lt` and `Le` signal (a NaN operand raises
-/// the invalid flag), `Neq` does not.
+/// the invalid flag), `Unord` and `Neq` do not.
 #[derive(Copy, Clone, Debug)]
 pub(super) enum Cmp {
     /// `a < b`.
     Lt = 1,
     /// `a ≤ b`.
     Le = 2,
+    /// `a` or `b` is NaN.
+    Unord = 3,
     /// `a ≠ b`.
     Neq = 4,
 }
@@ -228,6 +231,24 @@ impl Asm {
         self.put([0x66, 0x0F, 0x50, 0xC8 | x.0]);
     }
 
+    /// `xorpd xmm8, xmm8`: the NaN mask cleared.
+    pub(super) fn clear_nan_mask(&mut self) {
+        self.put([0x66, 0x45, 0x0F, 0x57, 0xC0]);
+    }
+
+    /// `orpd xmm8, x`: the NaN mask gains the lanes set in `x`.
+    pub(super) fn or_nan_mask(&mut self, x: Xmm) {
+        self.put([0x66, 0x44, 0x0F, 0x56, 0xC0 | x.0]);
+    }
+
+    /// `eax` = 1 where a lane of the NaN mask `xmm8` is set, else 0 (`movmskpd eax, xmm8;
+    /// add eax, 3; shr eax, 2`).
+    pub(super) fn nan_mask_eax(&mut self) {
+        self.put([
+            0x66, 0x41, 0x0F, 0x50, 0xC0, 0x83, 0xC0, 0x03, 0xC1, 0xE8, 0x02,
+        ]);
+    }
+
     /// `movzx eax, byte [rcx + rax + disp]`: a byte of the table `rcx` points at.
     pub(super) fn load_table_byte(&mut self, disp: i8) {
         self.put([0x0F, 0xB6, 0x44, 0x01, disp as u8]);
@@ -264,11 +285,6 @@ impl Asm {
     /// `stmxcsr [m]`.
     pub(super) fn stmxcsr(&mut self, m: Mem) {
         self.mem_form([0x0F, 0xAE], 3, m, None);
-    }
-
-    /// `mov eax, [rsp + disp]`.
-    pub(super) fn load_eax_stack(&mut self, disp: i32) {
-        self.mem_form([0x8B], 0, Mem::Stack(disp), None);
     }
 
     /// `eax = (eax & 1) | ((ecx & 3) << 1)`.
@@ -339,6 +355,10 @@ mod tests {
         a.load_table_byte(4);
         a.store_choice(7);
         a.rm(Sse::MovUpd, Xmm(0), Mem::Stack(0x200)); // movupd xmm0, [rsp+0x200]
+        a.cmppd(Xmm(1), Xmm(2), Cmp::Unord); // cmpunordpd xmm1, xmm2
+        a.clear_nan_mask(); // xorpd xmm8, xmm8
+        a.or_nan_mask(Xmm(1)); // orpd xmm8, xmm1
+        a.nan_mask_eax(); // movmskpd eax, xmm8; add eax, 3; shr eax, 2
         let code = a.finish(&[]).to_vec();
         let want: &[u8] = &[
             0x66, 0x0F, 0x58, 0xC1, //
@@ -350,7 +370,11 @@ mod tests {
             0x66, 0x0F, 0x50, 0xC3, //
             0x0F, 0xB6, 0x44, 0x01, 4, //
             0x88, 0x86, 7, 0, 0, 0, //
-            0x66, 0x0F, 0x10, 0x84, 0x24, 0, 2, 0, 0,
+            0x66, 0x0F, 0x10, 0x84, 0x24, 0, 2, 0, 0, //
+            0x66, 0x0F, 0xC2, 0xCA, 3, //
+            0x66, 0x45, 0x0F, 0x57, 0xC0, //
+            0x66, 0x44, 0x0F, 0x56, 0xC1, //
+            0x66, 0x41, 0x0F, 0x50, 0xC0, 0x83, 0xC0, 0x03, 0xC1, 0xE8, 0x02,
         ];
         assert_eq!(&code[..want.len()], want);
     }
