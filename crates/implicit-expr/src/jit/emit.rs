@@ -525,12 +525,11 @@ fn mul(a: &mut Asm) {
     a.rr(Sse::MulPd, X3, X0);
     a.rr(Sse::MulPd, X5, X4);
     a.rr(Sse::MulPd, X6, X4);
-    // A corner `0 · ∞` is NaN, which `maxpd` would drop: into the NaN mask.
+    // A corner `0 · ∞` is NaN, which `maxpd` would drop: into the NaN mask. `X2` and `X3`
+    // hold the four corners (`X5` and `X6` the same ones, negated), and a product is NaN
+    // whatever the signs.
     a.rr(Sse::MovApd, X1, X2);
     a.cmppd(X1, X3, Cmp::Unord);
-    a.or_nan_mask(X1);
-    a.rr(Sse::MovApd, X1, X5);
-    a.cmppd(X1, X6, Cmp::Unord);
     a.or_nan_mask(X1);
     a.rr(Sse::MaxPd, X2, X3);
     a.rr(Sse::MaxPd, X5, X6);
