@@ -14,13 +14,17 @@
 //! the `interval-batch` groups hold ours only. The `prune/...` groups time one pass over
 //! the 16 × 16 tiles of `[-1, 1]²`: the samples of every tile with the full tape
 //! (`full`), or after tracing the tile's interval evaluation and simplifying the tape
-//! (`pruned`, tracing and simplification included).
+//! (`pruned`, tracing and simplification included). The `ray-beam/...` groups time `g(t)`
+//! over a beam of directions, as the renderer's cells and probes call it: 100 ranges along
+//! one beam per iteration, each evaluation a call of the tape's compiled code.
 
 use std::hint::black_box;
 use std::time::Duration;
 
 use benches::expr::{self, Engine, Engines, FidgetPruneBench, Mode, PruneBench, Samples};
 use criterion::{Criterion, Throughput};
+use implicit_expr::ray::{RayEvaluator, RayFunction};
+use interval_core::Interval;
 
 fn config() -> Criterion {
     Criterion::default()
@@ -100,9 +104,49 @@ fn pruning(c: &mut Criterion) {
     }
 }
 
+/// Formulas of the `ray-beam` groups: a sphere, and a small union and intersection of
+/// shapes as the CSG models hold them.
+const RAY_FORMULAS: [(&str, &str); 2] = [
+    ("sphere", "sqrt(x*x + y*y + z*z) - 1"),
+    (
+        "csg",
+        "max(min(sqrt(x*x + y*y) - 0.5, z - 0.3), min(x - 0.1, max(y + 0.2, sqrt((x - 0.3)^2 + z^2) - 0.4)))",
+    ),
+];
+
+fn ray_beam(c: &mut Criterion) {
+    let iv = |lo: f64, hi: f64| Interval::new(lo, hi).expect("ordered bounds");
+    for (name, formula) in RAY_FORMULAS {
+        let mut ctx = implicit_expr::Context::new();
+        let f = implicit_expr::parse::parse(&mut ctx, formula, &[]).expect("formula parses");
+        let rf = RayFunction::new(&ctx, f).expect("ray function builds");
+        let mut ev = RayEvaluator::<Interval<f64>>::new(&rf, &[]).expect("no parameters");
+        // A beam of directions a pixel or two wide, from a point on the z axis.
+        let origin = [iv(0.0, 0.0), iv(0.0, 0.0), iv(5.0, 5.0)];
+        ev.set_ray(origin, [iv(0.01, 0.011), iv(-0.02, -0.019), iv(-1.0, -1.0)]);
+        let ranges: Vec<Interval<f64>> = (0..100)
+            .map(|i| {
+                let t = 3.0 + f64::from(i) * 0.02;
+                iv(t, t + 0.02)
+            })
+            .collect();
+        let mut g = c.benchmark_group(format!("ray-beam/{name}"));
+        g.throughput(Throughput::Elements(ranges.len() as u64));
+        g.bench_function("ours-f64", |b| {
+            b.iter(|| {
+                for &t in &ranges {
+                    black_box(ev.g(t));
+                }
+            })
+        });
+        g.finish();
+    }
+}
+
 fn main() {
     let mut c = config().configure_from_args();
     evaluation(&mut c);
     pruning(&mut c);
+    ray_beam(&mut c);
     c.final_summary();
 }
