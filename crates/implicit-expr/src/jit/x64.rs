@@ -1,9 +1,9 @@
 //! The few x86-64 instructions the compiled tapes use, encoded into a byte buffer: SSE2
 //! on `xmm0`–`xmm7` (no REX prefix needed; `xmm8`, the NaN mask, only in the three
-//! instructions that clear, grow and read it), loads and stores at `rsp`, `rdi`, `rsi`, `rdx`
-//! plus a displacement or at a label of the constant pool (RIP-relative, patched when the
-//! pool is placed), and the handful of integer instructions of the prologue, the epilogue
-//! and the choice bytes.
+//! instructions that clear, grow and read it), loads and stores at `rsp`, `rdi`, `rsi`,
+//! `rdx` plus a displacement or at a label of the constant pool (RIP-relative, patched when
+//! the pool is placed), and the handful of integer instructions of the prologue, the
+//! epilogue and the choice bytes.
 
 /// An SSE register, `xmm0` to `xmm7`.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
