@@ -12,9 +12,9 @@
 //! The function begins by saving `mxcsr` and loading upward rounding with every exception
 //! masked; it ends by restoring `mxcsr`. A NaN made anywhere tells the caller to evaluate
 //! with the interpreter instead, whose rules for empty sets and the limits at infinity
-//! apply there. An empty variable (NaN bounds) is flagged where it is read. On nonempty
-//! intervals (no lower bound `+∞`, no upper bound `−∞`) only two operations can make a
-//! NaN: a product of a zero and an infinite bound (`0 · ∞`, at a corner of a product,
+//! apply there. The variables are nonempty (the evaluator checks before it runs a code),
+//! and on nonempty intervals (no lower bound `+∞`, no upper bound `−∞`) only two
+//! operations can make a NaN: a product of a zero and an infinite bound (`0 · ∞`, at a corner of a product,
 //! where the largest of the corners would hide it), and the root of an argument entirely
 //! below 0. Those add their NaN lanes to a mask (`xmm8`), which the function returns as a
 //! flag; sums, differences, `min`, `max` and the other operations keep the bounds' signs
@@ -287,10 +287,6 @@ fn assemble(b: &mut Buffers, tape: &Tape, traced: bool, entries: &[u64; ROUTINES
             Opcode::Var => {
                 a.rm(Sse::MovUpd, X0, Mem::Vars(16 * ins.a as i32));
                 a.rm(Sse::XorPd, X0, Mem::Pool(SIGN_LO));
-                // An empty variable (NaN bounds) is a NaN made here.
-                a.rr(Sse::MovApd, X1, X0);
-                a.cmppd(X1, X0, Cmp::Unord);
-                a.or_nan_mask(X1);
             }
             Opcode::Const | Opcode::Copy => load(a, X0, ins.a),
             Opcode::Unary(op) => {

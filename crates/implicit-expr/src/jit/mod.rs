@@ -16,9 +16,10 @@
 //! The compiled operations: `+ − ×`, negation, `abs`, square, square root, `min`, `max`
 //! and `not`; a tape with any other is left to the interpreter.
 //!
-//! Where a code meets an empty variable, an infinite limit (`0 · ∞`) or a square root of a
-//! negative interval, it says so (a NaN it made, flagged where it was made) and the
-//! evaluator runs the interpreter instead, so every result is the interpreter's.
+//! Where a code meets an infinite limit (`0 · ∞`) or a square root of a negative interval,
+//! it says so (a NaN it made, flagged where it was made) and the evaluator runs the
+//! interpreter instead, as it does for an empty variable (which never reaches a code), so
+//! every result is the interpreter's.
 //!
 //! Before the first tape is compiled, a compiled sum checks that the machine honours the
 //! rounding mode; where it does not (valgrind's emulation of SSE rounds to nearest
