@@ -14,11 +14,11 @@
 //! with the interpreter instead, whose rules for empty sets and the limits at infinity
 //! apply there. The variables are nonempty (the evaluator checks before it runs a code),
 //! and on nonempty intervals (no lower bound `+∞`, no upper bound `−∞`) only two
-//! operations can make a NaN: a product of a zero and an infinite bound (`0 · ∞`, at a corner of a product,
-//! where the largest of the corners would hide it), and the root of an argument entirely
-//! below 0. Those add their NaN lanes to a mask (`xmm8`), which the function returns as a
-//! flag; sums, differences, `min`, `max` and the other operations keep the bounds' signs
-//! apart and make none. (Reading the invalid-operation flag of `mxcsr` instead waits for
+//! operations can make a NaN: a product of a zero and an infinite bound (`0 · ∞`, at a
+//! corner of a product, where the largest of the corners would hide it), and the root of
+//! an argument entirely below 0. Those add their NaN lanes to a mask (`xmm8`,
+//! [`flag_nan`]), which the function returns as a flag; sums, differences, `min`, `max`
+//! and the other operations keep the bounds' signs apart and make none. (Reading the invalid-operation flag of `mxcsr` instead waits for
 //! every operation of the code to finish: a third to a half of an evaluation of a short
 //! tape.)
 //!
@@ -444,8 +444,13 @@ fn sqrt(a: &mut Asm) {
     a.rr(Sse::UnpckLPd, X2, X5);
     a.rr(Sse::MovApd, X0, X2);
     // The root of an upper bound below 0 (the argument entirely negative) is NaN.
-    a.rr(Sse::MovApd, X1, X0);
-    a.cmppd(X1, X0, Cmp::Unord);
+    flag_nan(a, X0, X0);
+}
+
+/// Adds to the NaN mask the lanes where `x` or `y` is NaN. Uses `X1`.
+fn flag_nan(a: &mut Asm, x: Xmm, y: Xmm) {
+    a.rr(Sse::MovApd, X1, x);
+    a.cmppd(X1, y, Cmp::Unord);
     a.or_nan_mask(X1);
 }
 
@@ -524,9 +529,7 @@ fn mul(a: &mut Asm) {
     // A corner `0 · ∞` is NaN, which `maxpd` would drop: into the NaN mask. `X2` and `X3`
     // hold the four corners (`X5` and `X6` the same ones, negated), and a product is NaN
     // whatever the signs.
-    a.rr(Sse::MovApd, X1, X2);
-    a.cmppd(X1, X3, Cmp::Unord);
-    a.or_nan_mask(X1);
+    flag_nan(a, X2, X3);
     a.rr(Sse::MaxPd, X2, X3);
     a.rr(Sse::MaxPd, X5, X6);
     a.rr(Sse::MaxPd, X2, X5);
