@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use beam_trace::Coverage;
 use beam_trace::beam::BoxClass;
-use beam_trace::render::{Piece, PieceShadows, PixelBox};
+use beam_trace::render::{BoxMap, Piece, PieceShadows, PixelBox};
 use beam_trace::screen::PixelRect;
 use beam_trace::shadow::ShadowClass;
 use beam_trace::stats::PassStats;
@@ -251,7 +251,7 @@ pub fn write_piece(w: &mut Writer, p: &Piece) {
     for c in &p.colors {
         c.iter().for_each(|&v| w.f32(v));
     }
-    for c in &p.classes {
+    for c in p.classes.iter() {
         match c.get() {
             None => w.u8(0),
             Some((BoxClass::Miss, edge)) => w.u8(1 | u8::from(edge) << 4),
@@ -318,6 +318,8 @@ pub fn read_piece(r: &mut Reader<'_>) -> Result<Piece, ReadError> {
             t => return Err(format!("box class tag {t}")),
         }));
     }
+    let classes = BoxMap::try_from_pixels(classes)
+        .ok_or_else(|| "more than 2^31 screen boxes in a piece".to_string())?;
     let coverage = (0..n)
         .map(|_| {
             Ok(Coverage {

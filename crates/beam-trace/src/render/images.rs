@@ -3,7 +3,7 @@
 
 use rayon::prelude::*;
 
-use super::classes::PixelBox;
+use super::box_map::BoxMap;
 use crate::beam::BoxClass;
 use crate::image::Image;
 use crate::shadow::ShadowClass;
@@ -20,7 +20,7 @@ pub fn box_class_color(class: &BoxClass) -> [f32; 3] {
 
 /// The screen box classification image (thesis fig. 5.13): each pixel's box class, box
 /// outlines darker; grey where no beam classified the pixel.
-pub fn classification_image(w: u32, h: u32, classes: &[PixelBox]) -> Image {
+pub fn classification_image(w: u32, h: u32, classes: &BoxMap) -> Image {
     let pixels = classes
         .par_iter()
         .map(|c| match c.get() {

@@ -13,6 +13,7 @@
 //! together again.
 
 mod batches;
+mod box_map;
 mod buffers;
 mod classes;
 mod fingerprint;
@@ -25,10 +26,10 @@ mod pixel_beams;
 mod pixels;
 mod primary;
 mod resolve;
-mod scopes;
 mod shading;
 mod soft_shadows;
 
+pub use box_map::BoxMap;
 pub use classes::PixelBox;
 pub use images::{box_class_color, classification_image, cost_image, shadow_class_image};
 pub use output::{RenderOutput, ShadowMaps};
@@ -93,7 +94,7 @@ pub(crate) fn screen_box_pass(
     let routing = Routing::new(&Cpu, scene, plan);
     let (queries, mut passes) = routing.prepare(&Cpu, scene, plan)?;
     let window = Window::full(scene.camera.width(), scene.camera.height());
-    let (classes, _, _, stats) = primary::structure(&queries, scene, plan, &window, progress)?;
+    let (classes, _, stats) = primary::structure(&queries, scene, plan, &window, progress)?;
     passes.push(stats);
     Ok((
         passes,

@@ -2,7 +2,7 @@
 
 use rayon::prelude::*;
 
-use super::classes::PixelBox;
+use super::box_map::BoxMap;
 use super::images::{classification_image, cost_image};
 use crate::beam::BoxClass;
 use crate::float_map::FloatMap;
@@ -24,7 +24,7 @@ pub struct RenderOutput {
     pub cost: Vec<f32>,
     /// Each pixel's screen box class and whether it lies on its box's top or left edge
     /// (`None` where no screen box pass ran).
-    pub(super) boxes: Vec<PixelBox>,
+    pub(super) boxes: BoxMap,
     /// Each pixel's proven bounds on the share of its area whose rays meet a surface.
     pub coverage: Vec<Coverage>,
     /// Soft shadows per pixel; `None` without a soft-shadow pass.
@@ -36,7 +36,7 @@ pub struct RenderOutput {
 impl RenderOutput {
     /// Each pixel's screen box class, row-major (`None` where no screen box pass ran).
     pub fn box_classes(&self) -> Vec<Option<BoxClass>> {
-        self.boxes.par_iter().map(PixelBox::class).collect()
+        self.boxes.par_iter().map(|b| b.class()).collect()
     }
 
     /// Proven-miss (blue), proven-hit (red) and undecided (yellow) screen boxes, with box

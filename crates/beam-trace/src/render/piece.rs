@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use super::box_map::BoxMap;
 use super::buffers;
 use super::classes::PixelBox;
 use super::images::shadow_class_image;
@@ -32,7 +33,7 @@ pub struct Piece {
     pub colors: Vec<[f32; 3]>,
     /// Each pixel's screen box class and whether it lies on its box's top or left edge
     /// (`None` where no screen box classified it).
-    pub classes: Vec<PixelBox>,
+    pub classes: BoxMap,
     /// Each pixel's proven coverage bounds.
     pub coverage: Vec<Coverage>,
     /// Each pixel's cost of primary visibility (the backend's unit: time on the CPU).
@@ -157,7 +158,7 @@ pub(super) fn assemble(
 /// Every pixel's values of the image, in image order.
 struct ImageMaps {
     colors: Vec<[f32; 3]>,
-    classes: Vec<PixelBox>,
+    classes: BoxMap,
     coverage: Vec<Coverage>,
     cost: Vec<f32>,
     shadow_classes: Vec<Option<ShadowClass>>,
@@ -223,7 +224,7 @@ fn gather(
     }
     let mut seen = vec![false; npix];
     let mut colors = vec![[0f32; 3]; npix];
-    let mut classes = vec![PixelBox::NONE; npix];
+    let mut classes = BoxMap::filled(npix, PixelBox::NONE);
     let no_coverage = Coverage {
         proven: 0.0,
         possible: 0.0,
@@ -237,6 +238,9 @@ fn gather(
     let mut lights: Vec<PassStats> = Vec::new();
     for piece in pieces {
         check_piece(&piece, (width, height), soft, nl)?;
+        let base = classes
+            .add_all(&piece.classes)
+            .ok_or_else(|| piece.malformed("pieces of at most 2^31 screen boxes in all"))?;
         for k in 0..piece.window.len() {
             let g = piece.window.global(k);
             if std::mem::replace(&mut seen[g], true) {
@@ -246,7 +250,7 @@ fn gather(
                 )));
             }
             colors[g] = piece.colors[k];
-            classes[g] = piece.classes[k];
+            classes.copy_pixel(g, &piece.classes, k, base);
             coverage[g] = piece.coverage[k];
             cost[g] = piece.cost[k];
             if let Some(s) = &piece.shadows {

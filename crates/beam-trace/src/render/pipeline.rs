@@ -11,7 +11,6 @@ use super::output::RenderOutput;
 use super::piece::{Piece, PieceShadows};
 use super::pixels::Pixels;
 use super::resolve::Flat;
-use super::scopes::PixelScopes;
 use super::{hard_shadows, pixel_beams, primary, shading, soft_shadows};
 use crate::backend::{Backend, Routed, Routing};
 use crate::error::Error;
@@ -98,18 +97,13 @@ impl<'a> Pipeline<'a> {
         let npix = window.len();
         let mut passes = Vec::new();
 
-        let (classes, scopes, traced) = if plan.runs(Pass::ScreenBoxes) {
-            let (classes, scopes, traced, stats) =
-                primary::structure(q, scene, plan, window, progress)?;
+        let (classes, traced) = if plan.runs(Pass::ScreenBoxes) {
+            let (classes, traced, stats) = primary::structure(q, scene, plan, window, progress)?;
             passes.push(stats);
-            (classes, scopes, traced)
+            (classes, traced)
         } else {
             passes.push(PassStats::skipped(Pass::ScreenBoxes.name()));
-            (
-                PixelClasses::filled(npix, None),
-                PixelScopes::none(npix),
-                Vec::new(),
-            )
+            (PixelClasses::filled(npix, None), Vec::new())
         };
 
         let (primaries, cost) = match plan.primary {
@@ -129,9 +123,8 @@ impl<'a> Pipeline<'a> {
                     limit_rays,
                 };
                 passes.push(PassStats::skipped(Pass::PrimaryRays.name()));
-                let (samples, cost, stats) = pixel_beams::pixel_beams(
-                    q, scene, window, &classes, &scopes, refine, progress,
-                )?;
+                let (samples, cost, stats) =
+                    pixel_beams::pixel_beams(q, scene, window, &classes, refine, progress)?;
                 passes.push(stats);
                 (Primaries::Samples(samples), cost)
             }
@@ -144,7 +137,7 @@ impl<'a> Pipeline<'a> {
                     Primary::Octree { .. } => primary::RayStart::FirstCell,
                     _ => primary::RayStart::BoxWindow,
                 };
-                let pixels = (&classes, &scopes, &traced);
+                let pixels = (&classes, &traced);
                 let rays = (rays_per_undecided, start, plan.narrow_hits);
                 // Unlit: no pass after this one reads a surface point, so each pixel's
                 // colour and coverage are resolved at once.
@@ -192,7 +185,7 @@ impl<'a> Pipeline<'a> {
         Ok(Piece {
             window: *window,
             colors,
-            classes: classes.into_boxes(),
+            classes: classes.into_map(),
             coverage,
             cost,
             shadows,

@@ -24,7 +24,6 @@ use super::batches::{PixelSamples, ROWS_PER_BATCH, RowBatch, row_batches};
 use super::buffers;
 use super::classes::PixelClasses;
 use super::pixels::{Pixels, offsets};
-use super::scopes::PixelScopes;
 use crate::backend::{BeamQuery, HitQuery, Queries, RayQuery, VariationQuery};
 use crate::beam::{BeamScope, BoxClass, child_window};
 use crate::camera::Camera;
@@ -206,15 +205,14 @@ fn smooth_hits(
     Ok(smooth)
 }
 
-/// The pixel-beams pass over every pixel of `window`: `classes` and `scopes` are the screen
-/// box structure's result per pixel (`None` where no screen box classified the pixel: its
-/// beam is classified here).
+/// The pixel-beams pass over every pixel of `window`: `classes` is the screen box
+/// structure's result per pixel, class and scope (no class where no screen box classified
+/// the pixel: its beam is classified here).
 pub(super) fn pixel_beams(
     q: &dyn Queries,
     scene: &Scene,
     window: &Window,
     classes: &PixelClasses,
-    scopes: &PixelScopes,
     refine: Refinement,
     progress: &dyn Progress,
 ) -> Result<PixelSamples, Error> {
@@ -249,7 +247,7 @@ pub(super) fn pixel_beams(
                     depth: 0,
                     path: 0,
                     parent: class(k),
-                    scope: scopes.get(first + k).cloned(),
+                    scope: classes.scope(first + k).cloned(),
                     known: class(k).filter(|c| {
                         refine.threshold.is_none()
                             || smooth(k)

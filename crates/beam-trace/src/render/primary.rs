@@ -11,7 +11,6 @@ use super::buffers;
 use super::classes::{BoxPixel, Kind, PixelClasses};
 use super::pixels::{self, owners};
 use super::resolve::{PixelSink, RayBatch};
-use super::scopes::PixelScopes;
 use crate::backend::{
     BeamQuery, CellQuery, DirectHits, HitQuery, Queries, RayQuery, VariationQuery,
 };
@@ -60,15 +59,15 @@ pub(super) fn structure(
     plan: &Plan,
     window: &Window,
     progress: &dyn Progress,
-) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
+) -> Result<(PixelClasses, PixelTraces, PassStats), Error> {
     match plan.primary {
         // The octree traces each undecided pixel's rays.
         Primary::Octree { rays_per_undecided } => {
             octree(q, window, (rays_per_undecided, plan.narrow_hits), progress)
         }
         _ => {
-            let (classes, scopes, stats) = screen_boxes(q, scene, plan, window, progress)?;
-            Ok((classes, scopes, Vec::new(), stats))
+            let (classes, stats) = screen_boxes(q, scene, plan, window, progress)?;
+            Ok((classes, Vec::new(), stats))
         }
     }
 }
@@ -76,13 +75,14 @@ pub(super) fn structure(
 /// The frustum octree pass ([`crate::frustum`]): every tile in one batch (the backend
 /// reports each tile's pixels done as it goes); each pixel a Hit in the range its first
 /// cell proved (with that cell's scope), else Undecided in its first cell (its
-/// `traced_rays` stratified rays traced on from there), or a Miss without one.
+/// `traced_rays` stratified rays traced on from there), or a Miss without one. Each first
+/// cell is one box of the classes, its pixels' index.
 fn octree(
     q: &dyn Queries,
     window: &Window,
     (traced_rays, narrow_hits): (u32, bool),
     progress: &dyn Progress,
-) -> Result<(PixelClasses, PixelScopes, PixelTraces, PassStats), Error> {
+) -> Result<(PixelClasses, PixelTraces, PassStats), Error> {
     let t0 = Instant::now();
     progress.begin(Pass::ScreenBoxes.name(), window.len() as u64);
     let mut traced: PixelTraces = Vec::new();
@@ -110,53 +110,47 @@ fn octree(
         }
     }
     traced.sort_unstable_by_key(|&(p, _)| p);
-    // The scopes the pixels keep, once per first cell: a Hit pixel's ray is searched (in
-    // the cell's scope) only where the plan narrows hits. Cell `j` of tile `t` has the
-    // scope of index `index[t][j]`.
-    let mut scopes = PixelScopes::default();
-    let index: Vec<Vec<u32>> = firsts
-        .iter_mut()
-        .map(|cells| {
-            cells
-                .cells
-                .iter_mut()
-                .map(|f| scopes.keep(f.scope.take().filter(|_| !f.hit || narrow_hits)))
-                .collect()
-        })
-        .collect();
-    // Every pixel's class and scope, a band of tile rows at a time in parallel: the tiles
-    // lie on the image's grid of `OCTREE_TILE` from the window's corner, row by row; a
-    // pixel without a first cell is proven missed.
+    // Every first cell a box, with the scope its pixels keep: a Hit pixel's ray is searched
+    // (in the cell's scope) only where the plan narrows hits. Cell `j` of tile `t` is box
+    // `first_box[t] + j`; a pixel without a first cell stays in the Miss box.
+    let mut classes = PixelClasses::filled(window.len(), Some(BoxClass::Miss));
+    let mut first_box = Vec::with_capacity(firsts.len());
+    for cells in &mut firsts {
+        // The boxes of one tile's cells have consecutive indices.
+        let mut first = None;
+        for f in &mut cells.cells {
+            let scope = f.scope.take().filter(|_| !f.hit || narrow_hits);
+            let id = classes.add_box(f.class(), scope)?;
+            first.get_or_insert(id);
+        }
+        first_box.push(first.unwrap_or(0));
+    }
+    // Every pixel's box, a band of tile rows at a time in parallel: the tiles lie on the
+    // image's grid of `OCTREE_TILE` from the window's corner, row by row.
     let (corner, width) = (window.rect(), window.width() as usize);
     let columns = width.div_ceil(OCTREE_TILE as usize);
-    let mut classes = PixelClasses::filled(window.len(), Some((BoxClass::Miss, false)));
-    let mut of = buffers::filled(window.len(), PixelScopes::NONE);
     let band = OCTREE_TILE as usize * width;
     debug_assert_eq!(all.len(), columns * window.len().div_ceil(band));
     classes
         .bands_mut(band)
-        .zip(of.par_chunks_mut(band))
         .zip(all.par_chunks(columns).zip(firsts.par_chunks(columns)))
-        .zip(index.par_chunks(columns))
-        .for_each(|(((mut classes, of), (tiles, firsts)), index)| {
-            for ((tile, cells), index) in tiles.iter().zip(firsts).zip(index) {
+        .zip(first_box.par_chunks(columns))
+        .for_each(|((mut classes, (tiles, firsts)), first_box)| {
+            for ((tile, cells), &first) in tiles.iter().zip(firsts).zip(first_box) {
                 let tile_width = tile.x1 - tile.x0;
                 for &(k, j) in &cells.pixels {
                     let (x, y) = (tile.x0 + k % tile_width, tile.y0 + k / tile_width);
                     // The band's first row is the tile's.
                     let p = (y - tile.y0) as usize * width + (x - corner.x0) as usize;
-                    classes.set(p, cells.cells[j as usize].class(), false);
-                    of[p] = index[j as usize];
+                    classes.assign(p, first + j, false);
                 }
             }
         });
-    scopes.assign(of);
     // The beams evaluated: the cells and the leaves' inclusion tests.
     c.beams = c.search.g_evals;
     progress.end();
     Ok((
         classes,
-        scopes,
         traced,
         PassStats::of(Pass::ScreenBoxes, t0.elapsed(), &c),
     ))
@@ -171,12 +165,11 @@ fn screen_boxes(
     plan: &Plan,
     window: &Window,
     progress: &dyn Progress,
-) -> Result<(PixelClasses, PixelScopes, PassStats), Error> {
+) -> Result<(PixelClasses, PassStats), Error> {
     let cam = &scene.camera;
     let t0 = Instant::now();
     progress.begin(Pass::ScreenBoxes.name(), window.len() as u64);
     let mut classes = PixelClasses::filled(window.len(), None);
-    let mut scopes = PixelScopes::none(window.len());
     let mut c = ScreenBoxCounters::default();
     // With anti-aliasing, the Hit boxes of more than one pixel whose shading is judged
     // once for all their pixels.
@@ -230,13 +223,15 @@ fn screen_boxes(
                     },
                 ));
             }
+            // A Miss box's pixels take no ray, nor its scope.
+            let scope = answer
+                .scope
+                .clone()
+                .filter(|_| !matches!(class, BoxClass::Miss));
+            let id = classes.add_box(class, scope)?;
             for (x, y) in rect.pixels() {
                 let edge = x == rect.x0 || y == rect.y0;
-                classes.set(window.local(x, y), class, edge);
-            }
-            if !matches!(class, BoxClass::Miss) {
-                let pixels = rect.pixels().map(|(x, y)| window.local(x, y));
-                scopes.set(pixels, answer.scope.clone());
+                classes.assign(window.local(x, y), id, edge);
             }
             progress.advance(rect.area());
         }
@@ -244,11 +239,7 @@ fn screen_boxes(
     }
     mark_smooth(q, &judged, window, &mut classes, &mut c)?;
     progress.end();
-    Ok((
-        classes,
-        scopes,
-        PassStats::of(Pass::ScreenBoxes, t0.elapsed(), &c),
-    ))
+    Ok((classes, PassStats::of(Pass::ScreenBoxes, t0.elapsed(), &c)))
 }
 
 /// The pixels of each box of `judged` whose shading is judged to vary by at most the
@@ -513,8 +504,8 @@ fn known_root(narrow: bool, class: Option<BoxPixel>, trace: Option<&Traced>) -> 
 /// The primary-rays pass: in a Hit box one central ray per pixel searched in `T_final`
 /// (the whole ray again if the search stops at a limit there); elsewhere `rays` stratified
 /// rays per pixel, from where the pixel's beam proved them root-free; a Miss box's pixels
-/// are background without a ray. `classes` holds each pixel's box and `scopes` the scope
-/// of the box's beam (none in per-pixel mode). Without `narrow`, a Hit box's ray is not
+/// are background without a ray. `classes` holds each pixel's box and the scope of the
+/// box's beam (none in per-pixel mode). Without `narrow`, a Hit box's ray is not
 /// searched: its first root is the one the box proved in `T_final`. The pixels go, batch
 /// by batch, to the sink `make` makes from the number of pixels and of rays
 /// ([`PixelSink`]: their samples, or, unlit, their colours and coverage).
@@ -522,7 +513,7 @@ pub(super) fn primary_rays<S: PixelSink>(
     q: &dyn Queries,
     scene: &Scene,
     window: &Window,
-    (classes, scopes, traced): (&PixelClasses, &PixelScopes, &PixelTraces),
+    (classes, traced): (&PixelClasses, &PixelTraces),
     (rays, start, narrow): (u32, RayStart, bool),
     (make, progress): (impl FnOnce(usize, usize) -> S, &dyn Progress),
 ) -> Result<(S, Vec<f32>, PassStats), Error> {
@@ -562,7 +553,7 @@ pub(super) fn primary_rays<S: PixelSink>(
                 window,
                 (
                     classes.get(p),
-                    scopes.get(p),
+                    classes.scope(p),
                     traces_of(classes.kind(p), traced, p),
                 ),
                 r,
