@@ -194,6 +194,14 @@ impl PixelClasses {
         self.map.box_of(p).kind
     }
 
+    /// The kind of pixel `p`'s class and its range (`T_final` of a Hit, `t` of an
+    /// Undecided box, zero otherwise), from one look-up of its box.
+    #[inline]
+    pub(super) fn kind_and_range(&self, p: usize) -> (Kind, Interval<f64>) {
+        let b = self.map.box_of(p);
+        (b.kind, b.t)
+    }
+
     /// The backend's scope of pixel `p`'s box.
     #[inline]
     pub(super) fn scope(&self, p: usize) -> Option<&BeamScope> {

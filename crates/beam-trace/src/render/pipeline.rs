@@ -148,7 +148,7 @@ impl<'a> Pipeline<'a> {
                         window,
                         pixels,
                         rays,
-                        (Pixels::with_capacity, progress),
+                        (|n, rays| Pixels::with_capacity(n, rays()), progress),
                     )?;
                     (Primaries::Samples(samples), cost, stats)
                 } else {

@@ -515,7 +515,7 @@ pub(super) fn primary_rays<S: PixelSink>(
     window: &Window,
     (classes, traced): (&PixelClasses, &PixelTraces),
     (rays, start, narrow): (u32, RayStart, bool),
-    (make, progress): (impl FnOnce(usize, usize) -> S, &dyn Progress),
+    (make, progress): (impl FnOnce(usize, &dyn Fn() -> usize) -> S, &dyn Progress),
 ) -> Result<(S, Vec<f32>, PassStats), Error> {
     let (w, h) = (window.width(), window.height());
     let t0 = Instant::now();
@@ -524,24 +524,46 @@ pub(super) fn primary_rays<S: PixelSink>(
     let mut c = PrimaryRayCounters::default();
     let direct = q.direct_hits();
     let npix = window.len();
-    let all_rays: usize = (0..classes.len())
-        .into_par_iter()
-        .map(|p| ray_count(classes.kind(p), pixel_rays.count()))
-        .sum();
-    let mut sink = make(npix, all_rays);
+    // Pixel `p`'s kind, and whether it is known from its box (by the leaf that shades its
+    // one ray) where the sink takes such pixels ([`PixelSink::RESOLVES_KNOWN`]): a Hit
+    // box's pixel whose central ray has its first root in `T_final` unsearched (hits are
+    // not narrowed) and whose hit record the pass would make itself (nothing to search,
+    // nothing to ask the backend).
+    let known_leaf = direct.filter(|_| S::RESOLVES_KNOWN && !narrow);
+    let kind_of = |p: usize| -> (Kind, bool) {
+        let (kind, t) = classes.kind_and_range(p);
+        let known = known_leaf.is_some() && kind == Kind::Hit && DirectHits::applies(t);
+        (kind, known)
+    };
+    // The rays of a pixel of kind `kind` in the flat batches: none for a known pixel.
+    let rays_of = |(kind, known): (Kind, bool)| {
+        if known {
+            0
+        } else {
+            ray_count(kind, pixel_rays.count())
+        }
+    };
+    let all_rays = || {
+        (0..classes.len())
+            .into_par_iter()
+            .map(|p| rays_of(kind_of(p)))
+            .sum()
+    };
+    let mut sink = make(npix, &all_rays);
     let mut cost: Vec<f32> = buffers::with_room(npix);
     for RowBatch { rows, first, n } in row_batches(w, h, RAY_BATCH_PIXELS / w.max(1)) {
-        // The rays of every pixel of the batch, built in parallel; pixel `k` owns the rays
-        // `first_ray[k]..first_ray[k + 1]` of the flat batch.
-        let first_ray = pixels::par_offsets(n, |k| {
-            ray_count(classes.kind(first + k), pixel_rays.count())
-        });
+        // Each pixel's kind and whether it is known, read once from its box.
+        let kinds: Vec<(Kind, bool)> = (0..n).into_par_iter().map(|k| kind_of(first + k)).collect();
+        // The rays of every pixel of the batch but the known ones, built in parallel; pixel
+        // `k` owns the rays `first_ray[k]..first_ray[k + 1]` of the flat batch.
+        let first_ray = pixels::par_offsets(n, |k| rays_of(kinds[k]));
         let ray_pixel = owners(&first_ray);
         // Ray `j`'s pixel (in the image) and its index among the pixel's rays.
         let pixel_of = |j: usize| {
             let k = ray_pixel[j] as usize;
             (first + k, j - first_ray[k])
         };
+        let kind = |p: usize| kinds[p - first].0;
         // Ray `j` of the batch, made again where it is needed rather than kept: most rays
         // are known (a Hit box's), and a record of every ray would be most of the pass's
         // memory.
@@ -554,7 +576,7 @@ pub(super) fn primary_rays<S: PixelSink>(
                 (
                     classes.get(p),
                     classes.scope(p),
-                    traces_of(classes.kind(p), traced, p),
+                    traces_of(kind(p), traced, p),
                 ),
                 r,
             )
@@ -565,7 +587,7 @@ pub(super) fn primary_rays<S: PixelSink>(
             .into_par_iter()
             .map(|j| {
                 let (p, r) = pixel_of(j);
-                let traced = traces_of(classes.kind(p), traced, p);
+                let traced = traces_of(kind(p), traced, p);
                 known_root(
                     narrow,
                     classes.get(p),
@@ -629,6 +651,10 @@ pub(super) fn primary_rays<S: PixelSink>(
             }
         }
         let result = |j: usize| result_in(&results, j);
+        // A known pixel's one ray has its first root, proven to exist.
+        if known_leaf.is_some() {
+            c.hits += (0..n).into_par_iter().filter(|&k| kinds[k].1).count() as u64;
+        }
         for j in 0..results.len() {
             match result(j) {
                 RootResult::Root { proof, .. } => {
@@ -685,8 +711,8 @@ pub(super) fn primary_rays<S: PixelSink>(
         let hit_of = |j: usize| match hit_source(j)? {
             Ok((d, t)) => {
                 let (p, r) = pixel_of(j);
-                let traced = traces_of(classes.kind(p), traced, p);
-                let ray = ray_of_pixel(&pixel_rays, window.pixel(p), classes.kind(p), traced, r);
+                let traced = traces_of(kind(p), traced, p);
+                let ray = ray_of_pixel(&pixel_rays, window.pixel(p), kind(p), traced, r);
                 d.hit(&ray, t)
             }
             Err(rank) => Some(hits.values[rank]),
@@ -712,7 +738,10 @@ pub(super) fn primary_rays<S: PixelSink>(
                 first: &first_ray,
                 owner: &ray_pixel,
             },
-            |k| sample_area(classes.kind(first + k)),
+            (
+                |k| sample_area(kinds[k].0),
+                |k| known_leaf.filter(|_| kinds[k].1).map(|d| d.leaf),
+            ),
             leaf_of,
             hit_of,
         );

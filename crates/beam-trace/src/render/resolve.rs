@@ -7,7 +7,10 @@
 //! its beams proved: neither needs a ray's surface point, its distance to the eye or its
 //! normal. Resolving the pixel in the pass that found its rays' roots makes no sample
 //! record (a hundred bytes a ray, most of the pass's memory), no camera ray for a root
-//! known without a search, and no pass over the samples afterwards.
+//! known without a search, and no pass over the samples afterwards. A pixel whose one ray's
+//! first root its box proved, and whose shading leaf the pass knows without a hit record
+//! (a Hit box's pixel, hits not narrowed, a scene of one leaf), is *known*: the flat sink
+//! takes it by that leaf, with no record of its ray at all ([`PixelSink::RESOLVES_KNOWN`]).
 
 use rayon::prelude::*;
 
@@ -29,8 +32,13 @@ pub(super) struct RayBatch<'a> {
 impl RayBatch<'_> {
     /// The weight of each ray of pixel `k` in it: its rays weigh the same.
     fn weight(&self, k: usize) -> f32 {
-        1.0 / (self.first[k + 1] - self.first[k]) as f32
+        weight(self.first[k + 1] - self.first[k])
     }
+}
+
+/// The weight of each of a pixel's `rays` rays: they weigh the same.
+fn weight(rays: usize) -> f32 {
+    1.0 / rays as f32
 }
 
 /// What a primary pass hands on of each batch of pixels: for each pixel the area its
@@ -38,19 +46,30 @@ impl RayBatch<'_> {
 /// leaf whose material shades its first root (`leaf(j)`) or its whole hit record
 /// (`hit(j)`), `None` where it meets no surface. A sink asks for what it keeps only.
 pub(super) trait PixelSink {
+    /// Whether the sink takes a *known* pixel (one ray, whose first root its box proved,
+    /// shaded by a leaf the pass knows without a hit record) by that leaf alone,
+    /// `known(k)`, with no ray of it in the batch. Where it does not, every ray of every
+    /// pixel is in the batch and `known(k)` is `None`.
+    const RESOLVES_KNOWN: bool;
+
     /// Appends the pixels of `batch`, in order.
-    fn extend<A, L, H>(&mut self, batch: RayBatch<'_>, area: A, leaf: L, hit: H)
+    fn extend<A, K, L, H>(&mut self, batch: RayBatch<'_>, pixel: (A, K), leaf: L, hit: H)
     where
         A: Fn(usize) -> Area + Sync,
+        K: Fn(usize) -> Option<u32> + Sync,
         L: Fn(usize) -> Option<u32> + Sync,
         H: Fn(usize) -> Option<Hit> + Sync;
 }
 
 /// The samples of every pixel, for the passes that shade them.
 impl PixelSink for Pixels {
-    fn extend<A, L, H>(&mut self, batch: RayBatch<'_>, area: A, _leaf: L, hit: H)
+    // Every ray is a sample.
+    const RESOLVES_KNOWN: bool = false;
+
+    fn extend<A, K, L, H>(&mut self, batch: RayBatch<'_>, (area, _): (A, K), _leaf: L, hit: H)
     where
         A: Fn(usize) -> Area + Sync,
+        K: Fn(usize) -> Option<u32> + Sync,
         L: Fn(usize) -> Option<u32> + Sync,
         H: Fn(usize) -> Option<Hit> + Sync,
     {
@@ -84,14 +103,25 @@ impl<'a> Flat<'a> {
 }
 
 impl PixelSink for Flat<'_> {
-    fn extend<A, L, H>(&mut self, batch: RayBatch<'_>, area: A, leaf: L, _hit: H)
+    const RESOLVES_KNOWN: bool = true;
+
+    fn extend<A, K, L, H>(&mut self, batch: RayBatch<'_>, (area, known): (A, K), leaf: L, _hit: H)
     where
         A: Fn(usize) -> Area + Sync,
+        K: Fn(usize) -> Option<u32> + Sync,
         L: Fn(usize) -> Option<u32> + Sync,
         H: Fn(usize) -> Option<Hit> + Sync,
     {
         let (scene, background) = (self.scene, self.scene.background);
         let pixels = (0..batch.first.len() - 1).into_par_iter().map(|k| {
+            if let Some(l) = known(k) {
+                // Its one ray, shaded by `l`, as below.
+                let color = scene.material_of(l).color;
+                return (
+                    weighed(std::iter::once((weight(1), color)), background),
+                    Coverage::of_shares(std::iter::once((weight(1), area(k)))),
+                );
+            }
             // The pixel's rays share its weight and its area.
             let rays = batch.first[k]..batch.first[k + 1];
             let (weight, area) = (batch.weight(k), area(k));
