@@ -316,7 +316,7 @@ pub struct Scratch {
 /// `scratch` is working memory (what it held before does not matter).
 pub fn first_cells(
     (g, scratch): (&mut BeamEval, &mut Scratch),
-    (cam, bounds): (&Camera, &IBox),
+    (cam, beams, bounds): (&Camera, &EdgeBeams, &IBox),
     tile: PixelRect,
     (range, epsilon, traced_rays): (Interval<f64>, f64, u32),
     counters: &mut RootCounters,
@@ -334,7 +334,7 @@ pub fn first_cells(
         g,
         cam,
         traced,
-        beams: cam.edge_beams(tile),
+        beams,
         bounds,
         range,
         tile,
@@ -433,7 +433,7 @@ struct Search<'a> {
     cam: &'a Camera,
     /// The positions inside an undecided pixel of the rays traced (none: no tracing).
     traced: Vec<(f64, f64)>,
-    beams: EdgeBeams,
+    beams: &'a EdgeBeams,
     bounds: &'a IBox,
     range: Interval<f64>,
     tile: PixelRect,
@@ -477,10 +477,10 @@ impl Search<'_> {
     fn column(&mut self, r: PixelRect, node: usize) -> Column {
         let Columns { slots, made } = &mut self.columns;
         let Some(slot) = slots.get_mut(node) else {
-            return Column::of(&self.beams, r, node);
+            return Column::of(self.beams, r, node);
         };
         if *slot == 0 {
-            made.push(Column::of(&self.beams, r, node));
+            made.push(Column::of(self.beams, r, node));
             *slot = made.len() as u32;
         }
         made[*slot as usize - 1]

@@ -8,7 +8,7 @@ mod scoped;
 pub use queries::CpuQueries;
 use scoped::ScopedFunctions;
 
-use std::sync::Mutex;
+use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
 use glam::DVec3;
@@ -98,6 +98,7 @@ impl Backend for Cpu {
                     .then(|| MeshIndex::new(scene.meshes.iter().map(|m| m.triangles.as_slice()))),
                 diagonal: scene.diagonal(),
                 pool: Mutex::new(Vec::new()),
+                edge_beams: OnceLock::new(),
             }),
             passes: vec![stats],
         })

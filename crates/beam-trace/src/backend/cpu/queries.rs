@@ -2,8 +2,8 @@
 //! made of (beam classification, first roots, shading points).
 
 use std::ops::{Deref, DerefMut};
-use std::sync::Mutex;
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::{Mutex, OnceLock};
 use std::time::Instant;
 
 use interval_core::Interval;
@@ -14,6 +14,7 @@ use crate::backend::query::{BeamQuery, CellQuery, Classified, DirectHits};
 use crate::beam::{
     BeamScope, BoxClass, Extent, Inherited, child_window, evaluate_box_within, forward,
 };
+use crate::camera::EdgeBeams;
 use crate::free_ranges::BeamKey;
 use crate::frustum::{self, TileCells, first_cells};
 use crate::grid::{Grid, GridEval};
@@ -24,6 +25,7 @@ use crate::root::{Escalating, RayFn, RootCounters, RootFinder, RootResult, RootS
 use crate::sample::Hit;
 use crate::scene::Scene;
 use crate::scene::geometry::GeometryEval;
+use crate::screen::PixelRect;
 
 use super::scoped::{ScopedEval, ScopedFunctions};
 
@@ -63,6 +65,10 @@ pub struct CpuQueries<'a> {
     /// Evaluators given back by finished pieces of work, for the next ones: a scene's
     /// evaluators (of long tapes, of every object) cost more to make than many queries.
     pub(super) pool: Mutex<Vec<Evals>>,
+    /// The beams of the camera's pixel rectangles over the whole image, made for the first
+    /// tile of the frustum octree and shared by every other (the same edges, the same
+    /// beams).
+    pub(super) edge_beams: OnceLock<EdgeBeams>,
 }
 
 /// Per-thread evaluators lent by [`CpuQueries::evals`], given back to its pool when dropped.
@@ -308,9 +314,17 @@ impl CpuQueries<'_> {
                 || stats.functions >= TRACE_MIN_CELL_FUNCTIONS
         });
         let traced_rays = if trace { query.traced_rays } else { 0 };
+        let beams = self.edge_beams.get_or_init(|| {
+            cam.edge_beams(PixelRect {
+                x0: 0,
+                y0: 0,
+                x1: cam.width(),
+                y1: cam.height(),
+            })
+        });
         first_cells(
             (&mut ev.geo.beam, &mut ev.cells),
-            (cam, &bounds),
+            (cam, beams, &bounds),
             r,
             (range, self.plan.beam.epsilon, traced_rays),
             c,
