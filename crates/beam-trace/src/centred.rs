@@ -83,6 +83,16 @@ fn compiled_gradient(tape: &Tape) -> Option<Tape> {
     Some(g)
 }
 
+/// `held` where it is `tape` (the same shared tape), else a new owner of `tape`: a tape
+/// that every thread shares is cloned only when it changes, since each clone moves its
+/// count of owners to this thread's cache.
+fn kept(held: Option<Tape>, tape: &Tape) -> Tape {
+    match held {
+        Some(t) if t.ptr_eq(tape) => t,
+        _ => tape.clone(),
+    }
+}
+
 /// A gradient enclosure of a tape's function over a box, where the function was proven
 /// continuous.
 #[derive(Clone, Debug)]
@@ -222,7 +232,7 @@ impl Centred {
             return None;
         }
         self.last = Some(Slope {
-            tape: tape.clone(),
+            tape: kept(self.last.take().map(|s| s.tape), tape),
             over: *b,
             d,
         });
@@ -243,7 +253,7 @@ impl Centred {
         m: [f64; 3],
         slope: [Interval<f64>; 3],
     ) -> Option<Interval<f64>> {
-        let mut acc = match &self.last_centre {
+        let acc = match &self.last_centre {
             Some((t, at, v)) if t.ptr_eq(tape) && *at == m => *v,
             _ => {
                 let folded = self.folded(tape);
@@ -252,13 +262,18 @@ impl Centred {
                     *v = Interval::new_unchecked(c, c);
                 }
                 let v = self.centre64.eval(&self.centre64_vars).ok()?;
-                self.last_centre = Some((tape.clone(), m, v));
+                let held = self.last_centre.take().map(|(t, ..)| t);
+                self.last_centre = Some((kept(held, tape), m, v));
                 v
             }
         };
-        for i in 0..3 {
-            acc = acc + slope[i].mul_sign_cases(b[i] - Interval::new_unchecked(m[i], m[i]));
-        }
+        // In the evaluators' instruction set, as `Beam::points` (written out likewise).
+        let term = |i: usize| (slope[i], b[i] - Interval::new_unchecked(m[i], m[i]));
+        let [(s0, o0), (s1, o1), (s2, o2)] = [term(0), term(1), term(2)];
+        let acc = interval_core::isa::dispatch(
+            #[inline(always)]
+            || acc + s0.mul_sign_cases(o0) + s1.mul_sign_cases(o1) + s2.mul_sign_cases(o2),
+        );
         (!acc.is_empty()).then_some(acc)
     }
 

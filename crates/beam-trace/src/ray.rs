@@ -171,8 +171,21 @@ impl Beam {
     pub fn points(&self, t: Interval<f64>) -> IBox {
         // By sign cases (the same interval as `×`): the parameters of a search are not
         // negative, so the branches predict, and two directed products replace `×`'s eight
-        // (the searches ask this of every piece).
-        std::array::from_fn(|i| self.origin[i] + t.mul_sign_cases(self.dir[i]))
+        // (the searches ask this of every piece). In the instruction set of the evaluators
+        // ([`interval_core::isa::dispatch`]): the directed products' fused multiply-adds
+        // are then instructions, not calls (the same bits either way).
+        // Written out: an inner closure would be compiled out of line, in the baseline set.
+        let (o, d) = (&self.origin, &self.dir);
+        interval_core::isa::dispatch(
+            #[inline(always)]
+            || {
+                [
+                    o[0] + t.mul_sign_cases(d[0]),
+                    o[1] + t.mul_sign_cases(d[1]),
+                    o[2] + t.mul_sign_cases(d[2]),
+                ]
+            },
+        )
     }
 
     /// The largest width of the beam's directions over the length of the longest: about
@@ -420,22 +433,24 @@ impl BeamEval {
         if !points.iter().all(within) {
             return natural;
         }
-        let tape = self.interval.scope().clone();
+        // Borrowed, not cloned: the scope is often a tape every thread shares, whose count
+        // of owners would go back and forth between their caches at every piece.
+        let tape = self.interval.scope();
         let continuous = continuous || tape.is_continuous_everywhere();
         let forms = self
             .centred
-            .get_or_insert_with(|| Box::new(Centred::new(&tape)));
+            .get_or_insert_with(|| Box::new(Centred::new(tape)));
         self.centred_record.0 += 1;
         // First with the gradient of an enclosing piece (the one this piece was cut from):
         // a form that decides the sign decides it as this piece's own gradient would (that
         // form lies inside this one), without computing it.
         let reused = forms
-            .enclose_f64_reused(&tape, &points)
+            .enclose_f64_reused(tape, &points)
             .map(|c| meet(natural, c));
         let decided = match reused {
             Some(both) if crate::root::search::excludes_zero(both) => both,
             _ => forms
-                .enclose_f64(&tape, &points, continuous)
+                .enclose_f64(tape, &points, continuous)
                 .map_or(natural, |c| meet(natural, c)),
         };
         self.centred_record.1 += u64::from(crate::root::search::excludes_zero(decided));
