@@ -16,7 +16,7 @@
 //! * **first** for the pixels of `R` that have no first cell yet where its enclosure is
 //!   negative (every ray is inside: the surface lies at its near face, which only a jump or
 //!   a hole in `g`'s domain allows after positive cells), or where it may vanish and it is a
-//!   leaf: one pixel wide, and `T` *shallow*, no longer than [`DEPTH_RATIO`] times the
+//!   leaf: one pixel wide, and `T` *shallow*, no longer than `DEPTH_RATIO` times the
 //!   pixel's cross-section at `T`'s far end (nor `epsilon`); a leaf longer than the
 //!   cross-section that the inclusion test (below) cannot place is halved in depth first
 //!   (but where exactly one ray of each pixel is traced, below);
@@ -141,7 +141,7 @@ const PRUNE_MIN_LEN: usize = 16;
 const DEPTH_RATIO: f64 = 2.0;
 
 /// The side in pixels of the largest block of pixels tried as one leaf: a cell at most this
-/// wide whose range is shallow ([`DEPTH_RATIO`]) passes the inclusion test
+/// wide whose range is shallow (`DEPTH_RATIO`) passes the inclusion test
 /// for all its pixels at once where their rays meet the surface in that range alike (a
 /// face seen head on), and is searched as its quadrants over the same range where not.
 /// Cell evaluations of an unlit render with blocks of 2, 4, 8 and 16 pixels a side:
@@ -309,7 +309,7 @@ pub struct Scratch {
 /// The first cell of each pixel of `tile` that has one ([`TileCells`]), searched in the
 /// parameter range `range` (where the tile's beam lies in the scene bounds `bounds`), with `g` the scene
 /// function of the camera's beams; leaves are no longer than `epsilon` or
-/// [`DEPTH_RATIO`] times the pixel's cross-section. With `traced_rays` more than 0, the rays of each pixel whose first cell
+/// `DEPTH_RATIO` times the pixel's cross-section. With `traced_rays` more than 0, the rays of each pixel whose first cell
 /// is an undecided leaf, at the stratified positions of that many, are searched on from
 /// there ([`FirstCell::traced`]). Counts each cell's evaluation (and the inclusion tests',
 /// and the traced rays') in `counters.g_evals`.
@@ -1007,7 +1007,7 @@ impl Search<'_> {
 
     /// Searches the cells inside the cell `column × t` (see [`Search::visit`]), with `g`
     /// pruned to it: `t` in two where it is not shallow for the column's beam (see
-    /// [`DEPTH_RATIO`]), else the rectangle in four and `t` in two. Returns whether `g > 0`
+    /// `DEPTH_RATIO`), else the rectangle in four and `t` in two. Returns whether `g > 0`
     /// is proven at `sup t` for every ray of the column's pixels without a first cell and of
     /// its pending rays.
     fn split(

@@ -9,7 +9,7 @@
 
 use rayon::prelude::*;
 
-use super::classes::PixelBox;
+use super::pixel_box::PixelBox;
 
 /// Every pixel's [`PixelBox`] of an image or window (row-major), each box's class kept
 /// once: pixel `p` holds the index of its box and its edge flag.

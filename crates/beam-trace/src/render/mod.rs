@@ -23,6 +23,7 @@ mod output;
 mod piece;
 mod pipeline;
 mod pixel_beams;
+mod pixel_box;
 mod pixels;
 mod primary;
 mod resolve;
