@@ -173,8 +173,8 @@ impl Beam {
         // negative, so the branches predict, and two directed products replace `×`'s eight
         // (the searches ask this of every piece). In the instruction set of the evaluators
         // ([`interval_core::isa::dispatch`]): the directed products' fused multiply-adds
-        // are then instructions, not calls (the same bits either way).
-        // Written out: an inner closure would be compiled out of line, in the baseline set.
+        // are then instructions, not calls (the same bits either way). Written out, since
+        // an inner closure would be compiled out of line, in the baseline set.
         let (o, d) = (&self.origin, &self.dir);
         interval_core::isa::dispatch(
             #[inline(always)]

@@ -7,8 +7,8 @@ use rayon::prelude::*;
 
 pub(super) use super::box_map::BandMut;
 use super::box_map::{BoxId, BoxMap};
-pub(super) use super::pixel_box::Kind;
-pub use super::pixel_box::PixelBox;
+use super::pixel_box::Kind;
+use super::pixel_box::PixelBox;
 use crate::beam::{BeamScope, BoxClass};
 use crate::error::Error;
 

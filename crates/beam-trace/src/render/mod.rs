@@ -31,11 +31,11 @@ mod shading;
 mod soft_shadows;
 
 pub use box_map::BoxMap;
-pub use classes::PixelBox;
 pub use images::{box_class_color, classification_image, cost_image, shadow_class_image};
 pub use output::{RenderOutput, ShadowMaps};
 pub use piece::{Piece, PieceShadows};
 pub use pipeline::Pipeline;
+pub use pixel_box::PixelBox;
 
 use crate::backend::cpu::Cpu;
 use crate::backend::{Backend, Routing};

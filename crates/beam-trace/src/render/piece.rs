@@ -5,9 +5,9 @@ use std::time::Instant;
 
 use super::box_map::BoxMap;
 use super::buffers;
-use super::classes::PixelBox;
 use super::images::shadow_class_image;
 use super::output::{RenderOutput, ShadowMaps};
+use super::pixel_box::PixelBox;
 use crate::error::Error;
 use crate::image::Image;
 use crate::plan::{Pass, Plan};

@@ -8,7 +8,8 @@ use rayon::prelude::*;
 
 use super::batches::{RAY_BATCH_PIXELS, RowBatch, row_batches};
 use super::buffers;
-use super::classes::{BoxPixel, Kind, PixelClasses};
+use super::classes::{BoxPixel, PixelClasses};
+use super::pixel_box::Kind;
 use super::pixels::{self, owners};
 use super::resolve::{PixelSink, RayBatch};
 use crate::backend::{
