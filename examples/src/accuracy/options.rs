@@ -40,6 +40,11 @@ pub struct Args {
     /// epsilon and precision variants.
     #[arg(long, value_delimiter = ',')]
     pub methods: Option<Vec<String>>,
+    /// Renders per setting (default 3; 1 with --quick): each time reported is the median
+    /// of this many, taken in rounds over all settings so that a slow spell of the machine
+    /// slows every setting alike.
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=99))]
+    pub runs: Option<u32>,
 }
 
 /// The settings the time ratios are relative to.
@@ -118,14 +123,16 @@ pub(crate) struct Options {
     pub(crate) reference: Reference,
     pub(crate) out_dir: PathBuf,
     pub(crate) settings: Vec<Setting>,
+    /// Renders per setting whose median times are reported.
+    pub(crate) runs: u32,
 }
 
 impl Options {
     pub(crate) fn from_args(args: &Args) -> Result<Self, String> {
-        let (w, h, n) = if args.quick {
-            (32, 24, 256)
+        let (w, h, n, runs) = if args.quick {
+            (32, 24, 256, 1)
         } else {
-            (128, 96, 4096)
+            (128, 96, 4096, 3)
         };
         let width = args.width.unwrap_or(w);
         let height = args.height.unwrap_or(h);
@@ -155,6 +162,7 @@ impl Options {
                     .collect::<Result<_, _>>()?,
                 None => settings(args.quick)?,
             },
+            runs: args.runs.unwrap_or(runs),
         })
     }
 
@@ -179,6 +187,19 @@ mod tests {
         assert_eq!(e.to_string(), "exact");
         assert_eq!(e.slack(0.5), 1e-6);
         assert_eq!(e.rounding(), 1e-6);
+    }
+
+    #[test]
+    fn times_are_medians_of_three_renders_unless_told() {
+        let runs = |args: &[&str]| {
+            let args =
+                Args::parse_from(std::iter::once("accuracy-cost").chain(args.iter().copied()));
+            Options::from_args(&args).unwrap().runs
+        };
+        assert_eq!(runs(&[]), 3);
+        assert_eq!(runs(&["--quick"]), 1);
+        assert_eq!(runs(&["--quick", "--runs", "5"]), 5);
+        assert!(Args::try_parse_from(["accuracy-cost", "--runs", "0"]).is_err());
     }
 
     #[test]

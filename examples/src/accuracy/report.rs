@@ -376,7 +376,7 @@ pub(crate) fn markdown(reports: &[SceneReport], opts: &Options, elapsed: Duratio
         writeln!(md, "{INTRO}\n")?;
         writeln!(
             md,
-            "Reproduce with `{COMMAND}` (options: `--width`, `--height`, `--reference-samples` or `--exact-reference`, `--out-dir`, `--quick`; scene files as arguments). \
+            "Reproduce with `{COMMAND}` (options: `--width`, `--height`, `--reference-samples` or `--exact-reference`, `--out-dir`, `--runs`, `--quick`; scene files as arguments). \
              This report: {}×{} pixels, reference `{}`, {} settings per scene; the whole run took {:.0} s.\n",
             opts.width,
             opts.height,
@@ -386,8 +386,10 @@ pub(crate) fn markdown(reports: &[SceneReport], opts: &Options, elapsed: Duratio
         )?;
         writeln!(
             md,
-            "Times come from one run on one machine, with every render using all its cores; \
-             absolute times will differ elsewhere, the ratios (column `× {BASELINE}`) are what matter.\n"
+            "Each time is the median of {} renders on one machine, taken in rounds over all settings \
+             so that a slow spell of the machine slows every setting alike, with every render using all its cores; \
+             absolute times will differ elsewhere, the ratios (column `× {BASELINE}`) are what matter.\n",
+            opts.runs
         )?;
         writeln!(md, "## Reading\n\n{READING}")?;
         summary(&mut md, reports)?;

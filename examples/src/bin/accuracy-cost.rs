@@ -5,18 +5,20 @@
 //!
 //! ```text
 //! accuracy-cost [SCENE.toml ...] [--width W --height H] [--reference-samples N | --exact-reference]
-//!               [--out-dir DIR] [--quick]
+//!               [--out-dir DIR] [--runs N] [--quick]
 //! ```
 //!
 //! For each scene (default: `scenes/soft-shadows.toml` and `scenes/thin-occluder.toml`, at
-//! 128 × 96 pixels; about three minutes on two cores):
+//! 128 × 96 pixels; about eight minutes on two cores):
 //!
 //! 1. a reference render with `stochastic:N` (`--reference-samples`, default 4096), or with
 //!    the `exact` method (`--exact-reference`, for scenes whose occluders are meshes);
-//! 2. one render per setting: `stochastic:N` for N in 4..1024 (two with the last-occluder
+//! 2. renders of the settings: `stochastic:N` for N in 4..1024 (two with the last-occluder
 //!    cache), `beam:n` for n in 2..16, `beam-all:7`, `beam-quadtree:8`,
-//!    `minkowski:stochastic:N`, `minkowski:beam:n`, and `beam:7` and `stochastic:64` with
-//!    the root finder's epsilon at 1e-3 and 100 times its default and in `f32` precision;
+//!    `minkowski:stochastic:N`, `minkowski:beam:n`, the `certified` settings, and `beam:7`
+//!    and `stochastic:64` with the root finder's epsilon at 1e-3 and 100 times its default
+//!    and in `f32` precision; each three times (`--runs`), in rounds over all settings so
+//!    that a slow spell of the machine slows each alike, its times the medians;
 //! 3. per render: the soft-shadow pass time, the total time, the RMSE, the largest error and
 //!    the mean signed error (bias) of the visible fraction against the reference, the share
 //!    of the reference's shadowed pixels it calls fully lit (missed shadow), the share of
@@ -30,7 +32,8 @@
 //! finishes. The program fails (after writing the report) if any pixel's proven class
 //! contradicts the reference.
 //!
-//! `--quick` is a smoke run: a 32 × 24 image, a 256-sample reference, fewer settings, and
+//! `--quick` is a smoke run: a 32 × 24 image, a 256-sample reference, fewer settings, one
+//! render each, and
 //! the report in the system's temporary folder unless `--out-dir` is given.
 
 use std::process::ExitCode;
