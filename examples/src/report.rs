@@ -1,6 +1,8 @@
 //! What every example program does at its end: print a markdown report and save it where
-//! asked, and turn its result into an exit status with the error on standard error.
+//! asked, and turn its result into an exit status with the error on standard error; and
+//! the median its repeated timings report.
 
+use std::cmp::Ordering;
 use std::path::Path;
 use std::process::ExitCode;
 
@@ -27,5 +29,24 @@ pub fn exit(result: Result<(), String>) -> ExitCode {
             eprintln!("error: {e}");
             ExitCode::FAILURE
         }
+    }
+}
+
+/// The median of `values` (the upper one of an even count) in the order `compare`, which
+/// sorts them; `None` when there are none.
+pub fn median<T: Copy>(values: &mut [T], compare: impl FnMut(&T, &T) -> Ordering) -> Option<T> {
+    values.sort_by(compare);
+    values.get(values.len() / 2).copied()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::median;
+
+    #[test]
+    fn the_median_is_the_middle_value_in_order() {
+        assert_eq!(median(&mut [3.0, 1.0, 2.0], f64::total_cmp), Some(2.0));
+        assert_eq!(median(&mut [4, 1, 3, 2], Ord::cmp), Some(3));
+        assert_eq!(median(&mut [] as &mut [u8], Ord::cmp), None);
     }
 }

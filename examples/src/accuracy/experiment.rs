@@ -10,6 +10,7 @@ use beam_trace::{Image, NoProgress, RenderOutput, Scene, render};
 use super::metrics::{RunResult, SceneReport, fractions, measure, ms, percent, shadow_time};
 use super::options::{CLASS_IMAGE, ERROR_MAPS, Options};
 use super::setting::{Setting, image_name};
+use crate::report::median;
 
 /// Saved images are enlarged this many times (nearest neighbour) to be readable.
 pub(crate) const ZOOM: u32 = 3;
@@ -105,23 +106,19 @@ pub(crate) fn run_scene(path: &Path, opts: &Options) -> Result<SceneReport, Stri
 /// gives each run the medians of its shadow and total times (their first render's
 /// errors and proofs stay: every method renders the same fractions each time).
 fn median_times(scene: &Scene, opts: &Options, runs: &mut [RunResult]) -> Result<(), String> {
-    let mut times: Vec<Vec<(Duration, Duration)>> = runs
-        .iter()
-        .map(|r| vec![(r.shadow_time, r.total_time)])
-        .collect();
+    let mut shadow: Vec<Vec<Duration>> = runs.iter().map(|r| vec![r.shadow_time]).collect();
+    let mut total: Vec<Vec<Duration>> = runs.iter().map(|r| vec![r.total_time]).collect();
     for round in 1..opts.runs {
         println!("  timing round {} of {}", round + 1, opts.runs);
-        for (run, t) in runs.iter().zip(&mut times) {
+        for (k, run) in runs.iter().enumerate() {
             let out = render_with(scene, &run.setting)?;
-            t.push((shadow_time(&out), out.stats.total));
+            shadow[k].push(shadow_time(&out));
+            total[k].push(out.stats.total);
         }
     }
-    for (run, t) in runs.iter_mut().zip(&mut times) {
-        let middle = t.len() / 2;
-        t.sort_by_key(|&(shadow, _)| shadow);
-        run.shadow_time = t[middle].0;
-        t.sort_by_key(|&(_, total)| total);
-        run.total_time = t[middle].1;
+    for ((run, shadow), total) in runs.iter_mut().zip(&mut shadow).zip(&mut total) {
+        run.shadow_time = median(shadow, Ord::cmp).unwrap_or(run.shadow_time);
+        run.total_time = median(total, Ord::cmp).unwrap_or(run.total_time);
     }
     Ok(())
 }

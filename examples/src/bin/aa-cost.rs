@@ -31,6 +31,7 @@ use std::time::Instant;
 use beam_trace::scene::{AaMode, PrimaryMode};
 use beam_trace::{Image, NoProgress, Scene, render};
 use clap::Parser;
+use examples::report::median;
 
 /// Anti-aliasing modes: time against edge error.
 #[derive(Parser, Debug)]
@@ -253,8 +254,7 @@ fn run(args: &Args) -> Result<(), String> {
         }
     }
     for (row, t) in rows.iter_mut().zip(&mut times) {
-        t.sort_by(f64::total_cmp);
-        row.1 = t[t.len() / 2];
+        row.1 = median(t, f64::total_cmp).unwrap_or(row.1);
     }
     let base = rows[0].1;
     let mut md = format!(

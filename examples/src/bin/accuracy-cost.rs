@@ -33,8 +33,8 @@
 //! contradicts the reference.
 //!
 //! `--quick` is a smoke run: a 32 × 24 image, a 256-sample reference, fewer settings, one
-//! render each, and
-//! the report in the system's temporary folder unless `--out-dir` is given.
+//! render each, and the report in the system's temporary folder unless `--out-dir` is
+//! given.
 
 use std::process::ExitCode;
 
