@@ -8,7 +8,7 @@
 //!
 //! * the **quadtree** of `certified:TOL` (`beam_trace::shadow::certified`): the largest open
 //!   squares split into four, in rounds of as many as should close the gap
-//!   ([`DECIDED_SHARE`]);
+//!   ([`parts_to_split`], [`DECIDED_SHARE`](beam_trace::shadow::certified::DECIDED_SHARE));
 //! * **parts that follow the edge**: the quadtree down to squares of a quarter of the light,
 //!   then each open square cut into columns whose slanted sides run along the shadow's edge
 //!   (its direction at the column's middle, known exactly here), each column bisected across
@@ -22,7 +22,7 @@
 //! cargo run --release -p examples --bin light-parts -- --tolerance 0.1
 //! ```
 
-use beam_trace::shadow::certified::{DECIDED_SHARE, MAX_LEVEL};
+use beam_trace::shadow::certified::parts_to_split;
 use clap::Parser;
 use glam::{DVec2, Vec2Swizzles};
 
@@ -82,11 +82,13 @@ impl Disc {
         }
     }
 
-    /// Points of the edge (the circle), `SAMPLES` of them.
+    /// Points sampled on the edge (the circle).
+    const EDGE_SAMPLES: u32 = 4096;
+
+    /// Points of the edge (the circle), [`Disc::EDGE_SAMPLES`] of them.
     fn edge_points(&self) -> impl Iterator<Item = DVec2> + '_ {
-        const SAMPLES: u32 = 4096;
-        (0..SAMPLES).map(move |k| {
-            let a = std::f64::consts::TAU * f64::from(k) / f64::from(SAMPLES);
+        (0..Self::EDGE_SAMPLES).map(move |k| {
+            let a = std::f64::consts::TAU * f64::from(k) / f64::from(Self::EDGE_SAMPLES);
             self.centre + self.radius * DVec2::new(a.cos(), a.sin())
         })
     }
@@ -97,7 +99,7 @@ impl Disc {
             .edge_points()
             .filter(|p| p.cmpge(DVec2::ZERO).all() && p.cmple(DVec2::ONE).all())
             .count();
-        std::f64::consts::TAU * self.radius * inside as f64 / 4096.0
+        std::f64::consts::TAU * self.radius * inside as f64 / f64::from(Self::EDGE_SAMPLES)
     }
 
     /// The point of the edge in `[u0, u1] × [v0, v1]` nearest the column's middle `u`, if
@@ -113,10 +115,8 @@ impl Disc {
 /// Whether the convex polygon `poly` holds `p`.
 fn contains(poly: &[DVec2], p: DVec2) -> bool {
     let n = poly.len();
-    let sides: Vec<f64> = (0..n)
-        .map(|k| (poly[(k + 1) % n] - poly[k]).perp_dot(p - poly[k]))
-        .collect();
-    sides.iter().all(|s| *s >= 0.0) || sides.iter().all(|s| *s <= 0.0)
+    let side = |k: usize| (poly[(k + 1) % n] - poly[k]).perp_dot(p - poly[k]);
+    (0..n).all(|k| side(k) >= 0.0) || (0..n).all(|k| side(k) <= 0.0)
 }
 
 /// The distance from `p` to the segment `a b`.
@@ -224,32 +224,44 @@ impl Tally {
     }
 }
 
+/// Tests `squares` into `tally` (counting each, adding the decided areas) and returns the
+/// open ones.
+fn test_squares(disc: &Disc, squares: &[Square], tally: &mut Tally) -> Vec<Square> {
+    let mut open = Vec::new();
+    for s in squares {
+        match disc.classify(&s.corners()) {
+            Class::Open => {
+                tally.parts += 1;
+                open.push(*s);
+            }
+            class => tally.add(class, s.side() * s.side()),
+        }
+    }
+    open
+}
+
+/// The whole light.
+const WHOLE: Square = Square {
+    level: 0,
+    i: 0,
+    j: 0,
+};
+
 /// The quadtree of `certified:TOL`: rounds splitting the largest open squares, as many as
-/// should close the gap if each decided [`DECIDED_SHARE`] of its area.
+/// [`parts_to_split`] says.
 fn quadtree(disc: &Disc, tolerance: f64) -> Tally {
     let mut tally = Tally::default();
     let mut open: Vec<Square> = Vec::new();
-    let mut asked = vec![Square {
-        level: 0,
-        i: 0,
-        j: 0,
-    }];
+    let mut asked = vec![WHOLE];
     loop {
-        for s in &asked {
-            let class = disc.classify(&s.corners());
-            tally.add(class, s.side() * s.side());
-            if class == Class::Open {
-                open.push(*s);
-            }
-        }
-        let need = tally.width() - tolerance;
-        let (mut split, mut expected) = (0, 0.0);
-        while need > 0.0 && split < open.len() && open[split].level < MAX_LEVEL && expected < need {
-            expected += open[split].side().powi(2) * DECIDED_SHARE;
-            split += 1;
-        }
+        open.extend(test_squares(disc, &asked, &mut tally));
+        let split = parts_to_split(
+            open.iter().map(|s| s.level),
+            tally.width() - tolerance,
+            usize::MAX,
+        );
         if split == 0 {
-            tally.open = tally.width();
+            tally.open = open.iter().map(|s| s.side() * s.side()).sum();
             return tally;
         }
         asked = open.drain(..split).flat_map(|s| s.quadrants()).collect();
@@ -266,26 +278,10 @@ const MIN_COLUMN: f64 = 1e-3;
 /// `band` tall.
 fn edge_following(disc: &Disc, band: f64) -> Tally {
     let mut tally = Tally::default();
-    let mut open = vec![Square {
-        level: 0,
-        i: 0,
-        j: 0,
-    }];
-    for level in 0..=COARSE_LEVEL {
-        let mut still = Vec::new();
-        for s in &open {
-            let class = disc.classify(&s.corners());
-            tally.add(class, s.side() * s.side());
-            if class == Class::Open {
-                still.push(*s);
-            }
-        }
-        tally.open = 0.0;
-        open = if level < COARSE_LEVEL {
-            still.iter().flat_map(Square::quadrants).collect()
-        } else {
-            still
-        };
+    let mut open = test_squares(disc, &[WHOLE], &mut tally);
+    for _ in 0..COARSE_LEVEL {
+        let quadrants: Vec<Square> = open.iter().flat_map(Square::quadrants).collect();
+        open = test_squares(disc, &quadrants, &mut tally);
     }
     for s in open {
         // Columns across the edge's direction at the square's middle: along `u` where the
@@ -352,7 +348,8 @@ fn sheared_bands(
     let mut stack = vec![(v0 - rise, v1 + rise)];
     while let Some((a, b)) = stack.pop() {
         let poly = band_poly(a, b);
-        if poly.len() < 3 || area(&poly) == 0.0 {
+        let part_area = if poly.len() < 3 { 0.0 } else { area(&poly) };
+        if part_area == 0.0 {
             continue;
         }
         let class = disc.classify(&poly);
@@ -361,7 +358,7 @@ fn sheared_bands(
             let m = 0.5 * (a + b);
             stack.extend([(a, m), (m, b)]);
         } else {
-            tally.add(class, area(&poly));
+            tally.add(class, part_area);
         }
     }
     let halve = tally.open > 2.0 * band * (u1 - u0) && u1 - u0 > MIN_COLUMN;

@@ -74,6 +74,27 @@ pub const DECIDED_SHARE: f64 = 0.5;
 /// and narrows the mean bound (`certified:0.5` 62,764 → 43,642 ppm).
 pub const SCREEN_MIN_SEGMENTS: u32 = 16;
 
+/// How many of the open parts a round of the refinement splits: given their levels, largest
+/// first, the leading ones whose areas, each expected to decide [`DECIDED_SHARE`] of itself,
+/// first cover `need` (the bound's width above the tolerance), at most `affordable` of them and
+/// none at [`MAX_LEVEL`]. Zero when `need` is not positive: the refinement is done.
+pub fn parts_to_split(
+    levels: impl IntoIterator<Item = u32>,
+    need: f64,
+    affordable: usize,
+) -> usize {
+    let mut split = 0;
+    let mut expected = 0.0;
+    for level in levels.into_iter().take(affordable) {
+        if need <= 0.0 || level >= MAX_LEVEL || expected >= need {
+            break;
+        }
+        expected += 0.25f64.powi(level as i32) * DECIDED_SHARE;
+        split += 1;
+    }
+    split
+}
+
 /// The certified method.
 #[derive(Copy, Clone, Debug, PartialEq, Eq)]
 pub struct Certified {
@@ -223,18 +244,12 @@ impl Certified {
             // The largest parts are split, as many as should bring the bound to the
             // tolerance (and at least one), none at `MAX_LEVEL`: the others wait for the
             // next round.
-            let need = (hi - lo) - tolerance;
             let affordable = (self.budget.saturating_sub(used) / 4) as usize;
-            let mut split = 0;
-            let mut expected = 0.0;
-            while need > 0.0
-                && split < open.len().min(affordable)
-                && open[split].level < MAX_LEVEL
-                && expected < need
-            {
-                expected += open[split].area() * DECIDED_SHARE;
-                split += 1;
-            }
+            let split = parts_to_split(
+                open.iter().map(|p| p.level),
+                (hi - lo) - tolerance,
+                affordable,
+            );
             if split == 0 {
                 return Refined { lo, hi, open, used };
             }
