@@ -119,7 +119,7 @@ pub(crate) fn mix(mut z: u64) -> u64 {
 }
 
 /// A number in `[0, 1)` from the top 53 bits.
-fn unit(h: u64) -> f64 {
+pub(crate) fn unit(h: u64) -> f64 {
     (h >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
 }
 
