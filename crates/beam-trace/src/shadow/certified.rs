@@ -24,7 +24,8 @@
 //! the part), and lies in `[0, area]`, so the estimate never leaves `[lo, hi]`. Where more
 //! parts are left than segments, the segments are spread over them by area instead, at
 //! most one per part, and their share found free estimates the visible share of the parts'
-//! whole area (unbiased likewise, see [`spread`]). Before the
+//! whole area (systematic sampling by area with a uniform point in each part: every point
+//! of the open area is equally likely, so this is unbiased likewise). Before the
 //! segments, a part that would get at least [`SCREEN_MIN_SEGMENTS`] of them is *screened*:
 //! its quadrants' beams are searched with the rejection test alone (no inclusion test, no
 //! mean-value form: about one segment's cost each), each rejected quadrant is proven
