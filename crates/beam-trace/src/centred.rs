@@ -89,14 +89,15 @@ struct Pruned {
 }
 
 impl Pruned {
-    /// Itself where `b` lies inside its box and `folded` is its tape. Each `min` and `max`
-    /// its evaluation decided takes one branch at every point of its box (the enclosures
-    /// of the branches were apart there), so over `b` too `folded`'s function is the
-    /// pruning's, and the pruning's gradient encloses its slopes: no evaluation over `b`
-    /// is needed to know it. (With inclusion-isotone operations, as a polynomial's are,
-    /// an evaluation over `b` would make the same choices: the bits are the same.)
-    fn inside(&self, folded: &Tape, b: &[Interval<f64>]) -> Option<&Pruned> {
-        (self.folded.ptr_eq(folded) && (0..3).all(|i| b[i].subset(self.over[i]))).then_some(self)
+    /// Whether it holds for `folded` over `b`: `folded` is its tape and `b` lies inside
+    /// its box. Each `min` and `max` its evaluation decided takes one branch at every point
+    /// of its box (the enclosures of the branches were apart there), so over `b` too
+    /// `folded`'s function is the pruning's, and the pruning's gradient encloses its
+    /// slopes: no evaluation over `b` is needed to know it. (With inclusion-isotone
+    /// operations, as a polynomial's are, an evaluation over `b` would make the same
+    /// choices: the bits are the same.)
+    fn holds(&self, folded: &Tape, b: &[Interval<f64>]) -> bool {
+        self.folded.ptr_eq(folded) && (0..3).all(|i| b[i].subset(self.over[i]))
     }
 }
 
@@ -171,7 +172,7 @@ impl Centred {
         if let Some(p) = self
             .last_pruned
             .as_ref()
-            .and_then(|p| p.inside(folded, &self.vars))
+            .filter(|p| p.holds(folded, &self.vars))
         {
             return p.gradient.clone();
         }
@@ -308,7 +309,7 @@ impl Centred {
                 // Where `b` lies in the box of the last pruning, its tape gives the same
                 // value at the centre (each `min` and `max` decided the same way there) in
                 // fewer operations.
-                let short = self.last_pruned.as_ref().and_then(|p| p.inside(&folded, b));
+                let short = self.last_pruned.as_ref().filter(|p| p.holds(&folded, b));
                 self.centre64.set_tape(short.map_or(&folded, |p| &p.pruned));
                 for (v, &c) in self.centre64_vars.iter_mut().zip(&m) {
                     *v = Interval::new_unchecked(c, c);
@@ -410,6 +411,25 @@ mod tests {
         }
     }
 
+    /// The forward-mode evaluator's gradient enclosure over `b` (`grad` evaluates the
+    /// folded tape).
+    fn forward_mode_slopes(
+        grad: &mut Evaluator<Grad<Interval<f64>>>,
+        b: &IBox,
+    ) -> [Interval<f64>; 3] {
+        let mut vars = vec![Grad::constant_value(Interval::ZERO); RAY_SLOTS];
+        for (i, &x) in b.iter().enumerate() {
+            vars[i] = Grad::var(x, i);
+        }
+        grad.eval(&vars).expect("seven slots").d
+    }
+
+    /// The bits of an interval's ends, a zero of either sign counted as one (`x + 0` is
+    /// `+0` for both zeros): to compare enclosures bit for bit.
+    fn bits(x: Interval<f64>) -> (u64, u64) {
+        ((x.inf() + 0.0).to_bits(), (x.sup() + 0.0).to_bits())
+    }
+
     /// The slopes are the forward-mode evaluator's, bit for bit, whichever way they are
     /// computed: a polynomial's gradient tape, the gradient tape of a formula with `min`
     /// and `max` pruned to the box (decided there), or the evaluator itself (undecided).
@@ -430,11 +450,7 @@ mod tests {
             let mut grad = Evaluator::<Grad<Interval<f64>>>::new(&folded);
             for _ in 0..300 {
                 let b = random_box(&mut next);
-                let mut vars = vec![Grad::constant_value(Interval::ZERO); RAY_SLOTS];
-                for (i, &x) in b.iter().enumerate() {
-                    vars[i] = Grad::var(x, i);
-                }
-                let want = grad.eval(&vars).expect("seven slots").d;
+                let want = forward_mode_slopes(&mut grad, &b);
                 let Some((_, got)) = c.slope(&tape, &b, true) else {
                     assert!(want.iter().any(|d| d.is_empty()), "{f} over {b:?}");
                     continue;
@@ -445,13 +461,10 @@ mod tests {
                 let pruned = !whole && c.pruned_gradient_tape(&folded).is_some();
                 paths[0] += usize::from(whole || pruned);
                 paths[1] += usize::from(!whole && !pruned);
-                // Bit for bit, a zero of either sign counted as one (`x + 0` is `+0` for
-                // both zeros).
-                let bits = |x: f64| (x + 0.0).to_bits();
                 for (w, g) in want.iter().zip(&got) {
                     assert_eq!(
-                        (bits(w.inf()), bits(w.sup())),
-                        (bits(g.inf()), bits(g.sup())),
+                        bits(*w),
+                        bits(*g),
                         "{f} over {b:?}: {want:?} against {got:?}"
                     );
                 }
@@ -495,17 +508,11 @@ mod tests {
                     let by_pruning = c
                         .last_pruned
                         .as_ref()
-                        .is_some_and(|p| p.inside(&folded, &inner).is_some());
+                        .is_some_and(|p| p.holds(&folded, &inner));
                     let Some((m, got)) = c.slope(&tape, &inner, true) else {
                         continue;
                     };
-                    let mut vars = vec![Grad::constant_value(Interval::ZERO); RAY_SLOTS];
-                    for (i, &x) in inner.iter().enumerate() {
-                        vars[i] = Grad::var(x, i);
-                    }
-                    let want = grad.eval(&vars).expect("seven slots").d;
-                    let bits =
-                        |x: Interval<f64>| ((x.inf() + 0.0).to_bits(), (x.sup() + 0.0).to_bits());
+                    let want = forward_mode_slopes(&mut grad, &inner);
                     for (w, g) in want.iter().zip(&got) {
                         assert_eq!(bits(*w), bits(*g), "{f} over {inner:?}");
                     }
@@ -527,7 +534,7 @@ mod tests {
                 if let Some(p) = &c.last_pruned {
                     let mut wider = p.over;
                     wider[1] = Interval::new_unchecked(wider[1].inf(), wider[1].sup() + 0.01);
-                    assert!(p.inside(&folded, &wider).is_none());
+                    assert!(!p.holds(&folded, &wider));
                 }
             }
         }
